@@ -1,0 +1,28 @@
+"""clearsim: planar mechanisms with dry and lubricated revolute clearance joints.
+
+The Rust core (``clearsim._core``) integrates; this package describes mechanisms, runs them and
+analyses the results. SI units throughout.
+"""
+
+from . import _core
+from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError
+from .joints import Dry, Lubricated
+from .mechanism import GROUND, Mechanism
+from .result import Result
+from . import models
+
+__version__ = _core.__version__
+
+__all__ = [
+    "AssemblyError",
+    "ClearsimError",
+    "Dry",
+    "GROUND",
+    "InputError",
+    "InterruptedRun",
+    "Lubricated",
+    "Mechanism",
+    "Result",
+    "SimulationError",
+    "models",
+]

@@ -1,0 +1,151 @@
+"""Clearance-joint models: the parameters of a dry or lubricated revolute clearance (spec §3–§4).
+
+All quantities in SI units.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, Optional
+
+from .errors import InputError, check_finite, check_positive
+
+NORMAL_LAWS = ("lankarani_nikravesh", "hertz", "hunt_crossley", "flores")
+FILM_MODELS = ("long", "short", "long_paper")
+
+
+@dataclass(frozen=True)
+class Dry:
+    """Dry clearance: impact with a continuous contact law and modified Coulomb friction.
+
+    Parameters
+    ----------
+    normal_law:
+        ``"lankarani_nikravesh"`` (default, P3), ``"hertz"`` (no damping), ``"hunt_crossley"``
+        or ``"flores"`` (Flores et al. 2011).
+    youngs_modulus, poisson_ratio:
+        E [Pa] and ν [-] of the bearing; the journal's default to the same unless
+        ``journal_youngs_modulus`` / ``journal_poisson_ratio`` are given.
+    restitution:
+        Coefficient of restitution c_e in (0, 1].
+    exponent:
+        n in K δⁿ (1.5, Hertzian).
+    stiffness:
+        Contact stiffness K [N/m^n]; ``None`` computes it from the materials (P4).
+    stiffness_form:
+        ``"internal"`` (default: R_b R_j / (R_b − R_j), journal inside bearing, spec erratum)
+        or ``"paper_printed"`` (R_b R_j / (R_b + R_j), as printed in the paper's Eq. 4).
+    friction:
+        Sliding friction coefficient c_f [-].
+    v0, v1:
+        Modified-Coulomb slip-speed limits [m/s] (P5), v0 < v1.
+    impact_speed_floor:
+        Floor for the recorded impact speed δ̇⁽⁻⁾ [m/s], guarding resting contact.
+    """
+
+    normal_law: str = "lankarani_nikravesh"
+    youngs_modulus: float = 207e9
+    poisson_ratio: float = 0.3
+    journal_youngs_modulus: Optional[float] = None
+    journal_poisson_ratio: Optional[float] = None
+    restitution: float = 0.9
+    exponent: float = 1.5
+    stiffness: Optional[float] = None
+    stiffness_form: str = "internal"
+    friction: float = 0.1
+    v0: float = 1e-4
+    v1: float = 1e-2
+    impact_speed_floor: float = 1e-3
+
+    def __post_init__(self) -> None:
+        if self.normal_law not in NORMAL_LAWS:
+            raise InputError(
+                f"invalid normal_law = {self.normal_law!r}: must be one of {', '.join(NORMAL_LAWS)}",
+                field="normal_law",
+                value=self.normal_law,
+            )
+        if self.stiffness_form not in ("internal", "paper_printed"):
+            raise InputError(
+                f"invalid stiffness_form = {self.stiffness_form!r}: must be 'internal' or 'paper_printed'",
+                field="stiffness_form",
+                value=self.stiffness_form,
+            )
+
+    def _as_dict(self) -> Dict[str, Any]:
+        e_j = self.youngs_modulus if self.journal_youngs_modulus is None else self.journal_youngs_modulus
+        nu_j = self.poisson_ratio if self.journal_poisson_ratio is None else self.journal_poisson_ratio
+        return {
+            "kind": "dry",
+            "normal_law": self.normal_law,
+            "youngs_bearing": self.youngs_modulus,
+            "youngs_journal": e_j,
+            "poisson_bearing": self.poisson_ratio,
+            "poisson_journal": nu_j,
+            "restitution": self.restitution,
+            "exponent": self.exponent,
+            "stiffness": self.stiffness,
+            "stiffness_paper_printed": self.stiffness_form == "paper_printed",
+            "friction": self.friction,
+            "v0": self.v0,
+            "v1": self.v1,
+            "impact_speed_floor": self.impact_speed_floor,
+        }
+
+
+@dataclass(frozen=True)
+class Lubricated:
+    """Lubricated clearance: a hydrodynamic journal bearing with the transition to dry contact.
+
+    Parameters
+    ----------
+    viscosity:
+        Dynamic viscosity μ [Pa s].
+    length:
+        Bearing length L [m].
+    film:
+        ``"long"`` (default: Pinkus–Sternlicht long bearing, Gümbel condition, quadrature of the
+        positive pressure; the paper's model, valid for L/D > 2), ``"short"`` (Ocvirk short
+        bearing, L/D < 1) or ``"long_paper"`` (the paper's printed closed forms P13–P14,
+        known to be wrong for a receding journal; for comparison only).
+    eps0, m:
+        Below ε0 both film components are scaled by ε^m (P15–P16).
+    e0:
+        Width of the film-to-contact transition band [m] (P18); ``None`` = 5 % of the clearance.
+    eps_max:
+        The film is evaluated at min(ε, ε_max) inside the band (it is singular at ε = 1).
+    dry:
+        The dry law that takes over beyond e = c.
+    """
+
+    viscosity: float = 0.4
+    length: float = 0.05
+    film: str = "long"
+    eps0: float = 2e-6
+    m: float = 0.5
+    e0: Optional[float] = None
+    eps_max: float = 0.99
+    dry: Dry = field(default_factory=Dry)
+
+    def __post_init__(self) -> None:
+        if self.film not in FILM_MODELS:
+            raise InputError(
+                f"invalid film = {self.film!r}: must be one of {', '.join(FILM_MODELS)}", field="film", value=self.film
+            )
+        check_positive("viscosity", self.viscosity)
+        check_positive("length", self.length)
+        check_finite("eps_max", self.eps_max)
+
+    def _as_dict(self) -> Dict[str, Any]:
+        d = {
+            "kind": "lubricated",
+            "film": self.film,
+            "viscosity": self.viscosity,
+            "length": self.length,
+            "eps0": self.eps0,
+            "m": self.m,
+            "eps_max": self.eps_max,
+            "dry": self.dry._as_dict(),
+        }
+        if self.e0 is not None:
+            d["e0"] = self.e0
+        return d

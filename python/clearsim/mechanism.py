@@ -1,0 +1,436 @@
+"""Describe a planar mechanism and simulate it.
+
+A :class:`Mechanism` collects bodies, ideal joints, drivers and clearance joints as plain data;
+``simulate`` compiles it in the Rust core and integrates it there with the GIL released.
+SI units throughout: metres, kilograms, seconds, radians.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import warnings
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from .errors import InputError, InterruptedRun, SimulationError, check_finite, check_positive
+from .joints import Dry, Lubricated
+from .result import Result
+
+GROUND = "ground"
+Point = Sequence[float]
+INTEGRATORS = ("rk45", "rk4", "dop853")
+OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation")
+DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
+
+
+def _point(field: str, p: Any) -> List[float]:
+    try:
+        seq = list(p)
+    except TypeError:
+        raise InputError(f"invalid {field} = {p!r}: must be a pair (x, y)", field=field, value=p) from None
+    if len(seq) != 2:
+        raise InputError(f"invalid {field} = {p!r}: must be a pair (x, y)", field=field, value=p)
+    return [check_finite(f"{field}[0]", seq[0]), check_finite(f"{field}[1]", seq[1])]
+
+
+class Mechanism:
+    """A planar mechanism of rigid bodies.
+
+    Parameters
+    ----------
+    gravity:
+        Gravitational acceleration (g_x, g_y) [m/s²]; ``(0, 0)`` for none.
+    baumgarte:
+        Baumgarte stabilisation coefficients (α, β) [1/s] of P26 (default 50, 50).
+
+    Example
+    -------
+    >>> m = Mechanism(gravity=(0, -9.81))
+    >>> m.add_body("link", mass=1.0, inertia=0.01, position=(0.1, 0.0))
+    >>> m.revolute("ground", (0, 0), "link", (-0.1, 0))
+    >>> res = m.simulate(0.5, dt_out=1e-3)
+    """
+
+    def __init__(self, gravity: Point = (0.0, -9.81), baumgarte: Tuple[float, float] = (50.0, 50.0)) -> None:
+        self.gravity = _point("gravity", gravity)
+        self.baumgarte = _point("baumgarte", baumgarte)
+        self._bodies: List[Dict[str, Any]] = []
+        self._index: Dict[str, int] = {}
+        self._joints: List[Dict[str, Any]] = []
+        self._drivers: List[Dict[str, Any]] = []
+        self._clearance: List[Dict[str, Any]] = []
+        self._names: set = set()
+        self._compiled: Any = None
+
+    # ------------------------------------------------------------------ building
+    def add_body(
+        self,
+        name: str,
+        *,
+        mass: float,
+        inertia: float,
+        position: Point = (0.0, 0.0),
+        angle: float = 0.0,
+        velocity: Optional[Sequence[float]] = None,
+    ) -> "Mechanism":
+        """Add a rigid body with its reference point at the centroid.
+
+        ``mass`` [kg] and ``inertia`` (about the centroid) [kg m²] must be positive.
+        ``position`` [m] and ``angle`` [rad] are approximate: the kinematic assembly at t0 makes
+        them satisfy the joints. ``velocity`` (ẋ, ẏ, θ̇) is an optional guess, projected onto
+        the constraints (drivers fix what they drive).
+        """
+        if not isinstance(name, str) or not name:
+            raise InputError(f"invalid body name = {name!r}: must be a non-empty string", field="name", value=name)
+        if name == GROUND:
+            raise InputError("invalid body name = 'ground': reserved for the fixed frame", field="name", value=name)
+        if name in self._index:
+            raise InputError(f"invalid body name = {name!r}: a body of that name exists already", field="name", value=name)
+        body = {
+            "name": name,
+            "mass": check_positive(f"body '{name}'.mass", mass),
+            "inertia": check_positive(f"body '{name}'.inertia", inertia),
+            "position": _point(f"body '{name}'.position", position),
+            "angle": check_finite(f"body '{name}'.angle", angle),
+        }
+        if velocity is not None:
+            v = list(velocity)
+            if len(v) != 3:
+                raise InputError(f"invalid body '{name}'.velocity = {velocity!r}: must be (vx, vy, omega)", field=f"body '{name}'.velocity", value=velocity)
+            body["velocity"] = [check_finite(f"body '{name}'.velocity[{k}]", x) for k, x in enumerate(v)]
+        self._index[name] = len(self._bodies)
+        self._bodies.append(body)
+        self._compiled = None
+        return self
+
+    def _body(self, field: str, name: str, allow_ground: bool = True) -> Optional[int]:
+        if name == GROUND and allow_ground:
+            return None
+        if name not in self._index:
+            known = ", ".join(self._index) or "none yet"
+            raise InputError(f"invalid {field} = {name!r}: no such body (known: {known})", field=field, value=name)
+        return self._index[name]
+
+    def _new_name(self, kind: str, name: Optional[str]) -> str:
+        if name is None:
+            k = 1
+            while f"{kind}{k}" in self._names:
+                k += 1
+            name = f"{kind}{k}"
+        if not isinstance(name, str) or not name:
+            raise InputError(f"invalid {kind} name = {name!r}: must be a non-empty string", field="name", value=name)
+        if name in self._names:
+            raise InputError(f"invalid {kind} name = {name!r}: a joint or driver of that name exists already", field="name", value=name)
+        self._names.add(name)
+        self._compiled = None
+        return name
+
+    def revolute(self, body_a: str, point_a: Point, body_b: str, point_b: Point, name: Optional[str] = None) -> "Mechanism":
+        """Ideal revolute joint: ``point_a`` of ``body_a`` coincides with ``point_b`` of ``body_b``.
+
+        Points are in the body's frame (from its centroid, at angle 0) [m]; on ``"ground"`` they
+        are global coordinates.
+        """
+        a = self._body("body_a", body_a)
+        b = self._body("body_b", body_b)
+        if a == b:
+            raise InputError(f"invalid body_b = {body_b!r}: a joint needs two different bodies", field="body_b", value=body_b)
+        self._joints.append(
+            {
+                "kind": "revolute",
+                "name": self._new_name("revolute", name),
+                "body_a": a,
+                "point_a": _point("point_a", point_a),
+                "body_b": b,
+                "point_b": _point("point_b", point_b),
+            }
+        )
+        return self
+
+    def prismatic(
+        self,
+        body_a: str,
+        point_a: Point,
+        body_b: str,
+        point_b: Point,
+        axis: Point = (1.0, 0.0),
+        name: Optional[str] = None,
+    ) -> "Mechanism":
+        """Ideal prismatic (translational) joint: ``point_b`` of ``body_b`` (the slider) moves on
+        the line through ``point_a`` of ``body_a`` (the guide, may be ``"ground"``) with direction
+        ``axis`` (in body a's frame); the relative angle stays at its initial value."""
+        a = self._body("body_a", body_a)
+        b = self._body("body_b", body_b, allow_ground=False)
+        if a == b:
+            raise InputError(f"invalid body_b = {body_b!r}: a joint needs two different bodies", field="body_b", value=body_b)
+        ax = _point("axis", axis)
+        if math.hypot(*ax) == 0.0:
+            raise InputError(f"invalid axis = {axis!r}: must be a non-zero direction", field="axis", value=axis)
+        self._joints.append(
+            {
+                "kind": "prismatic",
+                "name": self._new_name("prismatic", name),
+                "body_a": a,
+                "point_a": _point("point_a", point_a),
+                "axis": ax,
+                "body_b": b,
+                "point_b": _point("point_b", point_b),
+            }
+        )
+        return self
+
+    def driver(
+        self,
+        body: str,
+        omega: Optional[float] = None,
+        angle0: Optional[float] = None,
+        *,
+        polynomial: Optional[Sequence[float]] = None,
+        times: Optional[Sequence[float]] = None,
+        angles: Optional[Sequence[float]] = None,
+        name: Optional[str] = None,
+    ) -> "Mechanism":
+        """Drive a body's angle: θ = angle0 + ω t (``omega`` [rad/s]; ``angle0`` [rad] defaults
+        to the body's angle), or θ = Σ cₖ tᵏ (``polynomial``), or θ sampled at ``times`` and
+        interpolated by a natural cubic spline (``times``, ``angles``)."""
+        b = self._body("body", body, allow_ground=False)
+        given = sum(x is not None for x in (omega, polynomial, times))
+        if given != 1:
+            raise InputError(
+                "invalid driver: give exactly one of omega, polynomial or times/angles", field="driver", value=body
+            )
+        if omega is not None:
+            a0 = self._bodies[b]["angle"] if angle0 is None else angle0
+            law = {"kind": "constant_speed", "omega": check_finite("omega", omega), "angle0": check_finite("angle0", a0)}
+        elif polynomial is not None:
+            law = {"kind": "polynomial", "coefficients": [check_finite(f"polynomial[{k}]", c) for k, c in enumerate(polynomial)]}
+        else:
+            if angles is None:
+                raise InputError("invalid angles = None: needed with times", field="angles", value=None)
+            law = {
+                "kind": "samples",
+                "times": [check_finite(f"times[{k}]", c) for k, c in enumerate(times)],  # type: ignore[arg-type]
+                "angles": [check_finite(f"angles[{k}]", c) for k, c in enumerate(angles)],
+            }
+        self._drivers.append({"name": self._new_name("driver", name), "body": b, "law": law})
+        return self
+
+    def clearance_joint(
+        self,
+        name: str,
+        bearing_body: str,
+        bearing_point: Point,
+        journal_body: str,
+        journal_point: Point,
+        *,
+        journal_radius: float,
+        clearance: float,
+        model: Union[Dry, Lubricated, None] = None,
+        initial_eccentricity: Point = (0.0, 0.0),
+    ) -> "Mechanism":
+        """A revolute joint with radial clearance (spec §2).
+
+        The bearing (hole, radius R_j + c) is centred at ``bearing_point`` of ``bearing_body``;
+        the journal (pin, radius ``journal_radius`` R_j [m]) at ``journal_point`` of
+        ``journal_body``. ``clearance`` c = R_b − R_j [m]. ``model`` is :class:`Dry` (default)
+        or :class:`Lubricated`. The journal starts at ``initial_eccentricity`` (global vector
+        e = r_Pj − r_Pi [m]); (0, 0) is centred.
+        """
+        i = self._body("bearing_body", bearing_body)
+        j = self._body("journal_body", journal_body)
+        if i == j:
+            raise InputError(
+                f"invalid journal_body = {journal_body!r}: bearing and journal must be on different bodies",
+                field="journal_body",
+                value=journal_body,
+            )
+        model = Dry() if model is None else model
+        if not isinstance(model, (Dry, Lubricated)):
+            raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
+        self._clearance.append(
+            {
+                "name": self._new_name("clearance", name),
+                "bearing_body": i,
+                "bearing_point": _point("bearing_point", bearing_point),
+                "journal_body": j,
+                "journal_point": _point("journal_point", journal_point),
+                "journal_radius": check_positive(f"clearance joint '{name}'.journal_radius", journal_radius),
+                "clearance": check_positive(f"clearance joint '{name}'.clearance", clearance),
+                "model": model._as_dict(),
+                "initial_eccentricity": _point("initial_eccentricity", initial_eccentricity),
+            }
+        )
+        return self
+
+    # ------------------------------------------------------------------ queries
+    @property
+    def body_names(self) -> List[str]:
+        return [b["name"] for b in self._bodies]
+
+    @property
+    def clearance_joint_names(self) -> List[str]:
+        return [c["name"] for c in self._clearance]
+
+    def description(self) -> Dict[str, Any]:
+        """The plain-data description handed to the Rust core (a deep copy)."""
+        return copy.deepcopy(
+            {
+                "gravity": self.gravity,
+                "baumgarte": self.baumgarte,
+                "bodies": self._bodies,
+                "joints": self._joints,
+                "drivers": self._drivers,
+                "clearance_joints": self._clearance,
+            }
+        )
+
+    def idealized(self) -> "Mechanism":
+        """A copy with every clearance joint replaced by an ideal revolute joint (spec §5)."""
+        m = copy.deepcopy(self)
+        for c in m._clearance:
+            m._joints.append(
+                {
+                    "kind": "revolute",
+                    "name": c["name"],
+                    "body_a": c["bearing_body"],
+                    "point_a": c["bearing_point"],
+                    "body_b": c["journal_body"],
+                    "point_b": c["journal_point"],
+                }
+            )
+        m._clearance = []
+        m._compiled = None
+        return m
+
+    def compile(self) -> Any:
+        """The compiled Rust model (cached until the mechanism changes)."""
+        if self._compiled is None:
+            self._compiled = _core.compile(self.description())
+        return self._compiled
+
+    @property
+    def state_dim(self) -> int:
+        """Length of the state y = (q, q̇): 6 per body."""
+        return 6 * len(self._bodies)
+
+    def initial_state(self, t0: float = 0.0) -> np.ndarray:
+        """Consistent initial state y0 = (q0, q̇0) from the kinematic assembly at ``t0``."""
+        return self.compile().initial_state(float(t0))
+
+    def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
+        """ẏ = f(t, y), for driving clearsim's model with an external integrator such as
+        ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in the
+        order added, then q̇ likewise. No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
+        return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
+
+    # ------------------------------------------------------------------ running
+    def run_settings(
+        self,
+        t_end: float,
+        *,
+        integrator: str = "rk45",
+        rtol: float = 1e-6,
+        atol: float = 1e-9,
+        step: Optional[float] = None,
+        dt_out: Optional[float] = None,
+        t_out: Optional[Sequence[float]] = None,
+        t0: float = 0.0,
+        outputs: Optional[Sequence[str]] = None,
+        h_max: Optional[float] = None,
+        h_min: float = 1e-14,
+        max_steps: int = 50_000_000,
+    ) -> Dict[str, Any]:
+        """The settings dict of a run (see :meth:`simulate`)."""
+        t0 = check_finite("t0", t0)
+        t_end = check_finite("t_end", t_end)
+        if t_end <= t0:
+            raise InputError(f"invalid t_end = {t_end!r}: must be greater than t0 = {t0}", field="t_end", value=t_end)
+        if integrator not in INTEGRATORS:
+            raise InputError(
+                f"invalid integrator = {integrator!r}: must be one of {', '.join(INTEGRATORS)}", field="integrator", value=integrator
+            )
+        rtol = check_positive("rtol", rtol)
+        atol = check_positive("atol", atol)
+        if rtol >= 1.0:
+            raise InputError(f"invalid rtol = {rtol!r}: must be below 1", field="rtol", value=rtol)
+        if integrator == "rk4":
+            if step is None:
+                raise InputError("invalid step = None: the rk4 integrator needs a fixed step [s]", field="step", value=step)
+            step = check_positive("step", step)
+        if t_out is None:
+            if dt_out is None:
+                dt_out = (t_end - t0) / 1000.0
+            dt_out = check_positive("dt_out", dt_out)
+            n = int(math.floor((t_end - t0) / dt_out * (1 + 1e-12)))
+            grid = t0 + dt_out * np.arange(n + 1)
+        else:
+            grid = np.asarray(t_out, dtype=float)
+            if grid.ndim != 1 or not np.all(np.isfinite(grid)):
+                raise InputError("invalid t_out: must be a 1-D sequence of finite times", field="t_out", value=t_out)
+            if np.any(np.diff(grid) <= 0):
+                raise InputError("invalid t_out: times must increase strictly", field="t_out", value=t_out)
+        wanted = set(DEFAULT_OUTPUTS if outputs is None else outputs)
+        unknown = wanted - set(OUTPUTS)
+        if unknown:
+            raise InputError(
+                f"invalid outputs = {sorted(unknown)!r}: known outputs are {', '.join(OUTPUTS)}", field="outputs", value=sorted(unknown)
+            )
+        settings: Dict[str, Any] = {
+            "method": integrator,
+            "rtol": rtol,
+            "atol": atol,
+            "t0": t0,
+            "t_end": t_end,
+            "t_out": np.ascontiguousarray(grid),
+            "h_min": check_positive("h_min", h_min),
+            "max_steps": int(max_steps),
+            "channels": {k: (k in wanted) for k in OUTPUTS},
+        }
+        if step is not None:
+            settings["step"] = step
+        if h_max is not None:
+            settings["h_max"] = check_positive("h_max", h_max)
+        return settings
+
+    def simulate(self, t_end: float, **kwargs: Any) -> Result:
+        """Integrate from t0 (default 0) to ``t_end`` [s].
+
+        Keyword arguments
+        -----------------
+        integrator:
+            ``"rk45"`` (default, Dormand–Prince 5(4), adaptive), ``"dop853"`` (8th order, for
+            tight tolerances) or ``"rk4"`` (classic, fixed ``step`` [s]).
+        rtol, atol:
+            Tolerances of the adaptive methods (default 1e-6, 1e-9).
+        dt_out / t_out:
+            Output grid spacing [s] (default (t_end − t0)/1000) or explicit output times;
+            outputs come from the dense output and never shorten a step.
+        outputs:
+            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``,
+            ``"joints"``, ``"violation"`` (default: all but ``"reactions"``).
+        h_max, h_min, max_steps:
+            Step limits [s] and the step budget.
+
+        Raises :class:`clearsim.SimulationError` (with ``.result`` holding the partial result)
+        if the run cannot go on; a Ctrl-C returns the partial result with a warning.
+        """
+        settings = self.run_settings(t_end, **kwargs)
+        raw = self.compile().simulate(settings)
+        return self._finish(raw)
+
+    def _finish(self, raw: Dict[str, Any]) -> Result:
+        res = Result(raw, self.body_names, self.clearance_joint_names)
+        err = raw.get("error")
+        if err is not None:
+            err.result = res
+            if isinstance(err, InterruptedRun):
+                warnings.warn(f"clearsim: {err}; returning the partial result", RuntimeWarning, stacklevel=3)
+                return res
+            raise err
+        return res
+
+
+__all__ = ["Mechanism", "GROUND", "SimulationError"]

@@ -1,0 +1,182 @@
+"""Ready-made mechanisms with the spec's parameters (``shared/spec`` §7 and §8)."""
+
+from __future__ import annotations
+
+import math
+from typing import Dict, Optional, Tuple
+
+from .errors import InputError
+from .joints import Dry, Lubricated
+from .mechanism import Mechanism
+
+JOINT_KINDS = ("ideal", "dry", "lubricated")
+
+
+def _kind(joints: str) -> str:
+    if joints not in JOINT_KINDS:
+        raise InputError(f"invalid joints = {joints!r}: must be one of {', '.join(JOINT_KINDS)}", field="joints", value=joints)
+    return joints
+
+
+def _link(m: Mechanism, name: str, mass: float, inertia: float, p: Tuple[float, float], q: Tuple[float, float]) -> float:
+    """Add a link from point p to point q (centroid at mid-length, local x along p→q)."""
+    length = math.hypot(q[0] - p[0], q[1] - p[1])
+    m.add_body(
+        name,
+        mass=mass,
+        inertia=inertia,
+        position=((p[0] + q[0]) / 2, (p[1] + q[1]) / 2),
+        angle=math.atan2(q[1] - p[1], q[0] - p[0]),
+    )
+    return length
+
+
+def _pin(
+    m: Mechanism,
+    name: str,
+    kind: str,
+    bearing: str,
+    bearing_point: Tuple[float, float],
+    journal: str,
+    journal_point: Tuple[float, float],
+    journal_radius: float,
+    clearance: Optional[float],
+    dry: Optional[Dry],
+    lubricated: Optional[Lubricated],
+) -> None:
+    if kind == "ideal":
+        m.revolute(bearing, bearing_point, journal, journal_point, name=name)
+        return
+    if clearance is None:
+        raise InputError(f"invalid clearance = None: joints={kind!r} needs a clearance [m]", field="clearance", value=None)
+    model = (dry or Dry()) if kind == "dry" else (lubricated or Lubricated())
+    m.clearance_joint(
+        name,
+        bearing,
+        bearing_point,
+        journal,
+        journal_point,
+        journal_radius=journal_radius,
+        clearance=clearance,
+        model=model,
+    )
+
+
+def slider_crank(
+    joints: str = "ideal",
+    clearance: Optional[float] = 0.5e-3,
+    rpm: float = 5000.0,
+    *,
+    crank_length: float = 0.05,
+    rod_length: float = 0.12,
+    journal_radius: float = 9.5e-3,
+    dry: Optional[Dry] = None,
+    lubricated: Optional[Lubricated] = None,
+    gravity: Tuple[float, float] = (0.0, 0.0),
+) -> Mechanism:
+    """Slider-crank after Flores et al. (spec §8), crank at constant ``rpm``, zero offset, the
+    slider on the x axis, starting at top dead centre (θ = 0).
+
+    Bodies ``crank``, ``rod``, ``slider``. ``joints="dry"`` or ``"lubricated"`` puts a clearance
+    joint named ``"rod-slider"`` (bearing in the slider, journal on the rod) with the spec's
+    R_j = 9.5 mm and c = 0.5 mm (R_b = 10 mm); lubricated default μ = 0.4 Pa s, L = 40 mm.
+    """
+    kind = _kind(joints)
+    r, l = crank_length, rod_length
+    m = Mechanism(gravity=gravity)
+    _link(m, "crank", 0.30, 1e-4, (0.0, 0.0), (r, 0.0))
+    _link(m, "rod", 0.21, 2.5e-4, (r, 0.0), (r + l, 0.0))
+    m.add_body("slider", mass=0.14, inertia=1e-4, position=(r + l, 0.0))
+    m.revolute("ground", (0.0, 0.0), "crank", (-r / 2, 0.0), name="crank-ground")
+    m.revolute("crank", (r / 2, 0.0), "rod", (-l / 2, 0.0), name="crank-rod")
+    lub = lubricated or Lubricated(viscosity=0.4, length=0.04)
+    _pin(m, "rod-slider", kind, "slider", (0.0, 0.0), "rod", (l / 2, 0.0), journal_radius, clearance, dry, lub)
+    m.prismatic("ground", (0.0, 0.0), "slider", (0.0, 0.0), axis=(1.0, 0.0), name="slider-guide")
+    m.driver("crank", omega=rpm * 2 * math.pi / 60.0, angle0=0.0, name="crank-drive")
+    return m
+
+
+#: Nine-bar geometry of spec §7 at t = 0 (assembly refines it).
+NINE_BAR_POINTS: Dict[str, Tuple[float, float]] = {
+    "O1": (0.0, 0.0),
+    "O4": (0.0, -0.40),
+    "B1": (0.10, 0.0),  # crank 1 tip (θ1 = 0)
+    "A": (0.0, -0.30),  # crank 4 tip (θ4 = π/2): clearance joint A
+    "C": (0.2919, -0.2306),
+    "D": (0.6756, -0.1176),
+    "H": (0.45, 0.15),
+    "B": (0.59, -0.4570),  # slider pin: clearance joint B
+}
+
+#: (mass [kg], inertia [kg m²]) of spec §7.
+NINE_BAR_INERTIA: Dict[str, Tuple[float, float]] = {
+    "crank1": (0.20, 1.667e-4),
+    "rod2": (0.50, 3.750e-3),
+    "rod3": (0.50, 3.750e-3),
+    "crank4": (0.20, 1.667e-4),
+    "rocker6": (0.55, 5.615e-3),
+    "rod7": (0.65, 8.667e-3),
+    "rod8": (0.55, 5.615e-3),
+    "slider9": (1.50, 1.000e-3),
+}
+
+
+def nine_bar(
+    joints: str = "ideal",
+    clearance: Optional[float] = 0.5e-3,
+    omega: float = -5.0 * math.pi,
+    *,
+    journal_radius: float = 10e-3,
+    dry: Optional[Dry] = None,
+    lubricated: Optional[Lubricated] = None,
+    gravity: Tuple[float, float] = (0.0, -9.81),
+) -> Mechanism:
+    """The paper's 2-DOF nine-bar press mechanism (spec §7).
+
+    Cranks 1 and 4 turn at ``omega`` [rad/s] from θ1 = 0 and θ4 = π/2. Bodies ``crank1, rod2,
+    rod3, crank4, rocker6, rod7, rod8, slider9``; the slider moves on the vertical guide
+    x = 0.59 m. ``joints="dry"`` or ``"lubricated"`` makes joints ``"A"`` (crank 4 – rod 3, bearing
+    in crank 4) and ``"B"`` (rod 8 – slider 9, bearing in the slider) clearance joints with
+    R_j = 10 mm and the given radial ``clearance`` [m] (μ = 0.4 Pa s, L = 50 mm by default).
+    """
+    kind = _kind(joints)
+    P = NINE_BAR_POINTS
+    I = NINE_BAR_INERTIA
+    m = Mechanism(gravity=gravity)
+    half = {}
+    for name, (a, b) in {
+        "crank1": ("O1", "B1"),
+        "rod2": ("B1", "C"),
+        "rod3": ("A", "C"),
+        "crank4": ("O4", "A"),
+        "rocker6": ("H", "D"),
+        "rod7": ("C", "D"),
+        "rod8": ("D", "B"),
+    }.items():
+        length = _link(m, name, I[name][0], I[name][1], P[a], P[b])
+        half[name] = length / 2
+    # Nominal lengths of spec §7 (the points above are rounded to 0.1 mm).
+    half.update(crank1=0.05, rod2=0.15, rod3=0.15, crank4=0.05, rocker6=0.175, rod7=0.20, rod8=0.175)
+    m.add_body("slider9", mass=I["slider9"][0], inertia=I["slider9"][1], position=P["B"])
+
+    def end(body: str, sign: int) -> Tuple[float, float]:
+        return (sign * half[body], 0.0)
+
+    m.revolute("ground", P["O1"], "crank1", end("crank1", -1), name="O1")
+    m.revolute("crank1", end("crank1", 1), "rod2", end("rod2", -1), name="B1")
+    m.revolute("ground", P["O4"], "crank4", end("crank4", -1), name="O4")
+    lub = lubricated or Lubricated(viscosity=0.4, length=0.05)
+    _pin(m, "A", kind, "crank4", end("crank4", 1), "rod3", end("rod3", -1), journal_radius, clearance, dry, lub)
+    m.revolute("rod2", end("rod2", 1), "rod7", end("rod7", -1), name="C-rod2")
+    m.revolute("rod3", end("rod3", 1), "rod7", end("rod7", -1), name="C-rod3")
+    m.revolute("rod7", end("rod7", 1), "rocker6", end("rocker6", 1), name="D-rocker6")
+    m.revolute("rod7", end("rod7", 1), "rod8", end("rod8", -1), name="D-rod8")
+    m.revolute("ground", P["H"], "rocker6", end("rocker6", -1), name="H")
+    _pin(m, "B", kind, "slider9", (0.0, 0.0), "rod8", end("rod8", 1), journal_radius, clearance, dry, lub)
+    m.prismatic("ground", (0.59, 0.0), "slider9", (0.0, 0.0), axis=(0.0, 1.0), name="guide")
+    m.driver("crank1", omega=omega, angle0=0.0, name="drive1")
+    m.driver("crank4", omega=omega, angle0=math.pi / 2, name="drive4")
+    return m
+
+
+__all__ = ["slider_crank", "nine_bar", "NINE_BAR_POINTS", "NINE_BAR_INERTIA"]

@@ -1,0 +1,147 @@
+"""The result of a run: numpy arrays on the output grid (SI units)."""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from . import _core
+from .errors import InputError
+
+JOINT_COLUMNS: List[str] = list(_core.JOINT_COLUMNS)
+_COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
+CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
+
+
+class Result:
+    """Outputs of one simulation.
+
+    Attributes
+    ----------
+    t:
+        Output times [s], shape (N,).
+    stats:
+        ``steps``, ``rejected_steps``, ``rhs_evaluations``, ``min_step``, ``max_step`` [s],
+        ``t_reached`` [s], ``wall_time`` [s].
+    impacts:
+        Number of impacts located per clearance joint.
+    error:
+        The :class:`clearsim.SimulationError` that ended the run early, or ``None``.
+    """
+
+    def __init__(self, raw: Dict[str, Any], body_names: List[str], joint_names: List[str]) -> None:
+        self._raw = raw
+        self.body_names = list(body_names)
+        self.joint_names = list(joint_names)
+        self.t: np.ndarray = raw["t"]
+        self.stats: Dict[str, Any] = dict(raw["stats"])
+        self.impacts: Dict[str, int] = dict(zip(self.joint_names, raw.get("impacts", [])))
+        self.error = raw.get("error")
+        self.q0: np.ndarray = raw["q0"]
+        self.qd0: np.ndarray = raw["qd0"]
+
+    def __repr__(self) -> str:
+        status = "complete" if self.error is None else f"stopped early: {self.error}"
+        return f"<clearsim.Result {len(self.t)} outputs, t ∈ [{self.t[0] if len(self.t) else 0:g}, {self.t[-1] if len(self.t) else 0:g}] s, {status}>"
+
+    @property
+    def completed(self) -> bool:
+        return self.error is None
+
+    # ------------------------------------------------------------------ access helpers
+    def _channel(self, key: str, what: str) -> np.ndarray:
+        if key not in self._raw:
+            raise InputError(f"invalid output = {what!r}: this run did not store it (pass outputs=[..., {what!r}])", field="outputs", value=what)
+        return self._raw[key]
+
+    def _body(self, body: str) -> int:
+        try:
+            return self.body_names.index(body)
+        except ValueError:
+            raise InputError(f"invalid body = {body!r}: no such body (known: {', '.join(self.body_names)})", field="body", value=body) from None
+
+    def _joint(self, joint: str) -> int:
+        try:
+            return self.joint_names.index(joint)
+        except ValueError:
+            known = ", ".join(self.joint_names) or "none"
+            raise InputError(f"invalid joint = {joint!r}: no such clearance joint (known: {known})", field="joint", value=joint) from None
+
+    # ------------------------------------------------------------------ bodies
+    def position(self, body: str) -> np.ndarray:
+        """(N, 3) array of x [m], y [m], θ [rad] of the body's centroid."""
+        k = self._body(body)
+        return self._channel("q", "states")[:, 3 * k : 3 * k + 3]
+
+    def velocity(self, body: str) -> np.ndarray:
+        """(N, 3) array of ẋ, ẏ [m/s], θ̇ [rad/s]."""
+        k = self._body(body)
+        return self._channel("qd", "states")[:, 3 * k : 3 * k + 3]
+
+    def acceleration(self, body: str) -> np.ndarray:
+        """(N, 3) array of ẍ, ÿ [m/s²], θ̈ [rad/s²] (from the KKT solve at each output time)."""
+        k = self._body(body)
+        return self._channel("qdd", "accelerations")[:, 3 * k : 3 * k + 3]
+
+    @property
+    def reactions(self) -> np.ndarray:
+        """(N, rows) Lagrange multipliers λ (needs ``outputs=[..., "reactions"]``)."""
+        return self._channel("lambda", "reactions")
+
+    @property
+    def constraint_violation(self) -> np.ndarray:
+        """(N,) ‖Φ‖₂ of the constraint equations at each output [m, rad]."""
+        return self._channel("violation", "violation")[:, 0]
+
+    @property
+    def velocity_violation(self) -> np.ndarray:
+        """(N,) ‖Φ̇‖₂ at each output."""
+        return self._channel("violation", "violation")[:, 1]
+
+    # ------------------------------------------------------------------ clearance joints
+    def _joint_cols(self, joint: str, cols: List[str]) -> np.ndarray:
+        j = self._joint(joint)
+        data = self._channel("joints", "joints")
+        return data[:, j, [_COL[c] for c in cols]]
+
+    def eccentricity(self, joint: str) -> np.ndarray:
+        """(N, 2) eccentricity vector e = r_Pj − r_Pi [m] (journal centre relative to the
+        bearing centre, global frame). Divide by the clearance for the orbit in units of c."""
+        return self._joint_cols(joint, ["ex", "ey"])
+
+    def eccentricity_rate(self, joint: str) -> np.ndarray:
+        """(N, 2) ė [m/s]."""
+        return self._joint_cols(joint, ["ex_dot", "ey_dot"])
+
+    def joint_force(self, joint: str) -> np.ndarray:
+        """(N, 2) total force of the joint on the journal [N] (global); the bearing gets the
+        opposite."""
+        return self._joint_cols(joint, ["fx", "fy"])
+
+    def contact_force(self, joint: str) -> np.ndarray:
+        """(N, 2) dry normal force F_N and friction force F_t [N] (before the transition blend)."""
+        return self._joint_cols(joint, ["normal", "tangential"])
+
+    def film_force(self, joint: str) -> np.ndarray:
+        """(N, 2) film force components (F_ξ along n, F_η along t) [N] (before the blend)."""
+        return self._joint_cols(joint, ["film_xi", "film_eta"])
+
+    def contact_state(self, joint: str) -> np.ndarray:
+        """(N,) int: 0 free flight or film, 1 film-to-contact transition band, 2 contact."""
+        return self._joint_cols(joint, ["state"])[:, 0].astype(int)
+
+    def dry_weight(self, joint: str) -> np.ndarray:
+        """(N,) weight of the dry law in the transition blend (P18)."""
+        return self._joint_cols(joint, ["w_dry"])[:, 0]
+
+    def summary(self) -> Dict[str, Any]:
+        out: Dict[str, Any] = dict(self.stats)
+        out["outputs"] = int(len(self.t))
+        out["impacts"] = dict(self.impacts)
+        if "violation" in self._raw and len(self.t):
+            out["max_constraint_violation"] = float(np.max(self.constraint_violation))
+        out["error"] = None if self.error is None else str(self.error)
+        return out
+
+

@@ -1,0 +1,61 @@
+//! Kinematics of a journal inside its bearing (spec §2, P7–P9).
+
+use crate::constraints::{BodyKin, V2};
+
+/// Eccentricity and the derived quantities every clearance law needs.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct JointKinematics {
+    /// Eccentricity vector e = r_Pj − r_Pi [m] and its rate [m/s].
+    pub e_vec: V2,
+    pub e_dot: V2,
+    /// |e| [m].
+    pub e: f64,
+    /// Unit eccentricity n (bearing → journal centre; +x when e = 0) and t = n turned +90°.
+    pub n: V2,
+    pub t: V2,
+    /// ε = e / c and ε̇ [1/s].
+    pub eps: f64,
+    pub eps_dot: f64,
+    /// Penetration δ = e − c [m] (contact when > 0) and its rate δ̇ = n·ė [m/s].
+    pub delta: f64,
+    pub delta_dot: f64,
+    /// Slip of the journal's contact point relative to the bearing's, along t [m/s].
+    pub slip: f64,
+    /// γ̇ of the offset angle γ = atan2(e_y, e_x) [rad/s] (0 when e = 0).
+    pub gamma_dot: f64,
+    /// Wedge speed θ̇_j + θ̇_i − 2γ̇ [rad/s] (spec §4).
+    pub wedge: f64,
+}
+
+impl JointKinematics {
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub fn new(bearing: &BodyKin, sb: V2, journal: &BodyKin, sj: V2, r_j: f64, r_b: f64, c: f64) -> Self {
+        let e_vec = journal.point(sj).sub(bearing.point(sb));
+        let e_dot = journal.point_velocity(sj).sub(bearing.point_velocity(sb));
+        let e = e_vec.norm();
+        let (n, gamma_dot) = if e > 0.0 {
+            (e_vec.scale(1.0 / e), e_vec.cross(e_dot) / (e * e))
+        } else {
+            (V2::new(1.0, 0.0), 0.0)
+        };
+        let t = n.perp();
+        let delta_dot = n.dot(e_dot);
+        // Contact-point velocities: material points of journal and bearing at Q_k = P_k + R_k n.
+        let slip = t.dot(e_dot) + r_j * journal.w - r_b * bearing.w;
+        JointKinematics {
+            e_vec,
+            e_dot,
+            e,
+            n,
+            t,
+            eps: e / c,
+            eps_dot: delta_dot / c,
+            delta: e - c,
+            delta_dot,
+            slip,
+            gamma_dot,
+            wedge: journal.w + bearing.w - 2.0 * gamma_dot,
+        }
+    }
+}

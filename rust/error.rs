@@ -1,0 +1,70 @@
+//! The one error type of the crate. `rust/python.rs` maps each variant to a Python exception;
+//! nothing else in the crate knows about Python.
+
+/// Everything that can go wrong while describing, assembling or simulating a mechanism.
+#[derive(Debug, Clone, thiserror::Error, PartialEq)]
+pub enum Error {
+    /// A field of the user's description has a value it cannot take.
+    #[error("invalid {field} = {value}: {reason}")]
+    InvalidInput {
+        field: String,
+        value: String,
+        reason: String,
+    },
+    /// A name (body, joint, driver) is unknown or used twice.
+    #[error("{what} '{name}': {reason}")]
+    Name {
+        what: &'static str,
+        name: String,
+        reason: String,
+    },
+    /// Newton's method could not close the loops of the ideal mechanism.
+    #[error("assembly failed at t = {t} s: {reason} (residual ‖Φ‖ = {residual:.3e})")]
+    Assembly { t: f64, residual: f64, reason: String },
+    /// The KKT (Schur complement) matrix is singular: redundant constraints or a singular pose.
+    #[error("singular constraint Jacobian at t = {t} s (constraint {index}): redundant constraints or a singular configuration")]
+    SingularJacobian { t: f64, index: usize },
+    /// The adaptive step size fell below its floor.
+    #[error("step size underflow at t = {t} s: h = {h:.3e} s{detail}")]
+    StepSizeUnderflow { t: f64, h: f64, detail: String },
+    /// A state or derivative stopped being finite.
+    #[error("non-finite state at t = {t} s{detail}")]
+    NonFinite { t: f64, detail: String },
+    /// The maximum number of steps was reached before t_end.
+    #[error("maximum number of steps ({max_steps}) reached at t = {t} s")]
+    TooManySteps { t: f64, max_steps: usize },
+    /// The user interrupted the run (Ctrl-C).
+    #[error("interrupted at t = {t} s")]
+    Interrupted { t: f64 },
+}
+
+impl Error {
+    /// Shorthand for [`Error::InvalidInput`].
+    pub fn invalid(field: impl Into<String>, value: impl std::fmt::Display, reason: impl Into<String>) -> Self {
+        Error::InvalidInput { field: field.into(), value: value.to_string(), reason: reason.into() }
+    }
+
+    /// Time at which a simulation failure happened, if this is one.
+    pub fn time(&self) -> Option<f64> {
+        match self {
+            Error::Assembly { t, .. }
+            | Error::SingularJacobian { t, .. }
+            | Error::StepSizeUnderflow { t, .. }
+            | Error::NonFinite { t, .. }
+            | Error::TooManySteps { t, .. }
+            | Error::Interrupted { t } => Some(*t),
+            _ => None,
+        }
+    }
+
+    /// Append a diagnosis (e.g. "; joint B, ε = 1.07") to a simulation failure.
+    pub fn with_detail(mut self, extra: &str) -> Self {
+        match &mut self {
+            Error::StepSizeUnderflow { detail, .. } | Error::NonFinite { detail, .. } => detail.push_str(extra),
+            _ => {}
+        }
+        self
+    }
+}
+
+pub type Result<T> = std::result::Result<T, Error>;

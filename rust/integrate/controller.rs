@@ -1,0 +1,286 @@
+//! Step-size control: error norms, the PI controller and the automatic initial step
+//! (Hairer I, §II.4 "Automatic Step Size Control" and "Starting Step Size"; the PI
+//! "Lund-stabilization" of Gustafsson as implemented in Hairer's DOPRI5/DOP853 codes).
+
+use super::OdeSystem;
+use crate::error::Error;
+
+/// Error scale of one component, `sc = atol + rtol·max(|y0|, |y1|)` (Hairer I, eq. II.4.10).
+#[inline]
+pub fn scale(atol: f64, rtol: f64, y0: f64, y1: f64) -> f64 {
+    atol + rtol * y0.abs().max(y1.abs())
+}
+
+/// RMS norm of a local error estimate `err` (already multiplied by `h`):
+/// `sqrt(1/n Σ (err_i / sc_i)²)` (Hairer I, eq. II.4.11). Zero for an empty state.
+pub fn rms_error(err: &[f64], y0: &[f64], y1: &[f64], rtol: f64, atol: f64) -> f64 {
+    if err.is_empty() {
+        return 0.0;
+    }
+    let sum: f64 = err
+        .iter()
+        .zip(y0.iter().zip(y1))
+        .map(|(e, (a, b))| {
+            let r = e / scale(atol, rtol, *a, *b);
+            r * r
+        })
+        .sum();
+    (sum / err.len() as f64).sqrt()
+}
+
+/// Combined error norm of DOP853 (Hairer's `dop853.f`): with `E5 = Σ (e5_i/sc_i)²` and
+/// `E3 = Σ (e3_i/sc_i)²` (both estimates already multiplied by `h`),
+/// `err = E5 / sqrt(n (E5 + 0.01 E3))`. This behaves like a 5th-order estimate for small `h`
+/// and like an 8th-order one when the 3rd-order estimate dominates.
+pub fn dop853_error(e5: &[f64], e3: &[f64], y0: &[f64], y1: &[f64], rtol: f64, atol: f64) -> f64 {
+    let (mut s5, mut s3) = (0.0, 0.0);
+    for i in 0..e5.len() {
+        let sc = scale(atol, rtol, y0[i], y1[i]);
+        s5 += (e5[i] / sc) * (e5[i] / sc);
+        s3 += (e3[i] / sc) * (e3[i] / sc);
+    }
+    let mut deno = s5 + 0.01 * s3;
+    if deno <= 0.0 {
+        deno = 1.0; // also covers n = 0 (then s5 = 0)
+    }
+    s5 / (e5.len() as f64 * deno).sqrt()
+}
+
+/// Outcome of one step-size decision.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Decision {
+    /// The step is accepted; try `h_next` for the next one.
+    Accept { h_next: f64 },
+    /// The step is rejected; redo it with `h_next`.
+    Reject { h_next: f64 },
+}
+
+/// PI step-size controller (Hairer I, §II.4, eq. 4.13 with the stabilization of §IV.2 as in the
+/// DOPRI5/DOP853 codes): `h_new = h · clamp(safety · err^(−α) · err_old^β, fac_min, fac_max)`,
+/// accepted iff `err ≤ 1`; after a rejection the next accepted step may not grow.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Controller {
+    /// Safety factor (0.9).
+    pub safety: f64,
+    /// Smallest allowed ratio `h_new / h`.
+    pub fac_min: f64,
+    /// Largest allowed ratio `h_new / h`.
+    pub fac_max: f64,
+    /// Exponent `α` of the current error (`1/(q+1) − 0.75 β` for DOPRI5, `1/8 − 0.2 β` for DOP853).
+    pub alpha: f64,
+    /// Exponent `β` of the previous accepted error (PI term; 0 gives the classic I controller).
+    pub beta: f64,
+    err_old: f64,
+    rejected: bool,
+}
+
+impl Controller {
+    /// Settings of Hairer's DOPRI5: safety 0.9, ratios in [0.2, 10], β = 0.04, α = 0.2 − 0.75 β.
+    pub fn dopri5() -> Self {
+        let beta = 0.04;
+        Self::new(0.9, 0.2, 10.0, 0.2 - 0.75 * beta, beta)
+    }
+
+    /// Settings of Hairer's DOP853: safety 0.9, ratios in [0.333, 6], β = 0, α = 1/8.
+    pub fn dop853() -> Self {
+        Self::new(0.9, 0.333, 6.0, 0.125, 0.0)
+    }
+
+    /// A controller with the given constants.
+    pub fn new(safety: f64, fac_min: f64, fac_max: f64, alpha: f64, beta: f64) -> Self {
+        Controller { safety, fac_min, fac_max, alpha, beta, err_old: 1e-4, rejected: false }
+    }
+
+    /// Decide on a step of size `h` whose scaled error norm is `err` (finite, ≥ 0).
+    pub fn decide(&mut self, err: f64, h: f64) -> Decision {
+        let fac11 = err.powf(self.alpha);
+        if err <= 1.0 {
+            // fac = h / h_new, limited to [1/fac_max, 1/fac_min].
+            let fac = (fac11 / self.err_old.powf(self.beta) / self.safety)
+                .clamp(1.0 / self.fac_max, 1.0 / self.fac_min);
+            let mut h_next = h / fac;
+            if self.rejected {
+                h_next = h_next.min(h);
+            }
+            self.err_old = err.max(1e-4);
+            self.rejected = false;
+            Decision::Accept { h_next }
+        } else {
+            // No PI term on rejection (Hairer's codes).
+            self.rejected = true;
+            Decision::Reject { h_next: h / (fac11 / self.safety).min(1.0 / self.fac_min) }
+        }
+    }
+}
+
+/// Automatic initial step (Hairer I, §II.4 "Starting Step Size"; `HINIT` of DOPRI5/DOP853).
+///
+/// With `d0 = ‖y0‖`, `d1 = ‖f0‖` (RMS norms scaled by `atol + rtol |y0|`): `h0 = 0.01 d0/d1`
+/// (or `1e-6` when either is tiny), one Euler step to estimate `d2 = ‖f(t0+h0, y0+h0 f0) − f0‖/h0`,
+/// then `h = min(100 h0, (0.01/max(d1, d2))^(1/order), h_max)`.
+/// `y1` and `f1` are work vectors of length `n`. Uses one evaluation of `f`.
+#[allow(clippy::too_many_arguments)]
+pub fn initial_step<S: OdeSystem + ?Sized>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    f0: &[f64],
+    order: i32,
+    h_max: f64,
+    rtol: f64,
+    atol: f64,
+    y1: &mut [f64],
+    f1: &mut [f64],
+) -> Result<f64, Error> {
+    let n = y0.len().max(1) as f64;
+    let (mut dnf, mut dny) = (0.0, 0.0);
+    for i in 0..y0.len() {
+        let sk = atol + rtol * y0[i].abs();
+        dnf += (f0[i] / sk) * (f0[i] / sk);
+        dny += (y0[i] / sk) * (y0[i] / sk);
+    }
+    let (d0, d1) = ((dny / n).sqrt(), (dnf / n).sqrt());
+    let mut h = if d0 <= 1e-5 || d1 <= 1e-5 { 1e-6 } else { 0.01 * d0 / d1 };
+    h = h.min(h_max);
+    for i in 0..y0.len() {
+        y1[i] = y0[i] + h * f0[i];
+    }
+    sys.rhs(t0 + h, y1, f1)?;
+    let mut d2 = 0.0;
+    for i in 0..y0.len() {
+        let sk = atol + rtol * y0[i].abs();
+        d2 += ((f1[i] - f0[i]) / sk) * ((f1[i] - f0[i]) / sk);
+    }
+    let d2 = (d2 / n).sqrt() / h;
+    let d12 = d1.max(d2); // NaN in d2 is ignored by max
+    let h1 = if d12 <= 1e-15 { 1e-6_f64.max(h * 1e-3) } else { (0.01 / d12).powf(1.0 / order as f64) };
+    let h_new = (100.0 * h).min(h1).min(h_max);
+    Ok(if h_new.is_finite() && h_new > 0.0 { h_new } else { h })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn accept_iff_error_at_most_one() {
+        for mut c in [Controller::dopri5(), Controller::dop853()] {
+            assert!(matches!(c.decide(0.5, 1.0), Decision::Accept { .. }));
+            assert!(matches!(c.decide(1.0, 1.0), Decision::Accept { .. }));
+            assert!(matches!(c.decide(1.0 + 1e-12, 1.0), Decision::Reject { .. }));
+            assert!(matches!(c.decide(1e3, 1.0), Decision::Reject { .. }));
+        }
+    }
+
+    #[test]
+    fn step_ratio_is_bounded() {
+        for proto in [Controller::dopri5(), Controller::dop853()] {
+            for &err in &[0.0, 1e-300, 1e-12, 1e-3, 0.3, 0.99, 1.0, 1.5, 10.0, 1e6, 1e300] {
+                let mut c = proto;
+                let h = 0.01;
+                let h_next = match c.decide(err, h) {
+                    Decision::Accept { h_next } | Decision::Reject { h_next } => h_next,
+                };
+                let r = h_next / h;
+                assert!(r >= proto.fac_min * (1.0 - 1e-12) && r <= proto.fac_max * (1.0 + 1e-12), "err {err}: ratio {r}");
+                if err > 1.0 {
+                    assert!(r < 1.0, "a rejected step must shrink (err {err}, ratio {r})");
+                }
+            }
+            // Zero error: maximal growth; huge error: maximal shrink.
+            let mut c = proto;
+            assert_eq!(c.decide(0.0, 1.0), Decision::Accept { h_next: proto.fac_max });
+            let mut c = proto;
+            assert_eq!(c.decide(1e300, 1.0), Decision::Reject { h_next: proto.fac_min });
+        }
+    }
+
+    #[test]
+    fn no_growth_right_after_rejection() {
+        let mut c = Controller::dopri5();
+        assert!(matches!(c.decide(4.0, 1.0), Decision::Reject { .. }));
+        match c.decide(1e-10, 0.5) {
+            Decision::Accept { h_next } => assert!(h_next <= 0.5),
+            d => panic!("expected acceptance, got {d:?}"),
+        }
+        // …but the next acceptance may grow again.
+        match c.decide(1e-10, 0.5) {
+            Decision::Accept { h_next } => assert!(h_next > 0.5),
+            d => panic!("expected acceptance, got {d:?}"),
+        }
+    }
+
+    #[test]
+    fn i_controller_follows_asymptotic_law() {
+        // β = 0: h_new = 0.9 h err^(-1/8) inside the limits.
+        let mut c = Controller::dop853();
+        let err: f64 = 0.01;
+        match c.decide(err, 1.0) {
+            Decision::Accept { h_next } => assert!((h_next - 0.9 * err.powf(-0.125)).abs() < 1e-14),
+            d => panic!("{d:?}"),
+        }
+        // PI: a larger previous error allows a larger step (β > 0).
+        let (mut a, mut b) = (Controller::dopri5(), Controller::dopri5());
+        a.decide(0.9, 1.0);
+        b.decide(0.01, 1.0);
+        let ha = match a.decide(0.1, 1.0) {
+            Decision::Accept { h_next } => h_next,
+            d => panic!("{d:?}"),
+        };
+        let hb = match b.decide(0.1, 1.0) {
+            Decision::Accept { h_next } => h_next,
+            d => panic!("{d:?}"),
+        };
+        assert!(ha > hb);
+    }
+
+    #[test]
+    fn norms() {
+        let y0 = [1.0, -2.0];
+        let y1 = [3.0, 0.0];
+        let e = [1e-6, 1e-6];
+        // sc = 1e-6 + 1e-3·max = [3.001e-3, 2.001e-3]
+        let expect = (((1e-6 / 3.001e-3_f64).powi(2) + (1e-6 / 2.001e-3_f64).powi(2)) / 2.0).sqrt();
+        assert!((rms_error(&e, &y0, &y1, 1e-3, 1e-6) - expect).abs() < 1e-15);
+        assert_eq!(rms_error(&[], &[], &[], 1e-3, 1e-6), 0.0);
+        assert!(rms_error(&[f64::NAN, 0.0], &y0, &y1, 1e-3, 1e-6).is_nan());
+        // DOP853 norm: equals the 5th-order RMS norm when the 3rd-order estimate is zero…
+        let z = [0.0, 0.0];
+        assert!((dop853_error(&e, &z, &y0, &y1, 1e-3, 1e-6) - expect).abs() < 1e-15);
+        // …and is smaller when the 3rd-order estimate is large (err5²/sqrt(err5²+0.01 err3²)).
+        assert!(dop853_error(&e, &[1.0, 1.0], &y0, &y1, 1e-3, 1e-6) < expect);
+        assert_eq!(dop853_error(&z, &z, &y0, &y1, 1e-3, 1e-6), 0.0);
+    }
+
+    struct Decay(usize);
+    impl OdeSystem for Decay {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+            self.0 += 1;
+            dy[0] = -50.0 * y[0];
+            Ok(())
+        }
+        fn output(&mut self, _t: f64, _y: &[f64]) -> Result<(), Error> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn initial_step_is_sane() {
+        let mut sys = Decay(0);
+        let (mut y1, mut f1) = ([0.0], [0.0]);
+        let y0 = [1.0];
+        let f0 = [-50.0];
+        let h = initial_step(&mut sys, 0.0, &y0, &f0, 5, f64::INFINITY, 1e-6, 1e-6, &mut y1, &mut f1).unwrap();
+        assert_eq!(sys.0, 1);
+        // The local error of order 5 of a step h on y' = −50y is ~ (50h)^6/720 ~ tolerance.
+        assert!(h > 1e-4 && h < 0.02, "h = {h}");
+        let h_capped = initial_step(&mut sys, 0.0, &y0, &f0, 5, 1e-5, 1e-6, 1e-6, &mut y1, &mut f1).unwrap();
+        assert!(h_capped <= 1e-5);
+        // Zero state and derivative: fall back to small positive steps.
+        let h0 = initial_step(&mut sys, 0.0, &[0.0], &[0.0], 8, 1.0, 1e-6, 1e-6, &mut y1, &mut f1).unwrap();
+        assert!(h0 > 0.0 && h0.is_finite());
+    }
+}

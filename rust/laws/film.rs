@@ -1,0 +1,137 @@
+//! Shared oil-film types and the film-model dispatch (spec §4).
+//!
+//! Convention (all film models): the returned pair `(F_ξ, F_η)` [N] is the force of the film ON
+//! THE JOURNAL along `n` (unit eccentricity vector, bearing centre → journal centre) and along
+//! `t` = `n` turned +90°. The angle θ is measured counter-clockwise from the thickest film (the
+//! direction −n); film thickness `h = c (1 + ε cos θ)`; `F_ξ = R L ∫ p⁺ cos θ dθ`,
+//! `F_η = R L ∫ p⁺ sin θ dθ` (Gümbel condition: only positive pressure carries load).
+//! A squeezed journal (ε̇ > 0) gets `F_ξ < 0`; a journal turning counter-clockwise (wedge > 0)
+//! gets `F_η > 0`.
+
+use super::{bearing_long, bearing_short};
+
+/// Largest eccentricity ratio at which the film formulas are evaluated (they are singular at
+/// ε = 1). Inputs above it are clamped so that every film function stays finite; the simulator
+/// itself evaluates the film at `min(ε, ε_max)` (see [`super::transition::film_eps`]).
+pub const FILM_EPS_CEILING: f64 = 1.0 - 1e-9;
+
+/// Geometry and lubricant of a journal bearing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BearingGeometry {
+    /// Dynamic viscosity μ [Pa·s].
+    pub viscosity: f64,
+    /// Journal radius R [m].
+    pub journal_radius: f64,
+    /// Radial clearance c = R_b − R_j [m].
+    pub clearance: f64,
+    /// Bearing length L [m].
+    pub length: f64,
+}
+
+/// Kinematic state of the film.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FilmState {
+    /// Eccentricity ratio ε = e/c (clamped to [0, [`FILM_EPS_CEILING`]] by the film functions).
+    pub eps: f64,
+    /// ε̇ [1/s]; > 0 approaching the bearing wall (squeeze), < 0 receding.
+    pub eps_dot: f64,
+    /// Wedge speed θ̇_j + θ̇_i − 2γ̇ [rad/s] (spec §4): sum of both surfaces' angular speeds
+    /// minus twice the whirl rate of the line of centres.
+    pub wedge: f64,
+}
+
+impl FilmState {
+    /// ε clamped to the range where the film formulas are finite.
+    pub fn clamped_eps(&self) -> f64 {
+        if self.eps.is_nan() {
+            return self.eps;
+        }
+        self.eps.clamp(0.0, FILM_EPS_CEILING)
+    }
+}
+
+/// Which hydrodynamic film model a lubricated joint uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FilmModel {
+    /// Long (Pinkus–Sternlicht, infinitely long) bearing, pressure P12 corrected, Gümbel
+    /// condition on the exact zeros of p (the paper's model; L/D > 2).
+    LongBearing,
+    /// Short (Ocvirk) bearing with wedge and squeeze, Gümbel condition (L/D < 1).
+    ShortBearing,
+    /// The paper's printed closed forms, Eqs. (13)–(14), errors included (labelled variant).
+    LongBearingPaperClosedForm,
+}
+
+/// Film force `(F_ξ, F_η)` [N] on the journal for `model` (see the module doc for the frame).
+pub fn film_force(model: FilmModel, g: &BearingGeometry, s: FilmState) -> (f64, f64) {
+    match model {
+        FilmModel::LongBearing => bearing_long::long_bearing_force(g, s),
+        FilmModel::ShortBearing => bearing_short::short_bearing_force(g, s),
+        FilmModel::LongBearingPaperClosedForm => bearing_long::long_bearing_paper_closed_form(g, s),
+    }
+}
+
+/// Attitude angle [rad] in [0, π]: the angle between the external load carried by the film
+/// (`−F`) and the eccentricity direction `n`, `atan2(|F_η|, −F_ξ)`. Under a steady load a journal
+/// turning counter-clockwise sits with `n` turned from the load line by this angle in the
+/// direction of rotation (this is the β of Butenschön's tables).
+pub fn attitude_angle(force: (f64, f64)) -> f64 {
+    force.1.abs().atan2(-force.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dispatch_and_no_nan_at_extremes() {
+        let g = BearingGeometry { viscosity: 0.4, journal_radius: 0.01, clearance: 5e-4, length: 0.05 };
+        for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm] {
+            for eps in [0.0, 1e-300, 1e-9, 0.5, 0.99, 1.0, 1.5, -0.1] {
+                for eps_dot in [-10.0, 0.0, 10.0] {
+                    for wedge in [-50.0, 0.0, 50.0] {
+                        let f = film_force(model, &g, FilmState { eps, eps_dot, wedge });
+                        assert!(f.0.is_finite() && f.1.is_finite(), "{model:?} ε {eps} ε̇ {eps_dot} w {wedge}: {f:?}");
+                    }
+                }
+            }
+            // Journal and bearing turning together rigidly (wedge 0) and no squeeze: no force.
+            assert_eq!(film_force(model, &g, FilmState { eps: 0.5, eps_dot: 0.0, wedge: 0.0 }), (0.0, 0.0));
+        }
+        assert!(film_force(FilmModel::LongBearing, &g, FilmState { eps: 0.5, eps_dot: 0.0, wedge: 10.0 }).1 > 0.0);
+        assert!(film_force(FilmModel::ShortBearing, &g, FilmState { eps: 0.5, eps_dot: 1.0, wedge: 0.0 }).0 < 0.0);
+    }
+
+    #[test]
+    fn finite_for_extreme_finite_inputs() {
+        let g = BearingGeometry { viscosity: 0.4, journal_radius: 0.01, clearance: 5e-4, length: 0.05 };
+        let rates = [0.0, 1e-300, -1e-300, 1e-12, -1e-12, 1.0, -1.0, 1e6, -1e6];
+        let epss = [0.0, 5e-324, 1e-300, 1e-12, 1e-6, 0.3, 0.9, 0.999, 0.999999, FILM_EPS_CEILING, 1.0, 7.0];
+        for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm] {
+            for eps in epss {
+                for eps_dot in rates {
+                    for wedge in rates {
+                        let f = film_force(model, &g, FilmState { eps, eps_dot, wedge });
+                        assert!(f.0.is_finite() && f.1.is_finite(), "{model:?} ε {eps} ε̇ {eps_dot} W {wedge}: {f:?}");
+                    }
+                }
+            }
+        }
+        for eps in epss {
+            for eps_dot in rates {
+                for wedge in rates {
+                    let q = super::bearing_long::long_bearing_force_quadrature(&g, FilmState { eps, eps_dot, wedge });
+                    assert!(q.0.is_finite() && q.1.is_finite(), "GL ε {eps} ε̇ {eps_dot} W {wedge}: {q:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn attitude_angle_frame() {
+        // Pure radial restoring force (F_ξ < 0): load along n, angle 0.
+        assert!(attitude_angle((-1.0, 0.0)).abs() < 1e-15);
+        // Pure tangential: 90°.
+        assert!((attitude_angle((0.0, 1.0)) - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    }
+}

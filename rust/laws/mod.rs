@@ -1,0 +1,28 @@
+//! Force laws of clearance joints (spec §3–§4): pure functions of kinematic inputs and parameters.
+//!
+//! - [`contact`]: normal impact force (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores) and
+//!   contact stiffness (spec §3, P3–P4).
+//! - [`friction`]: modified Coulomb friction (spec §3, P5).
+//! - [`film`]: shared oil-film types and the model dispatch (spec §4).
+//! - [`bearing_long`]: long (Pinkus–Sternlicht) bearing, Gümbel condition (spec §4, P10–P14).
+//! - [`bearing_short`]: short (Ocvirk) bearing, Gümbel condition (spec §4).
+//! - [`transition`]: small-eccentricity scaling (P15–P16) and film-to-contact blend (P18).
+//! - [`quadrature`]: Gauss–Legendre rules.
+//!
+//! Film-force convention everywhere: `(F_ξ, F_η)` is the force ON THE JOURNAL along `n`
+//! (bearing centre → journal centre) and along `t` = `n` turned +90°.
+
+pub mod bearing_long;
+pub mod bearing_short;
+pub mod contact;
+pub mod film;
+pub mod friction;
+pub mod quadrature;
+pub mod transition;
+
+pub use bearing_long::{long_bearing_force, long_bearing_force_quadrature, long_bearing_paper_closed_form, long_bearing_pressure};
+pub use bearing_short::{short_bearing_force, short_bearing_pressure, short_bearing_pressure_integrated};
+pub use contact::{hysteresis_factor, stiffness_internal, stiffness_paper_printed, ContactLaw, NormalLaw};
+pub use film::{attitude_angle, film_force, BearingGeometry, FilmModel, FilmState, FILM_EPS_CEILING};
+pub use friction::ModifiedCoulomb;
+pub use transition::{film_eps, small_eccentricity_scale, transition_weights};

@@ -1,0 +1,30 @@
+//! clearsim: planar multibody dynamics with dry and lubricated revolute clearance joints.
+//!
+//! The flow of one run (see `DESIGN.md`): a plain [`model::MechanismDesc`] is compiled into a
+//! [`model::Model`]; [`simulate::simulate`] assembles it, integrates `ẏ = f(t, y)`
+//! ([`system`], [`kkt`], [`clearance`], [`laws`]) with an [`integrate`] method and records the
+//! requested channels ([`record`]). `rust/python.rs` (feature `python`) is the only file that
+//! knows about Python.
+
+pub mod assembly;
+pub mod batch;
+pub mod clearance;
+pub mod constraints;
+pub mod error;
+pub mod integrate;
+pub mod kkt;
+pub mod laws;
+pub mod model;
+pub mod record;
+pub mod simulate;
+pub mod system;
+
+#[cfg(feature = "python")]
+mod python;
+
+pub use error::{Error, Result};
+
+/// The crate version.
+pub fn version() -> &'static str {
+    env!("CARGO_PKG_VERSION")
+}

@@ -1,0 +1,184 @@
+//! A compiled model: flat arrays and enums built from a validated [`MechanismDesc`]
+//! (spec §1). Only the parts the scene uses are present: a mechanism without lubricated joints
+//! has no film data, a joint without clearance is a constraint.
+
+pub mod description;
+mod validate;
+
+pub use description::*;
+
+use crate::clearance::{ClearanceJoint, Film};
+use crate::constraints::{CompiledAngleLaw, Constraint, V2};
+use crate::error::{Error, Result};
+use crate::laws::contact::{stiffness_internal, stiffness_paper_printed, ContactLaw};
+use crate::laws::film::BearingGeometry;
+use crate::laws::friction::ModifiedCoulomb;
+
+/// Everything the right-hand side needs, immutable during a run.
+#[derive(Debug, Clone)]
+pub struct Model {
+    pub body_names: Vec<String>,
+    /// m, m, J per body.
+    pub mass: Vec<f64>,
+    pub gravity: V2,
+    pub alpha: f64,
+    pub beta: f64,
+    pub constraints: Vec<Constraint>,
+    /// Number of scalar constraint equations.
+    pub rows: usize,
+    pub clearance: Vec<ClearanceJoint>,
+    /// Approximate initial positions (x, y, θ per body) and velocity guesses.
+    pub q_guess: Vec<f64>,
+    pub qd_guess: Vec<f64>,
+    /// Initial eccentricity vector of each clearance joint [m].
+    pub initial_eccentricity: Vec<V2>,
+}
+
+impl Model {
+    /// Validate a description and compile it.
+    pub fn compile(desc: &MechanismDesc) -> Result<Model> {
+        validate::validate(desc)?;
+        let nb = desc.bodies.len();
+        let mut mass = Vec::with_capacity(3 * nb);
+        let mut q_guess = Vec::with_capacity(3 * nb);
+        let mut qd_guess = Vec::with_capacity(3 * nb);
+        for b in &desc.bodies {
+            mass.extend([b.mass, b.mass, b.inertia]);
+            q_guess.extend([b.position[0], b.position[1], b.angle]);
+            qd_guess.extend(b.velocity);
+        }
+        let idx = |b: &BodyRef| b.map(|i| i as u32);
+        let mut constraints = Vec::new();
+        for j in &desc.joints {
+            constraints.push(match j {
+                JointDesc::Revolute { body_a, point_a, body_b, point_b, .. } => Constraint::Revolute {
+                    a: idx(body_a),
+                    sa: (*point_a).into(),
+                    b: idx(body_b),
+                    sb: (*point_b).into(),
+                    offset: V2::default(),
+                },
+                JointDesc::Prismatic { body_a, point_a, axis, body_b, point_b, .. } => {
+                    let u = V2::from(*axis);
+                    let u = u.scale(1.0 / u.norm());
+                    let th_a = body_a.map_or(0.0, |a| desc.bodies[a].angle);
+                    Constraint::Prismatic {
+                        a: idx(body_a),
+                        sa: (*point_a).into(),
+                        u_perp: u.perp(),
+                        b: *body_b as u32,
+                        sb: (*point_b).into(),
+                        theta0: desc.bodies[*body_b].angle - th_a,
+                    }
+                }
+            });
+        }
+        for d in &desc.drivers {
+            constraints.push(Constraint::Driver {
+                b: d.body as u32,
+                law: CompiledAngleLaw::compile(&d.law, &format!("driver '{}'", d.name))?,
+            });
+        }
+        let clearance = desc.clearance_joints.iter().map(compile_clearance).collect::<Result<Vec<_>>>()?;
+        let rows = constraints.iter().map(Constraint::rows).sum();
+        Ok(Model {
+            body_names: desc.bodies.iter().map(|b| b.name.clone()).collect(),
+            mass,
+            gravity: desc.gravity.into(),
+            alpha: desc.baumgarte[0],
+            beta: desc.baumgarte[1],
+            constraints,
+            rows,
+            clearance,
+            q_guess,
+            qd_guess,
+            initial_eccentricity: desc.clearance_joints.iter().map(|c| c.initial_eccentricity.into()).collect(),
+        })
+    }
+
+    pub fn n_bodies(&self) -> usize {
+        self.body_names.len()
+    }
+
+    /// Length of the state (q, q̇).
+    pub fn state_dim(&self) -> usize {
+        6 * self.n_bodies()
+    }
+
+    /// Degrees of freedom left after the constraints (clearance joints add 2 each).
+    pub fn dof(&self) -> isize {
+        3 * self.n_bodies() as isize - self.rows as isize
+    }
+}
+
+impl MechanismDesc {
+    /// The ideal mechanism: every clearance joint replaced by a revolute joint between its
+    /// bearing and journal points (spec §5).
+    pub fn idealized(&self) -> MechanismDesc {
+        let mut d = self.clone();
+        for c in d.clearance_joints.drain(..) {
+            d.joints.push(JointDesc::Revolute {
+                name: c.name,
+                body_a: c.bearing_body,
+                point_a: c.bearing_point,
+                body_b: c.journal_body,
+                point_b: c.journal_point,
+            });
+        }
+        d
+    }
+}
+
+fn contact_law(c: &ClearanceJointDesc, dry: &DryDesc) -> ContactLaw {
+    let r_b = c.journal_radius + c.clearance;
+    let k = dry.stiffness.unwrap_or_else(|| {
+        let f = if dry.stiffness_paper_printed { stiffness_paper_printed } else { stiffness_internal };
+        f(r_b, c.journal_radius, dry.youngs_bearing, dry.poisson_bearing, dry.youngs_journal, dry.poisson_journal)
+    });
+    ContactLaw {
+        law: dry.normal_law,
+        stiffness: k,
+        exponent: dry.exponent,
+        restitution: dry.restitution,
+        impact_speed_floor: dry.impact_speed_floor,
+    }
+}
+
+fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
+    let (dry, film) = match &c.model {
+        ClearanceModelDesc::Dry(d) => (d, None),
+        ClearanceModelDesc::Lubricated(l) => (
+            &l.dry,
+            Some(Film {
+                model: l.film,
+                geometry: BearingGeometry {
+                    viscosity: l.viscosity,
+                    journal_radius: c.journal_radius,
+                    clearance: c.clearance,
+                    length: l.length,
+                },
+                eps0: l.eps0,
+                m: l.m,
+                e0: l.e0,
+                eps_max: l.eps_max,
+            }),
+        ),
+    };
+    let contact = contact_law(c, dry);
+    if !(contact.stiffness.is_finite() && contact.stiffness > 0.0) {
+        return Err(Error::invalid(format!("clearance joint '{}'.stiffness", c.name), contact.stiffness, "must be positive and finite"));
+    }
+    Ok(ClearanceJoint {
+        name: c.name.clone(),
+        bearing: c.bearing_body.map(|i| i as u32),
+        bearing_point: c.bearing_point.into(),
+        journal: c.journal_body.map(|i| i as u32),
+        journal_point: c.journal_point.into(),
+        journal_radius: c.journal_radius,
+        bearing_radius: c.journal_radius + c.clearance,
+        clearance: c.clearance,
+        contact,
+        friction: ModifiedCoulomb { friction_coefficient: dry.friction, v0: dry.v0, v1: dry.v1 },
+        film,
+    })
+}

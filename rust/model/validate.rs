@@ -1,0 +1,179 @@
+//! Validation of a [`MechanismDesc`]: every bad value is reported with the field that holds it.
+
+use std::collections::HashSet;
+
+use super::description::*;
+use crate::error::{Error, Result};
+
+fn finite(field: &str, v: f64) -> Result<()> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, v, "must be a finite number"))
+    }
+}
+
+fn positive(field: &str, v: f64) -> Result<()> {
+    finite(field, v)?;
+    if v > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, v, "must be positive"))
+    }
+}
+
+fn non_negative(field: &str, v: f64) -> Result<()> {
+    finite(field, v)?;
+    if v >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, v, "must not be negative"))
+    }
+}
+
+fn within(field: &str, v: f64, lo: f64, hi: f64, lo_open: bool, hi_open: bool) -> Result<()> {
+    finite(field, v)?;
+    let ok_lo = if lo_open { v > lo } else { v >= lo };
+    let ok_hi = if hi_open { v < hi } else { v <= hi };
+    if ok_lo && ok_hi {
+        Ok(())
+    } else {
+        let (l, r) = (if lo_open { "(" } else { "[" }, if hi_open { ")" } else { "]" });
+        Err(Error::invalid(field, v, format!("must lie in {l}{lo}, {hi}{r}")))
+    }
+}
+
+fn point(field: &str, p: [f64; 2]) -> Result<()> {
+    finite(&format!("{field}[0]"), p[0])?;
+    finite(&format!("{field}[1]"), p[1])
+}
+
+fn body_ref(field: &str, b: Option<usize>, nb: usize) -> Result<()> {
+    match b {
+        Some(i) if i >= nb => Err(Error::invalid(field, i, format!("no such body (there are {nb})"))),
+        _ => Ok(()),
+    }
+}
+
+fn unique<'a>(what: &'static str, names: impl Iterator<Item = &'a String>) -> Result<()> {
+    let mut seen = HashSet::new();
+    for n in names {
+        if n.is_empty() {
+            return Err(Error::Name { what, name: n.clone(), reason: "names must not be empty".into() });
+        }
+        if n == "ground" {
+            return Err(Error::Name { what, name: n.clone(), reason: "'ground' is reserved for the fixed frame".into() });
+        }
+        if !seen.insert(n) {
+            return Err(Error::Name { what, name: n.clone(), reason: "used twice".into() });
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
+    positive(&format!("{f}.youngs_bearing"), d.youngs_bearing)?;
+    positive(&format!("{f}.youngs_journal"), d.youngs_journal)?;
+    within(&format!("{f}.poisson_bearing"), d.poisson_bearing, -1.0, 0.5, true, true)?;
+    within(&format!("{f}.poisson_journal"), d.poisson_journal, -1.0, 0.5, true, true)?;
+    within(&format!("{f}.restitution"), d.restitution, 0.0, 1.0, true, false)?;
+    positive(&format!("{f}.exponent"), d.exponent)?;
+    if let Some(k) = d.stiffness {
+        positive(&format!("{f}.stiffness"), k)?;
+    }
+    non_negative(&format!("{f}.friction"), d.friction)?;
+    non_negative(&format!("{f}.v0"), d.v0)?;
+    positive(&format!("{f}.v1"), d.v1)?;
+    if d.v1 <= d.v0 {
+        return Err(Error::invalid(format!("{f}.v1"), d.v1, format!("must exceed v0 = {}", d.v0)));
+    }
+    positive(&format!("{f}.impact_speed_floor"), d.impact_speed_floor)
+}
+
+pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
+    let nb = desc.bodies.len();
+    if nb == 0 {
+        return Err(Error::invalid("bodies", "[]", "a mechanism needs at least one body"));
+    }
+    unique("body", desc.bodies.iter().map(|b| &b.name))?;
+    unique(
+        "joint",
+        desc.joints
+            .iter()
+            .map(|j| match j {
+                JointDesc::Revolute { name, .. } | JointDesc::Prismatic { name, .. } => name,
+            })
+            .chain(desc.clearance_joints.iter().map(|c| &c.name))
+            .chain(desc.drivers.iter().map(|d| &d.name)),
+    )?;
+    for b in &desc.bodies {
+        let f = format!("body '{}'", b.name);
+        positive(&format!("{f}.mass"), b.mass)?;
+        positive(&format!("{f}.inertia"), b.inertia)?;
+        point(&format!("{f}.position"), b.position)?;
+        finite(&format!("{f}.angle"), b.angle)?;
+        for (k, v) in b.velocity.iter().enumerate() {
+            finite(&format!("{f}.velocity[{k}]"), *v)?;
+        }
+    }
+    for j in &desc.joints {
+        match j {
+            JointDesc::Revolute { name, body_a, point_a, body_b, point_b } => {
+                let f = format!("joint '{name}'");
+                body_ref(&format!("{f}.body_a"), *body_a, nb)?;
+                body_ref(&format!("{f}.body_b"), *body_b, nb)?;
+                if body_a == body_b {
+                    return Err(Error::invalid(format!("{f}.body_b"), format!("{body_b:?}"), "a joint needs two different bodies"));
+                }
+                point(&format!("{f}.point_a"), *point_a)?;
+                point(&format!("{f}.point_b"), *point_b)?;
+            }
+            JointDesc::Prismatic { name, body_a, point_a, axis, body_b, point_b } => {
+                let f = format!("joint '{name}'");
+                body_ref(&format!("{f}.body_a"), *body_a, nb)?;
+                body_ref(&format!("{f}.body_b"), Some(*body_b), nb)?;
+                if *body_a == Some(*body_b) {
+                    return Err(Error::invalid(format!("{f}.body_b"), body_b, "a joint needs two different bodies"));
+                }
+                point(&format!("{f}.point_a"), *point_a)?;
+                point(&format!("{f}.point_b"), *point_b)?;
+                point(&format!("{f}.axis"), *axis)?;
+                if axis[0].hypot(axis[1]) < 1e-12 {
+                    return Err(Error::invalid(format!("{f}.axis"), format!("{axis:?}"), "must be a non-zero direction"));
+                }
+            }
+        }
+    }
+    for d in &desc.drivers {
+        body_ref(&format!("driver '{}'.body", d.name), Some(d.body), nb)?;
+    }
+    for c in &desc.clearance_joints {
+        let f = format!("clearance joint '{}'", c.name);
+        body_ref(&format!("{f}.bearing_body"), c.bearing_body, nb)?;
+        body_ref(&format!("{f}.journal_body"), c.journal_body, nb)?;
+        if c.bearing_body == c.journal_body {
+            return Err(Error::invalid(format!("{f}.journal_body"), format!("{:?}", c.journal_body), "bearing and journal must be on different bodies"));
+        }
+        point(&format!("{f}.bearing_point"), c.bearing_point)?;
+        point(&format!("{f}.journal_point"), c.journal_point)?;
+        point(&format!("{f}.initial_eccentricity"), c.initial_eccentricity)?;
+        positive(&format!("{f}.journal_radius"), c.journal_radius)?;
+        positive(&format!("{f}.clearance"), c.clearance)?;
+        match &c.model {
+            ClearanceModelDesc::Dry(d) => validate_dry(&f, d)?,
+            ClearanceModelDesc::Lubricated(l) => {
+                positive(&format!("{f}.viscosity"), l.viscosity)?;
+                positive(&format!("{f}.length"), l.length)?;
+                within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;
+                within(&format!("{f}.m"), l.m, 0.0, 1.0, true, true)?;
+                positive(&format!("{f}.e0"), l.e0)?;
+                within(&format!("{f}.eps_max"), l.eps_max, 0.0, 1.0, true, true)?;
+                validate_dry(&f, &l.dry)?;
+            }
+        }
+    }
+    point("gravity", desc.gravity)?;
+    non_negative("baumgarte.alpha", desc.baumgarte[0])?;
+    non_negative("baumgarte.beta", desc.baumgarte[1])?;
+    Ok(())
+}

@@ -1,0 +1,541 @@
+//! The pyo3 glue: the only file that knows about Python (feature `python`).
+//!
+//! Descriptions arrive as plain dicts built by `python/clearsim/mechanism.py`; results leave as
+//! dicts of numpy arrays. Every [`Error`] becomes a Python exception of `clearsim.errors` in
+//! [`to_pyerr`], and nowhere else. The GIL is released while integrating.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::batch::run_batch;
+use crate::clearance::ImpactMemory;
+use crate::error::Error;
+use crate::integrate::{Method, Settings};
+use crate::laws::contact::NormalLaw;
+use crate::laws::film::FilmModel;
+use crate::model::*;
+use crate::record::{Channels, JOINT_COLUMNS};
+use crate::simulate::{simulate, RunOutput, RunSettings};
+use crate::system::Workspace;
+
+// ---------------------------------------------------------------- errors (the one mapping)
+
+/// Map a crate error to the matching exception class of `clearsim.errors`.
+fn to_pyerr(py: Python<'_>, e: &Error) -> PyErr {
+    let build = || -> PyResult<PyErr> {
+        let errors = py.import("clearsim.errors")?;
+        let kwargs = PyDict::new(py);
+        let class = match e {
+            Error::InvalidInput { field, value, .. } => {
+                kwargs.set_item("field", field)?;
+                kwargs.set_item("value", value)?;
+                "InputError"
+            }
+            Error::Name { name, .. } => {
+                kwargs.set_item("field", "name")?;
+                kwargs.set_item("value", name)?;
+                "InputError"
+            }
+            Error::Assembly { t, .. } => {
+                kwargs.set_item("t", t)?;
+                "AssemblyError"
+            }
+            Error::Interrupted { t } => {
+                kwargs.set_item("t", t)?;
+                "InterruptedRun"
+            }
+            other => {
+                kwargs.set_item("t", other.time())?;
+                "SimulationError"
+            }
+        };
+        kwargs.set_item("reason", e.to_string())?;
+        let exc = errors.getattr(class)?.call((e.to_string(),), Some(&kwargs))?;
+        Ok(PyErr::from_value(exc))
+    };
+    build().unwrap_or_else(|err| err)
+}
+
+fn input_error(py: Python<'_>, field: &str, value: impl std::fmt::Display, reason: &str) -> PyErr {
+    to_pyerr(py, &Error::invalid(field, value, reason))
+}
+
+// ---------------------------------------------------------------- reading plain dicts
+
+struct Reader<'a, 'py> {
+    d: &'a Bound<'py, PyDict>,
+    ctx: String,
+}
+
+impl<'a, 'py> Reader<'a, 'py> {
+    fn new(d: &'a Bound<'py, PyDict>, ctx: impl Into<String>) -> Self {
+        Reader { d, ctx: ctx.into() }
+    }
+    fn field(&self, key: &str) -> String {
+        if self.ctx.is_empty() { key.to_string() } else { format!("{}.{}", self.ctx, key) }
+    }
+    fn any(&self, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match self.d.get_item(key)? {
+            Some(v) => Ok(v),
+            None => Err(input_error(self.d.py(), &self.field(key), "<missing>", "is required")),
+        }
+    }
+    fn opt(&self, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Ok(self.d.get_item(key)?.filter(|v| !v.is_none()))
+    }
+    fn f64(&self, key: &str) -> PyResult<f64> {
+        let v = self.any(key)?;
+        v.extract::<f64>().map_err(|_| input_error(self.d.py(), &self.field(key), v.repr().map(|r| r.to_string()).unwrap_or_default(), "must be a number"))
+    }
+    fn f64_or(&self, key: &str, default: f64) -> PyResult<f64> {
+        match self.opt(key)? {
+            Some(_) => self.f64(key),
+            None => Ok(default),
+        }
+    }
+    fn opt_f64(&self, key: &str) -> PyResult<Option<f64>> {
+        match self.opt(key)? {
+            Some(_) => self.f64(key).map(Some),
+            None => Ok(None),
+        }
+    }
+    fn bool_or(&self, key: &str, default: bool) -> PyResult<bool> {
+        match self.opt(key)? {
+            Some(v) => v.extract::<bool>().map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be true or false")),
+            None => Ok(default),
+        }
+    }
+    fn string(&self, key: &str) -> PyResult<String> {
+        let v = self.any(key)?;
+        v.extract::<String>().map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be a string"))
+    }
+    fn vec(&self, key: &str) -> PyResult<Vec<f64>> {
+        let v = self.any(key)?;
+        v.extract::<Vec<f64>>().map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be a sequence of numbers"))
+    }
+    fn vec_or_empty(&self, key: &str) -> PyResult<Vec<f64>> {
+        match self.opt(key)? {
+            Some(_) => self.vec(key),
+            None => Ok(vec![]),
+        }
+    }
+    fn point(&self, key: &str) -> PyResult<[f64; 2]> {
+        let v = self.vec(key)?;
+        <[f64; 2]>::try_from(v.as_slice()).map_err(|_| input_error(self.d.py(), &self.field(key), format!("{v:?}"), "must have 2 components"))
+    }
+    fn body(&self, key: &str) -> PyResult<Option<usize>> {
+        match self.opt(key)? {
+            None => Ok(None),
+            Some(v) => v.extract::<usize>().map(Some).map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be a body index or None (ground)")),
+        }
+    }
+    fn dict(&self, key: &str) -> PyResult<Bound<'py, PyDict>> {
+        let v = self.any(key)?;
+        v.cast_into::<PyDict>().map_err(|_| input_error(self.d.py(), &self.field(key), "<not a dict>", "must be a mapping"))
+    }
+    fn list(&self, key: &str) -> PyResult<Vec<Bound<'py, PyDict>>> {
+        let Some(v) = self.opt(key)? else { return Ok(vec![]) };
+        let list = v.cast_into::<PyList>().map_err(|_| input_error(self.d.py(), &self.field(key), "<not a list>", "must be a list"))?;
+        list.iter()
+            .enumerate()
+            .map(|(k, item)| item.cast_into::<PyDict>().map_err(|_| input_error(list.py(), &format!("{}[{k}]", self.field(key)), "<not a dict>", "must be a mapping")))
+            .collect()
+    }
+}
+
+fn read_dry(r: &Reader) -> PyResult<DryDesc> {
+    let d = DryDesc::steel();
+    let law = match r.opt("normal_law")? {
+        None => d.normal_law,
+        Some(_) => match r.string("normal_law")?.as_str() {
+            "lankarani_nikravesh" => NormalLaw::LankaraniNikravesh,
+            "hertz" => NormalLaw::Hertz,
+            "hunt_crossley" => NormalLaw::HuntCrossley,
+            "flores" => NormalLaw::Flores,
+            other => {
+                return Err(input_error(r.d.py(), &r.field("normal_law"), other, "must be one of lankarani_nikravesh, hertz, hunt_crossley, flores"))
+            }
+        },
+    };
+    Ok(DryDesc {
+        normal_law: law,
+        youngs_bearing: r.f64_or("youngs_bearing", d.youngs_bearing)?,
+        youngs_journal: r.f64_or("youngs_journal", d.youngs_journal)?,
+        poisson_bearing: r.f64_or("poisson_bearing", d.poisson_bearing)?,
+        poisson_journal: r.f64_or("poisson_journal", d.poisson_journal)?,
+        restitution: r.f64_or("restitution", d.restitution)?,
+        exponent: r.f64_or("exponent", d.exponent)?,
+        stiffness: r.opt_f64("stiffness")?,
+        stiffness_paper_printed: r.bool_or("stiffness_paper_printed", false)?,
+        friction: r.f64_or("friction", d.friction)?,
+        v0: r.f64_or("v0", d.v0)?,
+        v1: r.f64_or("v1", d.v1)?,
+        impact_speed_floor: r.f64_or("impact_speed_floor", d.impact_speed_floor)?,
+    })
+}
+
+fn read_description(d: &Bound<'_, PyDict>) -> PyResult<MechanismDesc> {
+    let py = d.py();
+    let r = Reader::new(d, "");
+    let mut desc = MechanismDesc::default();
+    if r.opt("gravity")?.is_some() {
+        desc.gravity = r.point("gravity")?;
+    }
+    if r.opt("baumgarte")?.is_some() {
+        desc.baumgarte = r.point("baumgarte")?;
+    }
+    for b in r.list("bodies")? {
+        let br = Reader::new(&b, "body");
+        let name = br.string("name")?;
+        let br = Reader::new(&b, format!("body '{name}'"));
+        let v = br.vec_or_empty("velocity")?;
+        desc.bodies.push(BodyDesc {
+            mass: br.f64("mass")?,
+            inertia: br.f64("inertia")?,
+            position: br.point("position")?,
+            angle: br.f64_or("angle", 0.0)?,
+            velocity: if v.is_empty() { [0.0; 3] } else { <[f64; 3]>::try_from(v.as_slice()).map_err(|_| input_error(py, &br.field("velocity"), format!("{v:?}"), "must have 3 components"))? },
+            name,
+        });
+    }
+    for j in r.list("joints")? {
+        let jr = Reader::new(&j, "joint");
+        let name = jr.string("name")?;
+        let jr = Reader::new(&j, format!("joint '{name}'"));
+        desc.joints.push(match jr.string("kind")?.as_str() {
+            "revolute" => JointDesc::Revolute {
+                body_a: jr.body("body_a")?,
+                point_a: jr.point("point_a")?,
+                body_b: jr.body("body_b")?,
+                point_b: jr.point("point_b")?,
+                name,
+            },
+            "prismatic" => JointDesc::Prismatic {
+                body_a: jr.body("body_a")?,
+                point_a: jr.point("point_a")?,
+                axis: jr.point("axis")?,
+                body_b: jr.body("body_b")?.ok_or_else(|| input_error(py, &jr.field("body_b"), "ground", "the sliding body cannot be the ground"))?,
+                point_b: jr.point("point_b")?,
+                name,
+            },
+            other => return Err(input_error(py, &jr.field("kind"), other, "must be 'revolute' or 'prismatic'")),
+        });
+    }
+    for dr in r.list("drivers")? {
+        let rr = Reader::new(&dr, "driver");
+        let name = rr.string("name")?;
+        let rr = Reader::new(&dr, format!("driver '{name}'"));
+        let law = rr.dict("law")?;
+        let lr = Reader::new(&law, rr.field("law"));
+        let law = match lr.string("kind")?.as_str() {
+            "constant_speed" => AngleLaw::ConstantSpeed { angle0: lr.f64("angle0")?, omega: lr.f64("omega")? },
+            "polynomial" => AngleLaw::Polynomial { coefficients: lr.vec("coefficients")? },
+            "samples" => AngleLaw::Samples { times: lr.vec("times")?, angles: lr.vec("angles")? },
+            other => return Err(input_error(py, &lr.field("kind"), other, "must be constant_speed, polynomial or samples")),
+        };
+        let body = rr.body("body")?.ok_or_else(|| input_error(py, &rr.field("body"), "ground", "cannot drive the ground"))?;
+        desc.drivers.push(DriverDesc { name, body, law });
+    }
+    for c in r.list("clearance_joints")? {
+        let cr = Reader::new(&c, "clearance joint");
+        let name = cr.string("name")?;
+        let cr = Reader::new(&c, format!("clearance joint '{name}'"));
+        let m = cr.dict("model")?;
+        let mr = Reader::new(&m, cr.ctx.clone());
+        let model = match mr.string("kind")?.as_str() {
+            "dry" => ClearanceModelDesc::Dry(read_dry(&mr)?),
+            "lubricated" => {
+                let film = match mr.opt("film")? {
+                    None => FilmModel::LongBearing,
+                    Some(_) => match mr.string("film")?.as_str() {
+                        "long" => FilmModel::LongBearing,
+                        "short" => FilmModel::ShortBearing,
+                        "long_paper" => FilmModel::LongBearingPaperClosedForm,
+                        other => return Err(input_error(py, &mr.field("film"), other, "must be 'long', 'short' or 'long_paper'")),
+                    },
+                };
+                let dry = match mr.opt("dry")? {
+                    Some(_) => read_dry(&Reader::new(&mr.dict("dry")?, cr.ctx.clone()))?,
+                    None => DryDesc::steel(),
+                };
+                let clearance = cr.f64("clearance")?;
+                ClearanceModelDesc::Lubricated(LubricatedDesc {
+                    film,
+                    viscosity: mr.f64("viscosity")?,
+                    length: mr.f64("length")?,
+                    eps0: mr.f64_or("eps0", 2e-6)?,
+                    m: mr.f64_or("m", 0.5)?,
+                    e0: mr.f64_or("e0", 0.05 * clearance)?,
+                    eps_max: mr.f64_or("eps_max", 0.99)?,
+                    dry,
+                })
+            }
+            other => return Err(input_error(py, &mr.field("kind"), other, "must be 'dry' or 'lubricated'")),
+        };
+        desc.clearance_joints.push(ClearanceJointDesc {
+            bearing_body: cr.body("bearing_body")?,
+            bearing_point: cr.point("bearing_point")?,
+            journal_body: cr.body("journal_body")?,
+            journal_point: cr.point("journal_point")?,
+            journal_radius: cr.f64("journal_radius")?,
+            clearance: cr.f64("clearance")?,
+            initial_eccentricity: if cr.opt("initial_eccentricity")?.is_some() { cr.point("initial_eccentricity")? } else { [0.0; 2] },
+            model,
+            name,
+        });
+    }
+    Ok(desc)
+}
+
+fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
+    let py = d.py();
+    let r = Reader::new(d, "");
+    let method = match r.string("method")?.as_str() {
+        "rk45" | "dopri5" => Method::Dopri5,
+        "dop853" => Method::Dop853,
+        "rk4" => Method::Rk4 { step: r.f64("step")? },
+        other => return Err(input_error(py, "integrator", other, "must be 'rk45', 'dop853' or 'rk4'")),
+    };
+    let base = Settings::default();
+    let ode = Settings {
+        rtol: r.f64_or("rtol", base.rtol)?,
+        atol: r.f64_or("atol", base.atol)?,
+        h0: r.opt_f64("h0")?,
+        h_max: r.f64_or("h_max", base.h_max)?,
+        h_min: r.f64_or("h_min", base.h_min)?,
+        max_steps: match r.opt("max_steps")? {
+            Some(v) => v.extract::<usize>().map_err(|_| input_error(py, "max_steps", v, "must be a positive integer"))?,
+            None => base.max_steps,
+        },
+    };
+    let t_out: Vec<f64> = match r.opt("t_out")? {
+        Some(v) => match v.extract::<PyReadonlyArray1<f64>>() {
+            Ok(a) => a.as_slice().map(|s| s.to_vec()).unwrap_or_else(|_| a.as_array().to_vec()),
+            Err(_) => r.vec("t_out")?,
+        },
+        None => vec![],
+    };
+    let ch = Channels::default();
+    let channels = match r.opt("channels")? {
+        None => ch,
+        Some(_) => {
+            let c = r.dict("channels")?;
+            let cr = Reader::new(&c, "outputs");
+            Channels {
+                states: cr.bool_or("states", ch.states)?,
+                accelerations: cr.bool_or("accelerations", ch.accelerations)?,
+                reactions: cr.bool_or("reactions", ch.reactions)?,
+                joints: cr.bool_or("joints", ch.joints)?,
+                violation: cr.bool_or("violation", ch.violation)?,
+            }
+        }
+    };
+    Ok(RunSettings { method, ode, t0: r.f64_or("t0", 0.0)?, t_end: r.f64("t_end")?, t_out, channels })
+}
+
+// ---------------------------------------------------------------- results
+
+fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, PyAny>> {
+    let rows = if cols == 0 { 0 } else { v.len() / cols };
+    Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
+}
+
+fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let rec = &out.recording;
+    let n = 3 * model.n_bodies();
+    let ch = rec.channels.unwrap_or_default();
+    d.set_item("t", PyArray1::from_slice(py, &rec.t))?;
+    if ch.states {
+        d.set_item("q", array2(py, &rec.q, n)?)?;
+        d.set_item("qd", array2(py, &rec.qd, n)?)?;
+    }
+    if ch.accelerations {
+        d.set_item("qdd", array2(py, &rec.qdd, n)?)?;
+    }
+    if ch.reactions {
+        d.set_item("lambda", array2(py, &rec.lambda, model.rows)?)?;
+    }
+    if ch.joints {
+        let nj = model.clearance.len();
+        let w = JOINT_COLUMNS.len();
+        let rows = rec.t.len();
+        d.set_item("joints", PyArray1::from_slice(py, &rec.joints).reshape([rows, nj, w])?)?;
+    }
+    if ch.violation {
+        d.set_item("violation", array2(py, &rec.violation, 2)?)?;
+    }
+    d.set_item("q0", PyArray1::from_slice(py, &out.q0))?;
+    d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;
+    d.set_item("impacts", out.impacts.clone())?;
+    d.set_item("max_violation", out.max_violation.to_vec())?;
+    let s = PyDict::new(py);
+    s.set_item("steps", out.stats.steps_accepted)?;
+    s.set_item("rejected_steps", out.stats.steps_rejected)?;
+    s.set_item("rhs_evaluations", out.stats.rhs_evals)?;
+    s.set_item("min_step", out.stats.h_min_used)?;
+    s.set_item("max_step", out.stats.h_max_used)?;
+    s.set_item("t_reached", out.stats.t_reached)?;
+    s.set_item("wall_time", out.wall_time)?;
+    d.set_item("stats", s)?;
+    match &out.error {
+        None => d.set_item("error", py.None())?,
+        Some(e) => {
+            let err = to_pyerr(py, e);
+            let value = err.value(py);
+            if let Some((joint, eps)) = &out.failure_joint {
+                value.setattr("joint", joint)?;
+                value.setattr("eccentricity", eps)?;
+            }
+            d.set_item("error", value)?;
+        }
+    }
+    Ok(d)
+}
+
+/// A stop check for long runs: polls Python's signal handlers (Ctrl-C) at most every 50 ms.
+fn make_stop() -> impl Fn() -> bool + Sync {
+    let start = Instant::now();
+    let last = AtomicU64::new(0);
+    move || {
+        let now = start.elapsed().as_millis() as u64;
+        if now.saturating_sub(last.load(Ordering::Relaxed)) < 50 {
+            return false;
+        }
+        last.store(now, Ordering::Relaxed);
+        Python::attach(|py| py.check_signals().is_err())
+    }
+}
+
+// ---------------------------------------------------------------- the Python classes
+
+/// A validated, compiled mechanism (built by `clearsim.Mechanism`).
+#[pyclass(module = "clearsim._core", frozen)]
+pub struct CompiledModel {
+    model: Model,
+    desc: MechanismDesc,
+    rhs_ws: Mutex<(Workspace, Vec<ImpactMemory>)>,
+}
+
+#[pymethods]
+impl CompiledModel {
+    /// Length of the state y = (q, q̇).
+    #[getter]
+    fn state_dim(&self) -> usize {
+        self.model.state_dim()
+    }
+
+    /// Number of scalar constraint equations.
+    #[getter]
+    fn constraint_rows(&self) -> usize {
+        self.model.rows
+    }
+
+    /// Degrees of freedom (3 per body − constraint equations).
+    #[getter]
+    fn dof(&self) -> isize {
+        self.model.dof()
+    }
+
+    /// Contact stiffness K of each clearance joint [N/m^n].
+    #[getter]
+    fn contact_stiffness(&self) -> Vec<f64> {
+        self.model.clearance.iter().map(|c| c.contact.stiffness).collect()
+    }
+
+    /// Consistent initial state y0 at t0 (kinematic assembly).
+    fn initial_state<'py>(&self, py: Python<'py>, t0: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (mut q, qd) = crate::assembly::assemble(&self.model, t0).map_err(|e| to_pyerr(py, &e))?;
+        q.extend(qd);
+        Ok(PyArray1::from_vec(py, q))
+    }
+
+    /// ẏ = f(t, y) for external integrators (no impact memory: δ̇⁽⁻⁾ is the current approach
+    /// speed).
+    fn rhs<'py>(&self, py: Python<'py>, t: f64, y: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let y = y.as_array();
+        let dim = self.model.state_dim();
+        if y.len() != dim {
+            return Err(input_error(py, "y", format!("array of length {}", y.len()), &format!("must have length {dim}")));
+        }
+        let y: Vec<f64> = y.iter().copied().collect();
+        let mut guard = self.rhs_ws.lock().map_err(|_| PyRuntimeError::new_err("workspace poisoned"))?;
+        let (ws, mem) = &mut *guard;
+        ws.evaluate(&self.model, mem, t, &y).map_err(|e| to_pyerr(py, &e))?;
+        let n = dim / 2;
+        let mut dy = vec![0.0; dim];
+        dy[..n].copy_from_slice(&y[n..]);
+        dy[n..].copy_from_slice(&ws.qdd);
+        Ok(PyArray1::from_vec(py, dy))
+    }
+
+    /// Run the model; returns a dict of arrays (see `clearsim.result.Result`).
+    fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
+        let rs = read_settings(settings)?;
+        let model = &self.model;
+        let stop = make_stop();
+        let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
+        output_to_dict(py, model, &out)
+    }
+
+    /// The ideal counterpart: every clearance joint made a revolute joint.
+    fn idealized(&self, py: Python<'_>) -> PyResult<CompiledModel> {
+        CompiledModel::build(py, self.desc.idealized())
+    }
+}
+
+impl CompiledModel {
+    fn build(py: Python<'_>, desc: MechanismDesc) -> PyResult<Self> {
+        let model = Model::compile(&desc).map_err(|e| to_pyerr(py, &e))?;
+        let ws = Workspace::new(&model);
+        let mem = vec![ImpactMemory::default(); model.clearance.len()];
+        Ok(CompiledModel { model, desc, rhs_ws: Mutex::new((ws, mem)) })
+    }
+}
+
+/// Validate and compile a mechanism description (a dict).
+#[pyfunction]
+fn compile(py: Python<'_>, description: &Bound<'_, PyDict>) -> PyResult<CompiledModel> {
+    let desc = read_description(description)?;
+    CompiledModel::build(py, desc)
+}
+
+/// Run many descriptions with the same settings in parallel (rayon; GIL released).
+/// Returns one result dict per description, or the exception that prevented the run.
+#[pyfunction]
+#[pyo3(signature = (descriptions, settings, threads=0))]
+fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyDict>>, settings: &Bound<'py, PyDict>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
+    let rs = read_settings(settings)?;
+    rs.validate().map_err(|e| to_pyerr(py, &e))?;
+    let stop = make_stop();
+    let outs = py.detach(|| run_batch(&descs, &rs, threads, Some(&stop)));
+    let mut res = Vec::with_capacity(outs.len());
+    for (d, o) in descs.iter().zip(outs) {
+        match o {
+            Ok(out) => {
+                let model = Model::compile(d).map_err(|e| to_pyerr(py, &e))?;
+                res.push(output_to_dict(py, &model, &out)?.into_any());
+            }
+            Err(e) => res.push(to_pyerr(py, &e).value(py).clone().into_any()),
+        }
+    }
+    Ok(res)
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", crate::version())?;
+    m.add("JOINT_COLUMNS", JOINT_COLUMNS.to_vec())?;
+    m.add_class::<CompiledModel>()?;
+    m.add_function(wrap_pyfunction!(compile, m)?)?;
+    m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;
+    m.add("run_batch", m.getattr("run_batch_py")?)?;
+    Ok(())
+}

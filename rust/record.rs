@@ -1,0 +1,116 @@
+//! The recorder: the requested output channels on the output grid, stored row by row.
+
+use crate::model::Model;
+use crate::system::Workspace;
+
+/// Which channels a run stores (only those are computed at output times).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Channels {
+    /// q and q̇ of every body.
+    pub states: bool,
+    /// q̈ of every body (one KKT solve per output time).
+    pub accelerations: bool,
+    /// Lagrange multipliers λ.
+    pub reactions: bool,
+    /// Per clearance joint: see [`JOINT_COLUMNS`].
+    pub joints: bool,
+    /// ‖Φ‖ and ‖Φ̇‖.
+    pub violation: bool,
+}
+
+impl Default for Channels {
+    fn default() -> Self {
+        Channels { states: true, accelerations: true, reactions: false, joints: true, violation: true }
+    }
+}
+
+/// Columns stored per clearance joint and output time.
+pub const JOINT_COLUMNS: [&str; 12] = [
+    "ex", "ey", "ex_dot", "ey_dot", "fx", "fy", "normal", "tangential", "film_xi", "film_eta", "w_dry", "state",
+];
+
+/// Recorded outputs; each array is row-major with one row per output time.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Recording {
+    pub channels: Option<Channels>,
+    pub t: Vec<f64>,
+    /// 3 per body.
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    /// One per constraint row.
+    pub lambda: Vec<f64>,
+    /// `JOINT_COLUMNS.len()` per clearance joint.
+    pub joints: Vec<f64>,
+    /// ‖Φ‖, ‖Φ̇‖.
+    pub violation: Vec<f64>,
+}
+
+impl Recording {
+    pub fn new(channels: Channels, capacity: usize, model: &Model) -> Self {
+        let n = 3 * model.n_bodies();
+        let cap = |on: bool, w: usize| if on { Vec::with_capacity(capacity * w) } else { Vec::new() };
+        Recording {
+            channels: Some(channels),
+            t: Vec::with_capacity(capacity),
+            q: cap(channels.states, n),
+            qd: cap(channels.states, n),
+            qdd: cap(channels.accelerations, n),
+            lambda: cap(channels.reactions, model.rows),
+            joints: cap(channels.joints, JOINT_COLUMNS.len() * model.clearance.len()),
+            violation: cap(channels.violation, 2),
+        }
+    }
+
+    /// Whether an output needs a full right-hand-side evaluation.
+    pub fn needs_evaluation(&self) -> bool {
+        self.channels.is_some_and(|c| c.accelerations || c.reactions || c.joints || c.violation)
+    }
+
+    /// Store one output row from the state and the workspace of its evaluation.
+    pub fn push(&mut self, t: f64, y: &[f64], ws: &Workspace) {
+        let ch = self.channels.unwrap_or_default();
+        let n = ws.qdd.len();
+        self.t.push(t);
+        if ch.states {
+            self.q.extend_from_slice(&y[..n]);
+            self.qd.extend_from_slice(&y[n..2 * n]);
+        }
+        if ch.accelerations {
+            self.qdd.extend_from_slice(&ws.qdd);
+        }
+        if ch.reactions {
+            self.lambda.extend_from_slice(&ws.lambda);
+        }
+        if ch.joints {
+            for (k, f) in ws.joint_kin.iter().zip(&ws.joint_force) {
+                self.joints.extend_from_slice(&[
+                    k.e_vec.x,
+                    k.e_vec.y,
+                    k.e_dot.x,
+                    k.e_dot.y,
+                    f.total.x,
+                    f.total.y,
+                    f.normal,
+                    f.tangential,
+                    f.film_xi,
+                    f.film_eta,
+                    f.w_dry,
+                    f.state as f64,
+                ]);
+            }
+        }
+        if ch.violation {
+            let (a, b) = ws.violation();
+            self.violation.extend_from_slice(&[a, b]);
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+}

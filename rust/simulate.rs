@@ -1,0 +1,298 @@
+//! One simulation run: assembly, integration with impact-onset location, recording, and a
+//! diagnosis when the run cannot go on (spec §1, §3; issue: failures keep what was computed).
+
+use std::time::Instant;
+
+use crate::assembly::assemble;
+use crate::clearance::{ImpactMemory, JointKinematics};
+use crate::constraints::BodyKin;
+use crate::error::{Error, Result};
+use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
+use crate::model::Model;
+use crate::record::{Channels, Recording};
+use crate::system::Workspace;
+
+/// What to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSettings {
+    pub method: Method,
+    pub ode: Settings,
+    pub t0: f64,
+    pub t_end: f64,
+    /// Output times (sorted, within [t0, t_end]).
+    pub t_out: Vec<f64>,
+    pub channels: Channels,
+}
+
+impl RunSettings {
+    /// Output grid t0, t0 + dt, … up to t_end (inclusive when it lands on the grid).
+    pub fn grid(t0: f64, t_end: f64, dt_out: f64) -> Vec<f64> {
+        let n = ((t_end - t0) / dt_out * (1.0 + 1e-12)).floor() as usize;
+        (0..=n).map(|k| t0 + k as f64 * dt_out).filter(|t| *t <= t_end * (1.0 + 1e-14) + 1e-300).collect()
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        let fin = |f: &str, v: f64| if v.is_finite() { Ok(()) } else { Err(Error::invalid(f, v, "must be a finite number")) };
+        fin("t0", self.t0)?;
+        fin("t_end", self.t_end)?;
+        if self.t_end <= self.t0 {
+            return Err(Error::invalid("t_end", self.t_end, format!("must be greater than t0 = {}", self.t0)));
+        }
+        if !(self.ode.rtol > 0.0 && self.ode.rtol < 1.0) {
+            return Err(Error::invalid("rtol", self.ode.rtol, "must lie in (0, 1)"));
+        }
+        if !(self.ode.atol > 0.0 && self.ode.atol.is_finite()) {
+            return Err(Error::invalid("atol", self.ode.atol, "must be positive and finite"));
+        }
+        if let Method::Rk4 { step } = self.method {
+            if !(step > 0.0 && step.is_finite()) {
+                return Err(Error::invalid("step", step, "must be positive and finite"));
+            }
+        }
+        for (k, w) in self.t_out.windows(2).enumerate() {
+            if !(w[1] > w[0]) {
+                return Err(Error::invalid(format!("t_out[{}]", k + 1), w[1], "output times must increase strictly"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The result of a run, complete or partial.
+#[derive(Debug, Clone)]
+pub struct RunOutput {
+    pub recording: Recording,
+    pub stats: Stats,
+    /// Why the run stopped early, if it did; the recording holds everything before.
+    pub error: Option<Error>,
+    pub q0: Vec<f64>,
+    pub qd0: Vec<f64>,
+    /// Impacts located per clearance joint.
+    pub impacts: Vec<u64>,
+    /// Largest ‖Φ‖ and ‖Φ̇‖ over the outputs.
+    pub max_violation: [f64; 2],
+    pub wall_time: f64,
+    /// For a failed run: the clearance joint nearest contact and its eccentricity ratio ε.
+    pub failure_joint: Option<(String, f64)>,
+}
+
+/// The model as an [`OdeSystem`].
+pub struct MechanismSystem<'a> {
+    pub model: &'a Model,
+    pub ws: Workspace,
+    pub memory: Vec<ImpactMemory>,
+    pub recording: Recording,
+    stop: Option<&'a (dyn Fn() -> bool + Sync)>,
+    accepted: usize,
+    scratch: Vec<f64>,
+    /// Last accepted state (for the diagnosis of a failure).
+    pub last_t: f64,
+    pub last_y: Vec<f64>,
+}
+
+impl<'a> MechanismSystem<'a> {
+    pub fn new(model: &'a Model, channels: Channels, capacity: usize, stop: Option<&'a (dyn Fn() -> bool + Sync)>) -> Self {
+        MechanismSystem {
+            model,
+            ws: Workspace::new(model),
+            memory: vec![ImpactMemory::default(); model.clearance.len()],
+            recording: Recording::new(channels, capacity, model),
+            stop,
+            accepted: 0,
+            scratch: vec![0.0; model.state_dim()],
+            last_t: 0.0,
+            last_y: vec![0.0; model.state_dim()],
+        }
+    }
+
+    /// Clearance-joint kinematics of joint `j` at state `y`.
+    fn joint_kinematics(&self, j: usize, y: &[f64]) -> JointKinematics {
+        let joint = &self.model.clearance[j];
+        let n = 3 * self.model.n_bodies();
+        let body = |b: Option<u32>| match b {
+            None => BodyKin::GROUND,
+            Some(i) => {
+                let o = 3 * i as usize;
+                BodyKin::new(&y[o..o + 3], &y[n + o..n + o + 3])
+            }
+        };
+        JointKinematics::new(
+            &body(joint.bearing),
+            joint.bearing_point,
+            &body(joint.journal),
+            joint.journal_point,
+            joint.journal_radius,
+            joint.bearing_radius,
+            joint.clearance,
+        )
+    }
+
+    /// The clearance joint closest to (or deepest in) contact at the last accepted state.
+    pub fn worst_joint(&self) -> Option<(usize, JointKinematics)> {
+        let mut worst: Option<(usize, JointKinematics)> = None;
+        for j in 0..self.model.clearance.len() {
+            let k = self.joint_kinematics(j, &self.last_y);
+            if worst.as_ref().is_none_or(|(_, w)| k.eps > w.eps || !k.eps.is_finite()) {
+                worst = Some((j, k));
+            }
+        }
+        worst
+    }
+
+    /// Where a failed run stood, for the error message.
+    pub fn diagnosis(&self) -> String {
+        let mut out = String::new();
+        if let Some((j, k)) = self.worst_joint() {
+            let c = &self.model.clearance[j];
+            let state = if k.delta > 0.0 { "in contact" } else if c.film.is_some() { "in the film" } else { "free" };
+            out.push_str(&format!(
+                "; last accepted t = {:.9} s; joint '{}' {} at eccentricity ε = {:.6} (δ = {:.3e} m, δ̇ = {:.3e} m/s)",
+                self.last_t, c.name, state, k.eps, k.delta, k.delta_dot
+            ));
+        } else {
+            out.push_str(&format!("; last accepted t = {:.9} s", self.last_t));
+        }
+        out
+    }
+}
+
+impl OdeSystem for MechanismSystem<'_> {
+    fn dim(&self) -> usize {
+        self.model.state_dim()
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<()> {
+        let n = 3 * self.model.n_bodies();
+        self.ws.evaluate(self.model, &self.memory, t, y)?;
+        dy[..n].copy_from_slice(&y[n..2 * n]);
+        dy[n..2 * n].copy_from_slice(&self.ws.qdd);
+        Ok(())
+    }
+
+    /// Locate contact onsets inside the step and record δ̇⁽⁻⁾ there (spec §3, P3); clear the
+    /// memory at separation.
+    fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
+        let mut changed = false;
+        for j in 0..self.memory.len() {
+            let k1 = self.joint_kinematics(j, y1);
+            if k1.delta > 0.0 && !self.memory[j].in_contact {
+                let k0 = self.joint_kinematics(j, y0);
+                let speed = if k0.delta >= 0.0 {
+                    k0.delta_dot
+                } else {
+                    // Illinois (modified regula falsi) on δ(t) through the dense output.
+                    let (mut ta, mut fa, mut tb, mut fb) = (t0, k0.delta, t1, k1.delta);
+                    let mut side = 0i8;
+                    let mut kin = k1;
+                    for _ in 0..60 {
+                        let tm = (ta * fb - tb * fa) / (fb - fa);
+                        let tm = if tm.is_finite() && tm > ta && tm < tb { tm } else { 0.5 * (ta + tb) };
+                        let mut s = std::mem::take(&mut self.scratch);
+                        dense.eval(tm, &mut s);
+                        kin = self.joint_kinematics(j, &s);
+                        self.scratch = s;
+                        let fm = kin.delta;
+                        if fm > 0.0 {
+                            tb = tm;
+                            fb = fm;
+                            if side == 1 {
+                                fa *= 0.5;
+                            }
+                            side = 1;
+                        } else {
+                            ta = tm;
+                            fa = fm;
+                            if side == -1 {
+                                fb *= 0.5;
+                            }
+                            side = -1;
+                        }
+                        if (tb - ta) <= 1e-14 * (1.0 + t1.abs()) || fm.abs() <= 1e-15 * self.model.clearance[j].clearance {
+                            break;
+                        }
+                    }
+                    kin.delta_dot
+                };
+                let m = &mut self.memory[j];
+                m.in_contact = true;
+                m.impact_speed = speed.abs();
+                m.impacts += 1;
+                changed = true;
+            } else if k1.delta <= 0.0 && self.memory[j].in_contact {
+                self.memory[j].in_contact = false;
+            }
+        }
+        self.last_t = t1;
+        self.last_y.copy_from_slice(y1);
+        self.accepted += 1;
+        if self.accepted % 64 == 0 {
+            if let Some(stop) = self.stop {
+                if stop() {
+                    return Err(Error::Interrupted { t: t1 });
+                }
+            }
+        }
+        Ok(changed)
+    }
+
+    fn output(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        if self.recording.needs_evaluation() {
+            self.ws.evaluate(self.model, &self.memory, t, y)?;
+        }
+        self.recording.push(t, y, &self.ws);
+        Ok(())
+    }
+}
+
+/// Run a compiled model. Bad settings are an `Err`; a run that fails part-way is an `Ok` whose
+/// `error` says why, with everything recorded until then.
+pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<&(dyn Fn() -> bool + Sync)>) -> Result<RunOutput> {
+    rs.validate()?;
+    let start = Instant::now();
+    let (q0, qd0) = match assemble(model, rs.t0) {
+        Ok(v) => v,
+        Err(e) => {
+            return Ok(RunOutput {
+                recording: Recording::new(rs.channels, 0, model),
+                stats: Stats::default(),
+                error: Some(e),
+                q0: model.q_guess.clone(),
+                qd0: model.qd_guess.clone(),
+                impacts: vec![0; model.clearance.len()],
+                max_violation: [0.0; 2],
+                wall_time: start.elapsed().as_secs_f64(),
+                failure_joint: None,
+            })
+        }
+    };
+    let mut y0 = q0.clone();
+    y0.extend_from_slice(&qd0);
+    let t_out: Vec<f64> = rs.t_out.iter().copied().filter(|t| *t >= rs.t0 && *t <= rs.t_end).collect();
+    let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
+    sys.last_t = rs.t0;
+    sys.last_y.copy_from_slice(&y0);
+    let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
+        Ok(s) => (s, None, None),
+        Err((e, s)) => {
+            let detail = sys.diagnosis();
+            let joint = sys.worst_joint().map(|(j, k)| (model.clearance[j].name.clone(), k.eps));
+            (s, Some(e.with_detail(&detail)), joint)
+        }
+    };
+    let mut max_violation = [0.0f64; 2];
+    for v in sys.recording.violation.chunks(2) {
+        max_violation[0] = max_violation[0].max(v[0]);
+        max_violation[1] = max_violation[1].max(v[1]);
+    }
+    Ok(RunOutput {
+        impacts: sys.memory.iter().map(|m| m.impacts).collect(),
+        recording: sys.recording,
+        stats,
+        error,
+        q0,
+        qd0,
+        max_violation,
+        wall_time: start.elapsed().as_secs_f64(),
+        failure_joint,
+    })
+}

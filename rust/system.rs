@@ -1,0 +1,115 @@
+//! The right-hand side ẏ = f(t, y) of a compiled model (spec §1): y = (q, q̇), q̈ from the
+//! Baumgarte-stabilised KKT solve with gravity and clearance-joint forces.
+
+use crate::clearance::{ImpactMemory, JointForce, JointKinematics};
+use crate::constraints::{BodyKin, JacRow};
+use crate::error::{Error, Result};
+use crate::kkt::KktSolver;
+use crate::model::Model;
+
+/// Everything one right-hand side writes, allocated once per run.
+pub struct Workspace {
+    pub kin: Vec<BodyKin>,
+    pub phi: Vec<f64>,
+    pub phi_t: Vec<f64>,
+    pub phi_dot: Vec<f64>,
+    pub gamma: Vec<f64>,
+    /// γ − 2αΦ̇ − β²Φ.
+    pub c: Vec<f64>,
+    pub jac: Vec<JacRow>,
+    /// Generalised forces g (gravity + clearance joints).
+    pub force: Vec<f64>,
+    pub qdd: Vec<f64>,
+    pub lambda: Vec<f64>,
+    pub joint_kin: Vec<JointKinematics>,
+    pub joint_force: Vec<JointForce>,
+    kkt: KktSolver,
+}
+
+impl Workspace {
+    pub fn new(model: &Model) -> Self {
+        Self::with_weights(model, model.mass.iter().map(|m| 1.0 / m).collect())
+    }
+
+    /// A workspace whose KKT solver uses the given diagonal weights instead of M⁻¹
+    /// (unit weights give the minimum-norm corrections of the kinematic assembly).
+    pub fn with_weights(model: &Model, inv_weights: Vec<f64>) -> Self {
+        let nb = model.n_bodies();
+        let rows = model.rows;
+        let mut ws = Workspace {
+            kin: vec![BodyKin::default(); nb],
+            phi: vec![0.0; rows],
+            phi_t: vec![0.0; rows],
+            phi_dot: vec![0.0; rows],
+            gamma: vec![0.0; rows],
+            c: vec![0.0; rows],
+            jac: vec![JacRow::default(); rows],
+            force: vec![0.0; 3 * nb],
+            qdd: vec![0.0; 3 * nb],
+            lambda: vec![0.0; rows],
+            joint_kin: vec![JointKinematics::default(); model.clearance.len()],
+            joint_force: vec![JointForce::default(); model.clearance.len()],
+            kkt: KktSolver::new(vec![1.0; 3 * nb], &[]),
+        };
+        // The Jacobian's sparsity (which bodies each row touches) is fixed: take it from any pose.
+        let n = 3 * nb;
+        let zeros = vec![0.0; n];
+        ws.eval_constraints(model, 0.0, &model.q_guess, &zeros);
+        ws.kkt = KktSolver::new(inv_weights, &ws.jac);
+        ws
+    }
+
+    /// Body kinematics, Φ, Φt, γ and the Jacobian rows at (t, q, q̇).
+    pub fn eval_constraints(&mut self, model: &Model, t: f64, q: &[f64], qd: &[f64]) {
+        for (b, k) in self.kin.iter_mut().enumerate() {
+            *k = BodyKin::new(&q[3 * b..3 * b + 3], &qd[3 * b..3 * b + 3]);
+        }
+        let mut r = 0;
+        for con in &model.constraints {
+            let m = con.rows();
+            con.eval(t, &self.kin, &mut self.phi[r..r + m], &mut self.phi_t[r..r + m], &mut self.gamma[r..r + m], &mut self.jac[r..r + m]);
+            r += m;
+        }
+        for r in 0..model.rows {
+            self.phi_dot[r] = self.jac[r].dot(qd) + self.phi_t[r];
+        }
+    }
+
+    /// Solve the KKT system with the current `force` and `c`.
+    pub fn solve_kkt(&mut self, t: f64) -> Result<()> {
+        self.kkt
+            .solve(&self.jac, &self.force, &self.c, &mut self.qdd, &mut self.lambda)
+            .map_err(|index| Error::SingularJacobian { t, index })
+    }
+
+    /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`.
+    pub fn evaluate(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
+        let n = 3 * model.n_bodies();
+        let (q, qd) = (&y[..n], &y[n..2 * n]);
+        self.eval_constraints(model, t, q, qd);
+        let (a, b2) = (model.alpha, model.beta * model.beta);
+        for r in 0..model.rows {
+            self.c[r] = self.gamma[r] - 2.0 * a * self.phi_dot[r] - b2 * self.phi[r];
+        }
+        for b in 0..model.n_bodies() {
+            let m = model.mass[3 * b];
+            self.force[3 * b] = m * model.gravity.x;
+            self.force[3 * b + 1] = m * model.gravity.y;
+            self.force[3 * b + 2] = 0.0;
+        }
+        for (j, joint) in model.clearance.iter().enumerate() {
+            let k = joint.kinematics(&self.kin);
+            let f = joint.force(&k, &memory[j]);
+            joint.apply(&self.kin, &k, &f, &mut self.force);
+            self.joint_kin[j] = k;
+            self.joint_force[j] = f;
+        }
+        self.solve_kkt(t)
+    }
+
+    /// ‖Φ‖₂ and ‖Φ̇‖₂ of the last evaluation.
+    pub fn violation(&self) -> (f64, f64) {
+        let n2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        (n2(&self.phi), n2(&self.phi_dot))
+    }
+}
