@@ -88,7 +88,15 @@ impl Controller {
 
     /// A controller with the given constants.
     pub fn new(safety: f64, fac_min: f64, fac_max: f64, alpha: f64, beta: f64) -> Self {
-        Controller { safety, fac_min, fac_max, alpha, beta, err_old: 1e-4, rejected: false }
+        Controller {
+            safety,
+            fac_min,
+            fac_max,
+            alpha,
+            beta,
+            err_old: 1e-4,
+            rejected: false,
+        }
     }
 
     /// Decide on a step of size `h` whose scaled error norm is `err` (finite, ≥ 0).
@@ -96,8 +104,8 @@ impl Controller {
         let fac11 = err.powf(self.alpha);
         if err <= 1.0 {
             // fac = h / h_new, limited to [1/fac_max, 1/fac_min].
-            let fac = (fac11 / self.err_old.powf(self.beta) / self.safety)
-                .clamp(1.0 / self.fac_max, 1.0 / self.fac_min);
+            let fac =
+                (fac11 / self.err_old.powf(self.beta) / self.safety).clamp(1.0 / self.fac_max, 1.0 / self.fac_min);
             let mut h_next = h / fac;
             if self.rejected {
                 h_next = h_next.min(h);
@@ -108,7 +116,9 @@ impl Controller {
         } else {
             // No PI term on rejection (Hairer's codes).
             self.rejected = true;
-            Decision::Reject { h_next: h / (fac11 / self.safety).min(1.0 / self.fac_min) }
+            Decision::Reject {
+                h_next: h / (fac11 / self.safety).min(1.0 / self.fac_min),
+            }
         }
     }
 }
@@ -153,7 +163,11 @@ pub fn initial_step<S: OdeSystem + ?Sized>(
     }
     let d2 = (d2 / n).sqrt() / h;
     let d12 = d1.max(d2); // NaN in d2 is ignored by max
-    let h1 = if d12 <= 1e-15 { 1e-6_f64.max(h * 1e-3) } else { (0.01 / d12).powf(1.0 / order as f64) };
+    let h1 = if d12 <= 1e-15 {
+        1e-6_f64.max(h * 1e-3)
+    } else {
+        (0.01 / d12).powf(1.0 / order as f64)
+    };
     let h_new = (100.0 * h).min(h1).min(h_max);
     Ok(if h_new.is_finite() && h_new > 0.0 { h_new } else { h })
 }
@@ -182,7 +196,10 @@ mod tests {
                     Decision::Accept { h_next } | Decision::Reject { h_next } => h_next,
                 };
                 let r = h_next / h;
-                assert!(r >= proto.fac_min * (1.0 - 1e-12) && r <= proto.fac_max * (1.0 + 1e-12), "err {err}: ratio {r}");
+                assert!(
+                    r >= proto.fac_min * (1.0 - 1e-12) && r <= proto.fac_max * (1.0 + 1e-12),
+                    "err {err}: ratio {r}"
+                );
                 if err > 1.0 {
                     assert!(r < 1.0, "a rejected step must shrink (err {err}, ratio {r})");
                 }

@@ -49,6 +49,7 @@ impl ContinuousExtension {
     }
 
     /// Common part: `y0, y1, Δ, r3 = h f0 − Δ, r4 = Δ − h f1 − r3`.
+    #[allow(clippy::too_many_arguments)]
     fn fill_hermite_part(&mut self, t0: f64, t1: f64, h: f64, y0: &[f64], y1: &[f64], f0: &[f64], f1: &[f64]) {
         let n = self.n;
         self.t0 = t0;
@@ -126,7 +127,11 @@ impl DenseOutput for ContinuousExtension {
                 let w = if row % 2 == 0 { s } else { s1 };
                 acc = self.r[row * n + i] + w * acc;
             }
-            let lin = if s <= 0.5 { self.y0[i] + s * self.diff[i] } else { self.y1[i] - s1 * self.diff[i] };
+            let lin = if s <= 0.5 {
+                self.y0[i] + s * self.diff[i]
+            } else {
+                self.y1[i] - s1 * self.diff[i]
+            };
             *o = lin + s * s1 * acc;
         }
     }
@@ -172,10 +177,16 @@ mod tests {
         for &theta in &[0.1, 0.3, 0.5, 0.77, 0.95] {
             let b5 = dense_weights("dopri5", theta);
             assert!(max_defect(&trees, &g5, &b5, 4, theta) < 1e-14, "dopri5 θ={theta}");
-            assert!(max_defect(&trees, &g5, &b5, 5, theta) > 1e-7, "dopri5 is not 5th order dense");
+            assert!(
+                max_defect(&trees, &g5, &b5, 5, theta) > 1e-7,
+                "dopri5 is not 5th order dense"
+            );
             let b8 = dense_weights("dop853", theta);
             assert!(max_defect(&trees, &g8, &b8, 7, theta) < 1e-12, "dop853 θ={theta}");
-            assert!(max_defect(&trees, &g8, &b8, 8, theta) > 1e-9, "dop853 is not 8th order dense");
+            assert!(
+                max_defect(&trees, &g8, &b8, 8, theta) > 1e-9,
+                "dop853 is not 8th order dense"
+            );
         }
     }
 
@@ -227,7 +238,14 @@ mod tests {
         fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
             Kepler.rhs(t, y, dy)
         }
-        fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], d: &dyn DenseOutput) -> Result<bool, Error> {
+        fn step_accepted(
+            &mut self,
+            t0: f64,
+            y0: &[f64],
+            t1: f64,
+            y1: &[f64],
+            d: &dyn DenseOutput,
+        ) -> Result<bool, Error> {
             let mut out = [0.0; 4];
             d.eval(t0, &mut out);
             self.ends_exact &= out == y0;
@@ -267,7 +285,12 @@ mod tests {
             }
         }
         let mut rec = Rec(Vec::new());
-        let s = Settings { rtol: 1e-14, atol: 1e-14, h_max: 0.002, ..Settings::default() };
+        let s = Settings {
+            rtol: 1e-14,
+            atol: 1e-14,
+            h_max: 0.002,
+            ..Settings::default()
+        };
         integrate(&mut rec, Method::Dop853, 0.0, &Y0, ts[ts.len() - 1], ts, &s).unwrap();
         rec.0
     }
@@ -275,8 +298,18 @@ mod tests {
     /// Max interpolation error of a single step of size `h` from the exact `Y0`.
     fn one_step_error(method: Method, h: f64) -> (f64, bool) {
         let ts: Vec<f64> = [0.13, 0.5, 0.71, 0.92, 1.0].iter().map(|f| f * h).collect();
-        let mut p = Probe { reference: reference(&ts), max_err: 0.0, ends_exact: true };
-        let s = Settings { rtol: 1e6, atol: 1e6, h0: Some(h), h_max: h, ..Settings::default() };
+        let mut p = Probe {
+            reference: reference(&ts),
+            max_err: 0.0,
+            ends_exact: true,
+        };
+        let s = Settings {
+            rtol: 1e6,
+            atol: 1e6,
+            h0: Some(h),
+            h_max: h,
+            ..Settings::default()
+        };
         let m = match method {
             Method::Rk4 { .. } => Method::Rk4 { step: h },
             m => m,
@@ -299,7 +332,10 @@ mod tests {
             let (e2, x2) = one_step_error(method, h / 2.0);
             assert!(x1 && x2, "{method:?}: ends not reproduced exactly");
             let order = (e1 / e2).log2();
-            assert!(order > p - 0.4 && order < p + 0.8, "{method:?}: errors {e1:e} {e2:e}, order {order}");
+            assert!(
+                order > p - 0.4 && order < p + 0.8,
+                "{method:?}: errors {e1:e} {e2:e}, order {order}"
+            );
         }
     }
 }

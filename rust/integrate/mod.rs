@@ -10,6 +10,11 @@
 
 use crate::error::Error;
 
+pub mod controller;
+pub mod dense;
+mod explicit_rk;
+pub mod tableau;
+
 /// A first-order ODE system `ẏ = f(t, y)` with hooks the mechanism needs.
 pub trait OdeSystem {
     /// Length of the state vector.
@@ -106,6 +111,5 @@ pub fn integrate<S: OdeSystem>(
     t_out: &[f64],
     settings: &Settings,
 ) -> Result<Stats, (Error, Stats)> {
-    let _ = (sys, method, t0, y0, t_end, t_out, settings);
-    unimplemented!("integrator work in progress")
+    explicit_rk::run(sys, method, t0, y0, t_end, t_out, settings)
 }

@@ -29,12 +29,32 @@ pub mod dopri5 {
         &[3.0 / 40.0, 9.0 / 40.0],
         &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
         &[19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0],
-        &[9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0],
-        &[35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
+        &[
+            35.0 / 384.0,
+            0.0,
+            500.0 / 1113.0,
+            125.0 / 192.0,
+            -2187.0 / 6784.0,
+            11.0 / 84.0,
+        ],
     ];
     /// Weights `b_i` of the propagated 5th-order solution.
-    pub const B: [f64; 7] =
-        [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0, 0.0];
+    pub const B: [f64; 7] = [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+        0.0,
+    ];
     /// Weights `b̂_i` of the embedded 4th-order solution.
     pub const BHAT: [f64; 7] = [
         5179.0 / 57600.0,
@@ -124,7 +144,11 @@ pub mod dop853 {
         &[],
         &[5.26001519587677318785587544488e-2],
         &[1.97250569845378994544595329183e-2, 5.91751709536136983633785987549e-2],
-        &[2.95875854768068491816892993775e-2, 0.0, 8.87627564304205475450678981324e-2],
+        &[
+            2.95875854768068491816892993775e-2,
+            0.0,
+            8.87627564304205475450678981324e-2,
+        ],
         &[
             2.41365134159266685502369798665e-1,
             0.0,
@@ -409,13 +433,21 @@ pub(crate) mod trees {
                 }
             }
         }
-        let mut trees = vec![Tree { children: vec![], order: 1, gamma: 1.0 }];
+        let mut trees = vec![Tree {
+            children: vec![],
+            order: 1,
+            gamma: 1.0,
+        }];
         for n in 2..=max_order {
             let mut sets = Vec::new();
             rec(&trees, n - 1, trees.len() - 1, &mut Vec::new(), &mut sets);
             for children in sets {
                 let gamma = n as f64 * children.iter().map(|&c| trees[c].gamma).product::<f64>();
-                trees.push(Tree { children, order: n, gamma });
+                trees.push(Tree {
+                    children,
+                    order: n,
+                    gamma,
+                });
             }
         }
         trees
@@ -460,7 +492,10 @@ mod tests {
     use super::*;
 
     fn row_sum_defect(c: &[f64], a: &[&[f64]]) -> f64 {
-        c.iter().zip(a).map(|(ci, row)| (ci - row.iter().sum::<f64>()).abs()).fold(0.0, f64::max)
+        c.iter()
+            .zip(a)
+            .map(|(ci, row)| (ci - row.iter().sum::<f64>()).abs())
+            .fold(0.0, f64::max)
     }
 
     #[test]

@@ -24,11 +24,17 @@
 //! - `(1/ε) ∫_{θ1}^{θ2} sinθ [1/v² − 1/(1+ε)²] dθ
 //!    = (u1 − u2)(2 − u1 − u2 + ε(1 − u1 u2)) / ((1+ε)² v1 v2)`, `u = cosθ`, `v = 1 + εu`.
 //!
-//! [`long_bearing_force_quadrature`] is the same integral by composite Gauss–Legendre on panels
-//! graded towards the thinnest film (θ = π) — the spec's reference method; the two agree to
-//! ~1e-10 and are both tested against an independent fine Simpson rule. The closed form is the
-//! default because Gauss–Legendre needs ~60 nodes at ε = 0.99 for 1e-6 (poles of p at
-//! θ = π ± i·acosh(1/ε)), which would exceed the time budget per call.
+//! Arcs shorter than 0.5 rad (always next to θ = 0 or 2π) use 8-point Gauss–Legendre instead,
+//! where the antiderivative differences would cancel.
+//!
+//! [`long_bearing_force_quadrature`] is the same integral by composite 16-point Gauss–Legendre
+//! on panels graded towards the thinnest film (θ = π) — the spec's reference method. Measured
+//! (tests): both agree with an independent adaptive Simpson rule to ≤ 5e-12 (closed form) and
+//! ≤ 4e-13 (GL) relative for ε ∈ [0.01, 0.99]; with each other to ≤ 7e-10 up to ε = 0.999 (the
+//! closed form loses a few digits there for small receding-squeeze forces: its terms scale as
+//! (1−ε²)^{-3/2}). The closed form is the default: ~0.3 µs per call against ~1.3 µs for the graded
+//! GL, since a single Gauss–Legendre rule would need ~60+ nodes at ε = 0.99 for 1e-6 (p has
+//! poles at θ = π ± i·acosh(1/ε)).
 
 use super::film::{BearingGeometry, FilmState};
 use super::quadrature::{GL16, GL8};

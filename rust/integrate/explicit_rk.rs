@@ -1,0 +1,1081 @@
+//! Explicit Runge–Kutta stepper and the driver loop behind [`integrate`](super::integrate)
+//! (Hairer I, §II.4–II.6; the structure of Hairer's codes DOPRI5 and DOP853).
+//!
+//! All work vectors are allocated once per call; a step allocates nothing.
+
+use super::controller::{dop853_error, initial_step, rms_error, Controller, Decision};
+use super::dense::{combine, ContinuousExtension};
+use super::tableau::{dop853, dopri5, rk4};
+use super::{DenseOutput, Method, OdeSystem, Settings, Stats};
+use crate::error::Error;
+
+/// Run `method` (arguments as for [`integrate`](super::integrate)), validating the input.
+pub(crate) fn run<S: OdeSystem>(
+    sys: &mut S,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    t_out: &[f64],
+    settings: &Settings,
+) -> Result<Stats, (Error, Stats)> {
+    let mut stats = Stats {
+        h_min_used: f64::INFINITY,
+        t_reached: t0,
+        ..Stats::default()
+    };
+    let res = validate(sys.dim(), method, t0, y0, t_end, t_out, settings).and_then(|()| match method {
+        Method::Rk4 { step } => drive_rk4(sys, step, t0, y0, t_end, t_out, settings, &mut stats),
+        Method::Dopri5 | Method::Dop853 => drive_adaptive(sys, method, t0, y0, t_end, t_out, settings, &mut stats),
+    });
+    match res {
+        Ok(()) => Ok(stats),
+        Err(e) => Err((e, stats)),
+    }
+}
+
+fn validate(
+    n: usize,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    t_out: &[f64],
+    s: &Settings,
+) -> Result<(), Error> {
+    if y0.len() != n {
+        return Err(Error::invalid(
+            "y0",
+            format!("length {}", y0.len()),
+            format!("the system has dimension {n}"),
+        ));
+    }
+    if !t0.is_finite() {
+        return Err(Error::invalid("t0", t0, "must be finite"));
+    }
+    if !(t_end.is_finite() && t_end >= t0) {
+        return Err(Error::invalid(
+            "t_end",
+            t_end,
+            "must be finite and ≥ t0 (forward integration only)",
+        ));
+    }
+    if t_out.iter().any(|t| !t.is_finite()) || t_out.windows(2).any(|w| w[1] < w[0]) {
+        return Err(Error::invalid("t_out", "[…]", "output times must be finite and sorted"));
+    }
+    if !y0.iter().all(|v| v.is_finite()) {
+        return Err(Error::NonFinite {
+            t: t0,
+            detail: String::new(),
+        });
+    }
+    match method {
+        Method::Rk4 { step } => {
+            if !(step.is_finite() && step > 0.0) {
+                return Err(Error::invalid("step", step, "must be finite and > 0"));
+            }
+        }
+        Method::Dopri5 | Method::Dop853 => {
+            if !(s.rtol.is_finite() && s.rtol > 0.0) {
+                return Err(Error::invalid("rtol", s.rtol, "must be finite and > 0"));
+            }
+            if !(s.atol.is_finite() && s.atol > 0.0) {
+                return Err(Error::invalid("atol", s.atol, "must be finite and > 0"));
+            }
+            if let Some(h0) = s.h0 {
+                if !(h0.is_finite() && h0 > 0.0) {
+                    return Err(Error::invalid("h0", h0, "must be finite and > 0"));
+                }
+            }
+            if s.h_max.is_nan() || s.h_max <= 0.0 {
+                return Err(Error::invalid("h_max", s.h_max, "must be > 0"));
+            }
+            if !(s.h_min.is_finite() && s.h_min >= 0.0) {
+                return Err(Error::invalid("h_min", s.h_min, "must be finite and ≥ 0"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.
+fn emit<S: OdeSystem>(
+    sys: &mut S,
+    t_out: &[f64],
+    next: &mut usize,
+    t1: f64,
+    dense: &dyn DenseOutput,
+    buf: &mut [f64],
+) -> Result<(), Error> {
+    while let Some(&t) = t_out.get(*next) {
+        if t > t1 {
+            break;
+        }
+        dense.eval(t, buf);
+        sys.output(t, buf)?;
+        *next += 1;
+    }
+    Ok(())
+}
+
+/// Skips output times before `t0` and delivers those equal to `t0` from `y0`.
+fn emit_initial<S: OdeSystem>(sys: &mut S, t_out: &[f64], t0: f64, y0: &[f64]) -> Result<usize, Error> {
+    let mut next = t_out.partition_point(|&t| t < t0);
+    while t_out.get(next) == Some(&t0) {
+        sys.output(t0, y0)?;
+        next += 1;
+    }
+    Ok(next)
+}
+
+fn all_finite(v: &[f64]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+fn non_finite(t: f64) -> Error {
+    Error::NonFinite {
+        t,
+        detail: String::new(),
+    }
+}
+
+/// Stage time `t + c h`, exactly `t1` for `c = 1`.
+#[inline]
+fn stage_time(t: f64, t1: f64, c: f64, h: f64) -> f64 {
+    if c == 1.0 {
+        t1
+    } else {
+        t + c * h
+    }
+}
+
+/// Evaluates stages `range` of an explicit tableau: `k_i = f(t + c_i h, y + h Σ_j a_ij k_j)`
+/// (Hairer I, eq. II.1.8). Stage `i` is stored in `k[i*n..(i+1)*n]`; `ytmp` is a work vector.
+#[allow(clippy::too_many_arguments)]
+fn stages<S: OdeSystem>(
+    sys: &mut S,
+    c: &[f64],
+    a: &[&[f64]],
+    range: std::ops::Range<usize>,
+    t: f64,
+    t1: f64,
+    h: f64,
+    y: &[f64],
+    k: &mut [f64],
+    ytmp: &mut [f64],
+    stats: &mut Stats,
+) -> Result<(), Error> {
+    let n = y.len();
+    for i in range {
+        let (done, rest) = k.split_at_mut(i * n);
+        ytmp.copy_from_slice(y);
+        for (j, &aij) in a[i].iter().enumerate() {
+            if aij != 0.0 {
+                let ha = h * aij;
+                for (yt, kv) in ytmp.iter_mut().zip(&done[j * n..(j + 1) * n]) {
+                    *yt += ha * kv;
+                }
+            }
+        }
+        sys.rhs(stage_time(t, t1, c[i], h), ytmp, &mut rest[..n])?;
+        stats.rhs_evals += 1;
+    }
+    Ok(())
+}
+
+/// `out = y + h Σ_j b_j k_j`.
+fn advance(y: &[f64], h: f64, b: &[f64], k: &[f64], out: &mut [f64]) {
+    combine(h, b, k, out);
+    for (o, yi) in out.iter_mut().zip(y) {
+        *o += yi;
+    }
+}
+
+fn record_accepted(stats: &mut Stats, h: f64, t1: f64) {
+    stats.steps_accepted += 1;
+    stats.h_min_used = stats.h_min_used.min(h);
+    stats.h_max_used = stats.h_max_used.max(h);
+    stats.t_reached = t1;
+}
+
+/// Adaptive DOPRI5 / DOP853 driver (Hairer's `DOPCOR` / `DP86CO` loop).
+#[allow(clippy::too_many_arguments)]
+fn drive_adaptive<S: OdeSystem>(
+    sys: &mut S,
+    method: Method,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    t_out: &[f64],
+    st: &Settings,
+    stats: &mut Stats,
+) -> Result<(), Error> {
+    let dop = method == Method::Dop853;
+    let n = y0.len();
+    // Work vectors, allocated once.
+    let n_stages = if dop { dop853::STAGES_DENSE } else { 7 };
+    let mut k = vec![0.0; n_stages * n];
+    let mut y = y0.to_vec();
+    let mut y1 = vec![0.0; n];
+    let mut ytmp = vec![0.0; n];
+    let mut e5 = vec![0.0; n];
+    let mut e3 = vec![0.0; if dop { n } else { 0 }];
+    let mut buf = vec![0.0; n];
+    let mut dense = ContinuousExtension::new(n);
+    // Index of the stage holding f(t1, y1) (first stage of the next step).
+    let fsal = if dop { dop853::STAGES } else { 6 };
+
+    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
+    if t_end == t0 {
+        return Ok(());
+    }
+    let mut t = t0;
+    sys.rhs(t, &y, &mut k[..n])?;
+    stats.rhs_evals += 1;
+    if !all_finite(&k[..n]) {
+        return Err(non_finite(t));
+    }
+    let (mut ctrl, order) = if dop {
+        (Controller::dop853(), 8)
+    } else {
+        (Controller::dopri5(), 5)
+    };
+    let mut h = match st.h0 {
+        Some(h0) => h0,
+        None => {
+            let (f0, rest) = k.split_at_mut(n);
+            let h_lim = st.h_max.min(t_end - t0);
+            let h = initial_step(
+                sys,
+                t,
+                &y,
+                f0,
+                order,
+                h_lim,
+                st.rtol,
+                st.atol,
+                &mut ytmp,
+                &mut rest[..n],
+            )?;
+            stats.rhs_evals += 1;
+            // A guess below the floor would fail at once: start at the floor instead.
+            h.max(st.h_min)
+        }
+    };
+
+    loop {
+        h = h.min(st.h_max);
+        let floor = st.h_min.max(1e-14 * t.abs());
+        if !(h > 0.0 && h >= floor) {
+            return Err(Error::StepSizeUnderflow {
+                t,
+                h,
+                detail: String::new(),
+            });
+        }
+        if stats.steps_accepted + stats.steps_rejected >= st.max_steps {
+            return Err(Error::TooManySteps {
+                t,
+                max_steps: st.max_steps,
+            });
+        }
+        // Land exactly on t_end; stretch by up to 1 % rather than leave a sliver (Hairer). If
+        // that would exceed h_max (beyond the rounding accumulated in t), split the remainder
+        // in two instead.
+        let (h_step, t1, last) = if t + 1.01 * h < t_end {
+            (h, t + h, false)
+        } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
+            (t_end - t, t_end, true)
+        } else {
+            let half = 0.5 * (t_end - t);
+            (half, t + half, false)
+        };
+
+        let err = if dop {
+            stages(
+                sys,
+                &dop853::C,
+                &dop853::A,
+                1..dop853::STAGES,
+                t,
+                t1,
+                h_step,
+                &y,
+                &mut k,
+                &mut ytmp,
+                stats,
+            )?;
+            advance(&y, h_step, &dop853::B, &k, &mut y1);
+            combine(h_step, &dop853::E5, &k, &mut e5);
+            combine(h_step, &dop853::E3, &k, &mut e3);
+            dop853_error(&e5, &e3, &y, &y1, st.rtol, st.atol)
+        } else {
+            stages(
+                sys,
+                &dopri5::C,
+                &dopri5::A,
+                1..6,
+                t,
+                t1,
+                h_step,
+                &y,
+                &mut k,
+                &mut ytmp,
+                stats,
+            )?;
+            advance(&y, h_step, &dopri5::B, &k, &mut y1);
+            // FSAL stage 6 = f(t1, y1), part of the error estimate.
+            sys.rhs(t1, &y1, &mut k[6 * n..7 * n])?;
+            stats.rhs_evals += 1;
+            combine(h_step, &dopri5::E, &k, &mut e5);
+            rms_error(&e5, &y, &y1, st.rtol, st.atol)
+        };
+        if !err.is_finite() {
+            return Err(non_finite(t));
+        }
+
+        match ctrl.decide(err, h_step) {
+            Decision::Reject { h_next } => {
+                stats.steps_rejected += 1;
+                h = h_next;
+            }
+            Decision::Accept { h_next } => {
+                if dop {
+                    // f(t1, y1), then the three extra stages of the dense output.
+                    sys.rhs(t1, &y1, &mut k[fsal * n..(fsal + 1) * n])?;
+                    stats.rhs_evals += 1;
+                    if !all_finite(&k[fsal * n..(fsal + 1) * n]) {
+                        return Err(non_finite(t));
+                    }
+                    stages(
+                        sys,
+                        &dop853::C,
+                        &dop853::A,
+                        13..16,
+                        t,
+                        t1,
+                        h_step,
+                        &y,
+                        &mut k,
+                        &mut ytmp,
+                        stats,
+                    )?;
+                }
+                if !all_finite(&y1) {
+                    return Err(non_finite(t));
+                }
+                if dop {
+                    dense.fill_dop853(t, t1, h_step, &y, &y1, &k);
+                } else {
+                    dense.fill_dopri5(t, t1, h_step, &y, &y1, &k);
+                }
+                record_accepted(stats, h_step, t1);
+                let refresh = sys.step_accepted(t, &y, t1, &y1, &dense)?;
+                emit(sys, t_out, &mut next_out, t1, &dense, &mut buf)?;
+                std::mem::swap(&mut y, &mut y1);
+                t = t1;
+                if last {
+                    return Ok(());
+                }
+                if refresh {
+                    // The system changed its memory: no FSAL reuse.
+                    sys.rhs(t, &y, &mut k[..n])?;
+                    stats.rhs_evals += 1;
+                    if !all_finite(&k[..n]) {
+                        return Err(non_finite(t));
+                    }
+                } else {
+                    k.copy_within(fsal * n..(fsal + 1) * n, 0);
+                }
+                h = h_next;
+            }
+        }
+    }
+}
+
+/// Classic RK4 with fixed step `step` (the last step shortened to end on `t_end`) and cubic
+/// Hermite dense output from `f` at both ends; `f(t1, y1)` is reused as the next first stage.
+#[allow(clippy::too_many_arguments)]
+fn drive_rk4<S: OdeSystem>(
+    sys: &mut S,
+    step: f64,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    t_out: &[f64],
+    st: &Settings,
+    stats: &mut Stats,
+) -> Result<(), Error> {
+    let n = y0.len();
+    let mut k = vec![0.0; 4 * n];
+    let mut f1 = vec![0.0; n];
+    let mut y = y0.to_vec();
+    let mut y1 = vec![0.0; n];
+    let mut ytmp = vec![0.0; n];
+    let mut buf = vec![0.0; n];
+    let mut dense = ContinuousExtension::new(n);
+
+    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
+    if t_end == t0 {
+        return Ok(());
+    }
+    let mut t = t0;
+    sys.rhs(t, &y, &mut k[..n])?;
+    stats.rhs_evals += 1;
+    if !all_finite(&k[..n]) {
+        return Err(non_finite(t));
+    }
+    let mut i: u64 = 0;
+    loop {
+        if stats.steps_accepted >= st.max_steps {
+            return Err(Error::TooManySteps {
+                t,
+                max_steps: st.max_steps,
+            });
+        }
+        // Grid t0 + i·step (no drift); a remainder below 1e-10·step is merged into the last step.
+        i += 1;
+        let mut t1 = t0 + i as f64 * step;
+        let last = t1 >= t_end - 1e-10 * step;
+        if last {
+            t1 = t_end;
+        }
+        let h = t1 - t;
+        stages(sys, &rk4::C, &rk4::A, 1..4, t, t1, h, &y, &mut k, &mut ytmp, stats)?;
+        advance(&y, h, &rk4::B, &k, &mut y1);
+        sys.rhs(t1, &y1, &mut f1)?;
+        stats.rhs_evals += 1;
+        if !(all_finite(&y1) && all_finite(&f1)) {
+            return Err(non_finite(t));
+        }
+        dense.fill_hermite(t, t1, &y, &y1, &k[..n], &f1);
+        record_accepted(stats, h, t1);
+        let refresh = sys.step_accepted(t, &y, t1, &y1, &dense)?;
+        emit(sys, t_out, &mut next_out, t1, &dense, &mut buf)?;
+        std::mem::swap(&mut y, &mut y1);
+        t = t1;
+        if last {
+            return Ok(());
+        }
+        if refresh {
+            sys.rhs(t, &y, &mut k[..n])?;
+            stats.rhs_evals += 1;
+            if !all_finite(&k[..n]) {
+                return Err(non_finite(t));
+            }
+        } else {
+            k[..n].copy_from_slice(&f1);
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::excessive_precision)] // literature values of the test problems
+mod tests {
+    use super::super::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
+    use crate::error::Error;
+
+    type Rhs = fn(f64, &[f64], &mut [f64]) -> Result<(), Error>;
+
+    /// A test system around a plain function, recording everything the driver does.
+    struct Sys {
+        dim: usize,
+        f: Rhs,
+        evals: usize,
+        outputs: Vec<(f64, Vec<f64>)>,
+        accepted: Vec<(f64, f64)>,
+        /// `output` fails at the first time ≥ this.
+        fail_output_at: Option<f64>,
+        /// `step_accepted` fails on this call (1-based).
+        fail_accept_call: Option<usize>,
+        /// `step_accepted` always returns this.
+        refresh: bool,
+    }
+
+    impl Sys {
+        fn new(dim: usize, f: Rhs) -> Self {
+            Sys {
+                dim,
+                f,
+                evals: 0,
+                outputs: Vec::new(),
+                accepted: Vec::new(),
+                fail_output_at: None,
+                fail_accept_call: None,
+                refresh: false,
+            }
+        }
+    }
+
+    impl OdeSystem for Sys {
+        fn dim(&self) -> usize {
+            self.dim
+        }
+        fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+            self.evals += 1;
+            (self.f)(t, y, dy)
+        }
+        fn step_accepted(
+            &mut self,
+            t0: f64,
+            _y0: &[f64],
+            t1: f64,
+            _y1: &[f64],
+            d: &dyn DenseOutput,
+        ) -> Result<bool, Error> {
+            assert_eq!(d.interval(), (t0, t1));
+            self.accepted.push((t0, t1));
+            if self.fail_accept_call == Some(self.accepted.len()) {
+                return Err(Error::invalid("probe", t1, "step_accepted failure"));
+            }
+            Ok(self.refresh)
+        }
+        fn output(&mut self, t: f64, y: &[f64]) -> Result<(), Error> {
+            if self.fail_output_at.is_some_and(|tf| t >= tf) {
+                return Err(Error::Interrupted { t });
+            }
+            self.outputs.push((t, y.to_vec()));
+            Ok(())
+        }
+    }
+
+    /// Kepler problem; with `KEPLER_Y0` (eccentricity 0.5) the orbit has period 2π.
+    fn kepler(_t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        let r3 = (y[0] * y[0] + y[1] * y[1]).powf(1.5);
+        dy[0] = y[2];
+        dy[1] = y[3];
+        dy[2] = -y[0] / r3;
+        dy[3] = -y[1] / r3;
+        Ok(())
+    }
+    const KEPLER_Y0: [f64; 4] = [0.5, 0.0, 0.0, 1.7320508075688772]; // p = sqrt((1+e)/(1−e))
+    const TWO_PI: f64 = 2.0 * std::f64::consts::PI;
+
+    /// Restricted three-body problem with the Arenstorf orbit (Hairer I, §II.0, eq. 0.1).
+    fn arenstorf(_t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        const MU: f64 = 0.012277471;
+        const MUP: f64 = 1.0 - MU;
+        let d1 = ((y[0] + MU).powi(2) + y[1] * y[1]).powf(1.5);
+        let d2 = ((y[0] - MUP).powi(2) + y[1] * y[1]).powf(1.5);
+        dy[0] = y[2];
+        dy[1] = y[3];
+        dy[2] = y[0] + 2.0 * y[3] - MUP * (y[0] + MU) / d1 - MU * (y[0] - MUP) / d2;
+        dy[3] = y[1] - 2.0 * y[2] - MUP * y[1] / d1 - MU * y[1] / d2;
+        Ok(())
+    }
+    const ARENSTORF_Y0: [f64; 4] = [0.994, 0.0, 0.0, -2.00158510637908252240537862224];
+    const ARENSTORF_T: f64 = 17.0652165601579625588917206249;
+
+    /// `u' = −u + sin t`, harmonic oscillator `v'' = −v`.
+    fn forced(t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = -y[0] + t.sin();
+        dy[1] = y[2];
+        dy[2] = -y[1];
+        Ok(())
+    }
+    fn forced_exact(t: f64) -> [f64; 3] {
+        // u(0) = 1: u = 1.5 e^(−t) + (sin t − cos t)/2; v(0) = 1, v'(0) = 0.
+        [1.5 * (-t).exp() + 0.5 * (t.sin() - t.cos()), t.cos(), -t.sin()]
+    }
+
+    fn dist(a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    }
+
+    /// Final state after integrating with `n` equal steps (adaptive methods forced to fixed
+    /// steps by huge tolerances and `h0 = h_max = step`).
+    fn fixed_step_end(method: Method, f: Rhs, y0: &[f64], t_end: f64, n: usize) -> Vec<f64> {
+        let h = t_end / n as f64;
+        let method = match method {
+            Method::Rk4 { .. } => Method::Rk4 { step: h },
+            m => m,
+        };
+        let s = Settings {
+            rtol: 1e6,
+            atol: 1e6,
+            h0: Some(h),
+            h_max: h,
+            ..Settings::default()
+        };
+        let mut sys = Sys::new(y0.len(), f);
+        let st = integrate(&mut sys, method, 0.0, y0, t_end, &[t_end], &s).unwrap();
+        assert_eq!(st.steps_accepted, n, "{method:?}");
+        assert_eq!(st.steps_rejected, 0);
+        assert_eq!(st.t_reached, t_end);
+        sys.outputs[0].1.clone()
+    }
+
+    #[test]
+    fn observed_global_order_rk4_dopri5_dop853() {
+        // Kepler orbit over one period returns to its initial point; error ~ C h^p. DOP853 uses
+        // a milder orbit (e = 0.2) so that both runs are asymptotic yet above round-off
+        // (observed 7.80 with n = 50; 7.6–7.8 for n = 30..60).
+        const KEPLER_E02: [f64; 4] = [0.8, 0.0, 0.0, 1.224744871391589];
+        for (method, p, n, y0) in [
+            (Method::Rk4 { step: 0.0 }, 4.0, 400, KEPLER_Y0),
+            (Method::Dopri5, 5.0, 200, KEPLER_Y0),
+            (Method::Dop853, 8.0, 50, KEPLER_E02),
+        ] {
+            let e1 = dist(&fixed_step_end(method, kepler, &y0, TWO_PI, n), &y0);
+            let e2 = dist(&fixed_step_end(method, kepler, &y0, TWO_PI, 2 * n), &y0);
+            let order = (e1 / e2).log2();
+            assert!(
+                (order - p).abs() < 0.35,
+                "{method:?}: errors {e1:e}, {e2:e}, observed order {order}"
+            );
+        }
+    }
+
+    fn arenstorf_run(method: Method, tol: f64) -> (Stats, Vec<f64>) {
+        let mut sys = Sys::new(4, arenstorf);
+        let s = Settings {
+            rtol: tol,
+            atol: tol,
+            ..Settings::default()
+        };
+        let st = integrate(&mut sys, method, 0.0, &ARENSTORF_Y0, ARENSTORF_T, &[ARENSTORF_T], &s).unwrap();
+        assert_eq!(sys.evals, st.rhs_evals);
+        (st, sys.outputs[0].1.clone())
+    }
+
+    #[test]
+    fn arenstorf_orbit_closes_dop853() {
+        let (st, y) = arenstorf_run(Method::Dop853, 1e-12);
+        let pos_err = dist(&y[..2], &ARENSTORF_Y0[..2]);
+        assert!(pos_err < 1e-6, "position error {pos_err:e}");
+        assert!(dist(&y, &ARENSTORF_Y0) < 1e-4);
+        // scipy's DOP853 (same tableau and I-controller) needs 298 steps and ~59 rejections.
+        assert!((250..=350).contains(&st.steps_accepted), "{st:?}");
+        assert!(st.steps_rejected < st.steps_accepted / 3, "{st:?}");
+        assert_eq!(
+            st.rhs_evals,
+            2 + 11 * (st.steps_accepted + st.steps_rejected) + 4 * st.steps_accepted
+        );
+    }
+
+    #[test]
+    fn arenstorf_orbit_closes_dopri5() {
+        let (st, y) = arenstorf_run(Method::Dopri5, 1e-9);
+        let pos_err = dist(&y[..2], &ARENSTORF_Y0[..2]);
+        assert!(pos_err < 1e-4, "position error {pos_err:e}");
+        // scipy's RK45 (same tableau, I-controller) needs 501 steps here.
+        assert!((400..=700).contains(&st.steps_accepted), "{st:?}");
+        assert!(st.steps_rejected < st.steps_accepted / 3, "{st:?}");
+        assert_eq!(st.rhs_evals, 2 + 6 * (st.steps_accepted + st.steps_rejected));
+        // Tightening the tolerance shrinks the error (error ∝ tol^(5/6) roughly).
+        let (_, y_tight) = arenstorf_run(Method::Dopri5, 1e-11);
+        assert!(dist(&y_tight[..2], &ARENSTORF_Y0[..2]) < pos_err / 10.0);
+    }
+
+    #[test]
+    fn dense_outputs_match_exact_and_do_not_change_steps() {
+        let grid: Vec<f64> = (0..=200).map(|i| i as f64 * 0.05).collect(); // [0, 10]
+        let y0 = forced_exact(0.0);
+        for method in [Method::Rk4 { step: 0.01 }, Method::Dopri5, Method::Dop853] {
+            let s = Settings {
+                rtol: 1e-8,
+                atol: 1e-10,
+                ..Settings::default()
+            };
+            let mut plain = Sys::new(3, forced);
+            let st_plain = integrate(&mut plain, method, 0.0, &y0, 10.0, &[], &s).unwrap();
+            let mut sampled = Sys::new(3, forced);
+            let st = integrate(&mut sampled, method, 0.0, &y0, 10.0, &grid, &s).unwrap();
+            assert_eq!(st, st_plain, "{method:?}: outputs changed the steps");
+            assert_eq!(plain.accepted, sampled.accepted);
+            assert_eq!(sampled.outputs.len(), grid.len());
+            let mut worst: f64 = 0.0;
+            for ((t, y), tg) in sampled.outputs.iter().zip(&grid) {
+                assert_eq!(t, tg);
+                worst = worst.max(dist(y, &forced_exact(*t)));
+            }
+            assert_eq!(sampled.outputs[0].1, y0.to_vec(), "t0 is output from y0 exactly");
+            assert!(worst < 1e-6, "{method:?}: max output error {worst:e}");
+            if method != (Method::Rk4 { step: 0.01 }) {
+                assert!(worst > 1e-13, "{method:?}: suspiciously exact");
+            }
+            assert_eq!(st.t_reached, 10.0);
+            assert_eq!(sampled.accepted.last().map(|a| a.1), Some(10.0));
+            // Steps chain without gaps.
+            for w in sampled.accepted.windows(2) {
+                assert_eq!(w[0].1, w[1].0);
+            }
+        }
+    }
+
+    #[test]
+    fn outputs_outside_range_are_skipped_and_t0_equals_t_end() {
+        let y0 = forced_exact(0.0);
+        let mut sys = Sys::new(3, forced);
+        let st = integrate(
+            &mut sys,
+            Method::Dopri5,
+            0.0,
+            &y0,
+            1.0,
+            &[-1.0, 0.0, 0.0, 0.5, 1.0, 2.0],
+            &Settings::default(),
+        )
+        .unwrap();
+        let ts: Vec<f64> = sys.outputs.iter().map(|o| o.0).collect();
+        assert_eq!(ts, vec![0.0, 0.0, 0.5, 1.0]);
+        assert!(st.steps_accepted > 0);
+        let mut sys = Sys::new(3, forced);
+        let st = integrate(&mut sys, Method::Dop853, 2.0, &y0, 2.0, &[2.0], &Settings::default()).unwrap();
+        assert_eq!((st.steps_accepted, st.rhs_evals, st.t_reached), (0, 0, 2.0));
+        assert_eq!(sys.outputs, vec![(2.0, y0.to_vec())]);
+    }
+
+    #[test]
+    fn h_max_is_respected_and_stats_are_consistent() {
+        for method in [Method::Dopri5, Method::Dop853] {
+            let mut sys = Sys::new(4, kepler);
+            let s = Settings {
+                h_max: 0.01,
+                ..Settings::default()
+            };
+            let st = integrate(&mut sys, method, 0.0, &KEPLER_Y0, TWO_PI, &[], &s).unwrap();
+            assert!(st.h_max_used <= 0.01 && st.h_min_used <= st.h_max_used);
+            assert!(st.steps_accepted >= 629);
+            assert_eq!(st.rhs_evals, sys.evals);
+            let hs = sys.accepted.iter().map(|(a, b)| b - a);
+            assert!(hs.clone().all(|h| h <= 0.01 * (1.0 + 1e-12)));
+        }
+    }
+
+    #[test]
+    fn rk4_counts_and_short_last_step() {
+        let mut sys = Sys::new(3, forced);
+        let st = integrate(
+            &mut sys,
+            Method::Rk4 { step: 0.3 },
+            0.0,
+            &forced_exact(0.0),
+            1.0,
+            &[],
+            &Settings::default(),
+        )
+        .unwrap();
+        assert_eq!(st.steps_accepted, 4); // 0.3, 0.6, 0.9, 1.0
+        assert_eq!(st.rhs_evals, 1 + 4 * 4);
+        assert_eq!(st.rhs_evals, sys.evals);
+        assert!((st.h_min_used - 0.1).abs() < 1e-12 && (st.h_max_used - 0.3).abs() < 1e-12);
+        let (ta, tb) = sys.accepted[3];
+        assert!((ta - 0.9).abs() < 1e-15 && tb == 1.0, "last step [{ta}, {tb}]");
+    }
+
+    /// `y' = c` where `c` is a memory switched on by `step_accepted` once `t1 ≥ 1`.
+    struct Switch {
+        c: f64,
+        t_switch: f64,
+        evals: usize,
+    }
+    impl OdeSystem for Switch {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&mut self, _t: f64, _y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+            self.evals += 1;
+            dy[0] = self.c;
+            Ok(())
+        }
+        fn step_accepted(
+            &mut self,
+            _t0: f64,
+            _y0: &[f64],
+            t1: f64,
+            _y1: &[f64],
+            _d: &dyn DenseOutput,
+        ) -> Result<bool, Error> {
+            if self.c == 0.0 && t1 >= 1.0 {
+                self.c = 1.0;
+                self.t_switch = t1;
+                return Ok(true);
+            }
+            Ok(false)
+        }
+        fn output(&mut self, _t: f64, _y: &[f64]) -> Result<(), Error> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn step_accepted_true_forces_reevaluation() {
+        for method in [Method::Rk4 { step: 0.07 }, Method::Dopri5, Method::Dop853] {
+            let mut sys = Switch {
+                c: 0.0,
+                t_switch: f64::NAN,
+                evals: 0,
+            };
+            let s = Settings {
+                h_max: 0.1,
+                ..Settings::default()
+            };
+            let st = integrate(&mut sys, method, 0.0, &[0.0], 3.0, &[], &s).unwrap();
+            assert_eq!(st.rhs_evals, sys.evals);
+            // With a stale (FSAL) first stage the result would miss part of the slope.
+            let mut sys2 = Switch {
+                c: 0.0,
+                t_switch: f64::NAN,
+                evals: 0,
+            };
+            let mut y_end = Vec::new();
+            struct Last<'a>(&'a mut Switch, &'a mut Vec<f64>);
+            impl OdeSystem for Last<'_> {
+                fn dim(&self) -> usize {
+                    1
+                }
+                fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+                    self.0.rhs(t, y, dy)
+                }
+                fn step_accepted(
+                    &mut self,
+                    t0: f64,
+                    y0: &[f64],
+                    t1: f64,
+                    y1: &[f64],
+                    d: &dyn DenseOutput,
+                ) -> Result<bool, Error> {
+                    self.0.step_accepted(t0, y0, t1, y1, d)
+                }
+                fn output(&mut self, _t: f64, y: &[f64]) -> Result<(), Error> {
+                    *self.1 = y.to_vec();
+                    Ok(())
+                }
+            }
+            integrate(&mut Last(&mut sys2, &mut y_end), method, 0.0, &[0.0], 3.0, &[3.0], &s).unwrap();
+            assert!(
+                (y_end[0] - (3.0 - sys2.t_switch)).abs() < 1e-12,
+                "{method:?}: {} vs {}",
+                y_end[0],
+                3.0 - sys2.t_switch
+            );
+        }
+    }
+
+    fn nan_after_1_5(t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        forced(t, y, dy)?;
+        if t >= 1.5 {
+            dy[1] = f64::NAN;
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn nan_rhs_gives_non_finite_before_it() {
+        for method in [Method::Rk4 { step: 0.01 }, Method::Dopri5, Method::Dop853] {
+            let mut sys = Sys::new(3, nan_after_1_5);
+            let grid: Vec<f64> = (0..=30).map(|i| i as f64 * 0.1).collect();
+            let (e, st) = integrate(
+                &mut sys,
+                method,
+                0.0,
+                &forced_exact(0.0),
+                3.0,
+                &grid,
+                &Settings::default(),
+            )
+            .unwrap_err();
+            assert!(
+                matches!(e, Error::NonFinite { t, .. } if t < 1.5 && t == st.t_reached),
+                "{method:?}: {e:?}"
+            );
+            assert!(st.t_reached < 1.5 && st.t_reached > 1.0, "{method:?}: {st:?}");
+            assert!(sys
+                .outputs
+                .iter()
+                .all(|(t, y)| *t <= st.t_reached && y.iter().all(|v| v.is_finite())));
+            assert_eq!(st.rhs_evals, sys.evals);
+        }
+    }
+
+    fn blow_up(_t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = y[0] * y[0]; // y = 1/(1 − t)
+        Ok(())
+    }
+
+    fn jump(t: f64, _y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = if t < 1.0 { 0.0 } else { 1e8 };
+        Ok(())
+    }
+
+    #[test]
+    fn step_size_underflow_when_h_min_is_large() {
+        for method in [Method::Dopri5, Method::Dop853] {
+            let s = Settings {
+                h_min: 1e-4,
+                ..Settings::default()
+            };
+            let mut sys = Sys::new(1, blow_up);
+            let (e, st) = integrate(&mut sys, method, 0.0, &[1.0], 2.0, &[], &s).unwrap_err();
+            match e {
+                Error::StepSizeUnderflow { t, h, .. } => {
+                    assert!(t < 1.0 && t > 0.99 && h < 1e-4, "{method:?}: t = {t}, h = {h}");
+                    assert_eq!(t, st.t_reached);
+                }
+                e => panic!("{method:?}: {e:?}"),
+            }
+            let mut sys = Sys::new(1, jump);
+            let s_jump = Settings {
+                h_min: 1e-3,
+                h0: Some(0.01),
+                ..s
+            };
+            let (e, st) = integrate(&mut sys, method, 0.0, &[0.0], 2.0, &[], &s_jump).unwrap_err();
+            assert!(
+                matches!(e, Error::StepSizeUnderflow { t, .. } if t < 1.0),
+                "{method:?}: {e:?}"
+            );
+            assert!(st.steps_rejected > 0);
+        }
+    }
+
+    #[test]
+    fn too_many_steps() {
+        for method in [Method::Rk4 { step: 0.01 }, Method::Dopri5, Method::Dop853] {
+            let mut sys = Sys::new(4, kepler);
+            let s = Settings {
+                max_steps: 7,
+                ..Settings::default()
+            };
+            let (e, st) = integrate(&mut sys, method, 0.0, &KEPLER_Y0, TWO_PI, &[], &s).unwrap_err();
+            assert_eq!(
+                e,
+                Error::TooManySteps {
+                    t: st.t_reached,
+                    max_steps: 7
+                },
+                "{method:?}"
+            );
+            assert_eq!(st.steps_accepted + st.steps_rejected, 7);
+        }
+    }
+
+    #[test]
+    fn callback_errors_propagate_unchanged() {
+        let grid: Vec<f64> = (0..=10).map(|i| i as f64 * 0.1).collect();
+        for method in [Method::Rk4 { step: 0.05 }, Method::Dopri5, Method::Dop853] {
+            // output
+            let mut sys = Sys::new(3, forced);
+            sys.fail_output_at = Some(0.45);
+            let (e, st) = integrate(
+                &mut sys,
+                method,
+                0.0,
+                &forced_exact(0.0),
+                1.0,
+                &grid,
+                &Settings::default(),
+            )
+            .unwrap_err();
+            assert!(
+                matches!(e, Error::Interrupted { t } if (t - 0.5).abs() < 1e-15),
+                "{e:?}"
+            );
+            assert_eq!(sys.outputs.len(), 5, "outputs before the failure were delivered");
+            assert!(st.t_reached >= 0.5);
+            // step_accepted
+            let mut sys = Sys::new(3, forced);
+            sys.fail_accept_call = Some(3);
+            let (e, st) = integrate(
+                &mut sys,
+                method,
+                0.0,
+                &forced_exact(0.0),
+                1.0,
+                &grid,
+                &Settings::default(),
+            )
+            .unwrap_err();
+            assert!(
+                matches!(&e, Error::InvalidInput { field, .. } if field == "probe"),
+                "{e:?}"
+            );
+            assert_eq!(st.steps_accepted, 3);
+            assert!(sys.outputs.iter().all(|o| o.0 <= sys.accepted[1].1));
+            // rhs
+            let mut sys = Sys::new(1, |t, _y, dy| {
+                dy[0] = 1.0;
+                if t > 0.3 {
+                    Err(Error::SingularJacobian { t, index: 7 })
+                } else {
+                    Ok(())
+                }
+            });
+            let (e, st) = integrate(&mut sys, method, 0.0, &[0.0], 1.0, &[], &Settings::default()).unwrap_err();
+            assert!(matches!(e, Error::SingularJacobian { t, index: 7 } if t > 0.3), "{e:?}");
+            assert!(st.t_reached <= 0.3);
+        }
+    }
+
+    #[test]
+    fn invalid_input_is_rejected() {
+        let y0 = forced_exact(0.0);
+        let s = Settings::default();
+        let bad = |r: Result<Stats, (Error, Stats)>| matches!(r, Err((Error::InvalidInput { .. }, _)));
+        assert!(bad(integrate(
+            &mut Sys::new(3, forced),
+            Method::Dopri5,
+            0.0,
+            &y0[..2],
+            1.0,
+            &[],
+            &s
+        )));
+        assert!(bad(integrate(
+            &mut Sys::new(3, forced),
+            Method::Dopri5,
+            0.0,
+            &y0,
+            -1.0,
+            &[],
+            &s
+        )));
+        assert!(bad(integrate(
+            &mut Sys::new(3, forced),
+            Method::Dopri5,
+            0.0,
+            &y0,
+            1.0,
+            &[0.5, 0.2],
+            &s
+        )));
+        assert!(bad(integrate(
+            &mut Sys::new(3, forced),
+            Method::Rk4 { step: 0.0 },
+            0.0,
+            &y0,
+            1.0,
+            &[],
+            &s
+        )));
+        assert!(bad(integrate(
+            &mut Sys::new(3, forced),
+            Method::Dop853,
+            0.0,
+            &y0,
+            1.0,
+            &[],
+            &Settings { rtol: -1.0, ..s }
+        )));
+        assert!(bad(integrate(
+            &mut Sys::new(3, forced),
+            Method::Dop853,
+            0.0,
+            &y0,
+            1.0,
+            &[],
+            &Settings { h0: Some(0.0), ..s }
+        )));
+        let r = integrate(
+            &mut Sys::new(3, forced),
+            Method::Dopri5,
+            0.0,
+            &[f64::NAN, 0.0, 0.0],
+            1.0,
+            &[],
+            &s,
+        );
+        assert!(matches!(r, Err((Error::NonFinite { .. }, _))));
+    }
+}
