@@ -93,6 +93,13 @@ fn validate(
             if !(s.h_min.is_finite() && s.h_min >= 0.0) {
                 return Err(Error::invalid("h_min", s.h_min, "must be finite and ≥ 0"));
             }
+            if s.h_min > s.h_max {
+                return Err(Error::invalid(
+                    "h_min",
+                    s.h_min,
+                    format!("must not exceed h_max = {}", s.h_max),
+                ));
+            }
         }
     }
     Ok(())
@@ -1066,6 +1073,20 @@ mod tests {
             1.0,
             &[],
             &Settings { h0: Some(0.0), ..s }
+        )));
+        let s_bad = Settings {
+            h_min: 1.0,
+            h_max: 0.1,
+            ..s
+        };
+        assert!(bad(integrate(
+            &mut Sys::new(3, forced),
+            Method::Dop853,
+            0.0,
+            &y0,
+            1.0,
+            &[],
+            &s_bad
         )));
         let r = integrate(
             &mut Sys::new(3, forced),
