@@ -421,6 +421,18 @@ class Mechanism:
         raw = self.compile().simulate(settings)
         return self._finish(raw)
 
+    def simulate_with_ideal(self, t_end: float, **kwargs: Any) -> Tuple[Result, Result]:
+        """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
+        settings on the same output grid, in parallel in the Rust core. Returns
+        ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (spec §5)."""
+        settings = self.run_settings(t_end, **kwargs)
+        ideal = self.idealized()
+        raws = _core.run_batch([self.description(), ideal.description()], settings, 0)
+        for raw in raws:
+            if isinstance(raw, BaseException):
+                raise raw
+        return self._finish(raws[0]), ideal._finish(raws[1])
+
     def _finish(self, raw: Dict[str, Any]) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)
         err = raw.get("error")

@@ -156,15 +156,12 @@ def normal_ppf(p: ArrayLike) -> Union[float, np.ndarray]:
 
 
 # ====================================================================== FOSM (P27–P32)
-def _check_range(lower: Any, upper: Any, field_prefix: str = "allowable") -> Tuple[float, float]:
-    lo = check_finite(f"{field_prefix}.lower", lower)
-    hi = check_finite(f"{field_prefix}.upper", upper)
+def _check_range(lower: Any, upper: Any, lower_field: str = "allowable.lower", upper_field: str = "allowable.upper") -> Tuple[float, float]:
+    """Finite ``lower < upper``, else :class:`InputError` naming the offending field."""
+    lo = check_finite(lower_field, lower)
+    hi = check_finite(upper_field, upper)
     if not lo < hi:
-        raise InputError(
-            f"invalid {field_prefix}.lower = {lower!r}: must be below {field_prefix}.upper = {upper!r}",
-            field=f"{field_prefix}.lower",
-            value=lower,
-        )
+        raise InputError(f"invalid {lower_field} = {lower!r}: must be below {upper_field} = {upper!r}", field=lower_field, value=lower)
     return lo, hi
 
 
@@ -522,7 +519,7 @@ class Uniform(Distribution):
     high: float
 
     def __post_init__(self) -> None:
-        lo, hi = _check_range(self.low, self.high, "Uniform")
+        lo, hi = _check_range(self.low, self.high, "Uniform.low", "Uniform.high")
         object.__setattr__(self, "low", lo)
         object.__setattr__(self, "high", hi)
 
@@ -683,11 +680,7 @@ def _abs_error_matrix(abs_errors: Any) -> np.ndarray:
 
 
 def _check_limits(upper: Any, lower: Any) -> Tuple[float, float]:
-    lo = check_finite("lower", lower)
-    hi = check_finite("upper", upper)
-    if not lo < hi:
-        raise InputError(f"invalid lower = {lower!r}: must be below upper = {upper!r}", field="lower", value=lower)
-    return lo, hi
+    return _check_range(lower, upper, "lower", "upper")
 
 
 def first_passage_probability(abs_errors: Any, upper: float, lower: float = 0.0, confidence: float = 0.95) -> Estimate:

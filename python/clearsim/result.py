@@ -26,7 +26,7 @@ class Result:
         ``t_reached`` [s], ``wall_time`` [s].
     impacts:
         Number of impacts located per clearance joint.
-    error:
+    failure:
         The :class:`clearsim.SimulationError` that ended the run early, or ``None``.
     """
 
@@ -37,17 +37,17 @@ class Result:
         self.t: np.ndarray = raw["t"]
         self.stats: Dict[str, Any] = dict(raw["stats"])
         self.impacts: Dict[str, int] = dict(zip(self.joint_names, raw.get("impacts", [])))
-        self.error = raw.get("error")
+        self.failure = raw.get("error")
         self.q0: np.ndarray = raw["q0"]
         self.qd0: np.ndarray = raw["qd0"]
 
     def __repr__(self) -> str:
-        status = "complete" if self.error is None else f"stopped early: {self.error}"
+        status = "complete" if self.failure is None else f"stopped early: {self.failure}"
         return f"<clearsim.Result {len(self.t)} outputs, t ∈ [{self.t[0] if len(self.t) else 0:g}, {self.t[-1] if len(self.t) else 0:g}] s, {status}>"
 
     @property
     def completed(self) -> bool:
-        return self.error is None
+        return self.failure is None
 
     # ------------------------------------------------------------------ access helpers
     def _channel(self, key: str, what: str) -> np.ndarray:
@@ -135,13 +135,27 @@ class Result:
         """(N,) weight of the dry law in the transition blend (P18)."""
         return self._joint_cols(joint, ["w_dry"])[:, 0]
 
+    def error(self, ideal: "Result", body: str, quantity: str = "displacement") -> np.ndarray:
+        """Error of a body's motion against the ideal mechanism's run on the same output grid
+        (spec §5): (N, 3) array of this response minus the ideal one for
+        ``quantity`` = ``"displacement"`` [m, m, rad], ``"velocity"`` [m/s, m/s, rad/s] or
+        ``"acceleration"`` [m/s², m/s², rad/s²]."""
+        getters = {"displacement": Result.position, "velocity": Result.velocity, "acceleration": Result.acceleration}
+        if quantity not in getters:
+            raise InputError(f"invalid quantity = {quantity!r}: must be one of {', '.join(getters)}", field="quantity", value=quantity)
+        n = min(len(self.t), len(ideal.t))
+        if not np.allclose(self.t[:n], ideal.t[:n], rtol=0, atol=1e-12 * (1 + abs(float(self.t[n - 1])) if n else 1)):
+            raise InputError("invalid ideal: it was not run on the same output grid", field="ideal", value=ideal)
+        get = getters[quantity]
+        return get(self, body)[:n] - get(ideal, body)[:n]
+
     def summary(self) -> Dict[str, Any]:
         out: Dict[str, Any] = dict(self.stats)
         out["outputs"] = int(len(self.t))
         out["impacts"] = dict(self.impacts)
         if "violation" in self._raw and len(self.t):
             out["max_constraint_violation"] = float(np.max(self.constraint_violation))
-        out["error"] = None if self.error is None else str(self.error)
+        out["failure"] = None if self.failure is None else str(self.failure)
         return out
 
 
