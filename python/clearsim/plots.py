@@ -389,6 +389,7 @@ def _reliability_axes(ax: Axes, curves: Mapping[str, Any], quantity: str, annota
                     fontsize=8,
                     color=st["color"],
                     zorder=6,
+                    bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.8},
                 )
         items.append((line, text))
     _angle_ticks(ax, amax)

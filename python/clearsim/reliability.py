@@ -445,7 +445,9 @@ def fosm(
     bin_width:
         Bin width [deg], in (0, 360]. Edges at k·bin_width; bins reported by start angle.
     per_cycle:
-        Also bin each cycle separately (``result.per_cycle``, angles 0 … 360·cycles).
+        Also bin each cycle separately (``result.per_cycle``, angles 0 … 360·cycles). A sample
+        exactly at 360·k (e.g. the end point of an output grid of whole cycles) opens the first
+        bin of cycle k; drop it (``endpoint=False``) to avoid a one-sample cycle.
     ddof:
         Delta degrees of freedom of σ_s (0: population standard deviation of the bin's samples).
 
