@@ -6,10 +6,18 @@ use crate::error::Result;
 use crate::model::{MechanismDesc, Model};
 use crate::simulate::{simulate, RunOutput, RunSettings};
 
-/// Compile and run every description with the same settings, in parallel on `threads` threads
-/// (0: all cores). Each entry is the run's output or the error that prevented it.
-pub fn run_batch(descs: &[MechanismDesc], rs: &RunSettings, threads: usize, stop: Option<&(dyn Fn() -> bool + Sync)>) -> Vec<Result<RunOutput>> {
-    let work = || descs.par_iter().map(|d| Model::compile(d).and_then(|m| simulate(&m, rs, stop))).collect();
+/// Compile and run every description, in parallel on `threads` threads (0: all cores).
+/// `settings` holds one entry per description, or a single entry shared by all.
+/// Each entry of the result is the run's output or the error that prevented it.
+pub fn run_batch(descs: &[MechanismDesc], settings: &[RunSettings], threads: usize, stop: Option<&(dyn Fn() -> bool + Sync)>) -> Vec<Result<RunOutput>> {
+    let pick = |k: usize| if settings.len() == 1 { &settings[0] } else { &settings[k] };
+    let work = || {
+        descs
+            .par_iter()
+            .enumerate()
+            .map(|(k, d)| Model::compile(d).and_then(|m| simulate(&m, pick(k), stop)))
+            .collect()
+    };
     if threads == 0 {
         work()
     } else {

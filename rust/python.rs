@@ -299,8 +299,9 @@ fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
     let method = match r.string("method")?.as_str() {
         "rk45" | "dopri5" => Method::Dopri5,
         "dop853" => Method::Dop853,
+        "rodas4" => Method::Rodas4,
         "rk4" => Method::Rk4 { step: r.f64("step")? },
-        other => return Err(input_error(py, "integrator", other, "must be 'rk45', 'dop853' or 'rk4'")),
+        other => return Err(input_error(py, "integrator", other, "must be 'rk45', 'dop853', 'rk4' or 'rodas4'")),
     };
     let base = Settings::default();
     let ode = Settings {
@@ -392,6 +393,14 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
             if let Some((joint, eps)) = &out.failure_joint {
                 value.setattr("joint", joint)?;
                 value.setattr("eccentricity", eps)?;
+                // Failures whose message carries no diagnosis (singular Jacobian, step budget)
+                // still name the joint nearest contact, so a blown-up state is recognisable.
+                let msg = e.to_string();
+                if !msg.contains(&format!("joint '{joint}'")) {
+                    let full = format!("{msg}; joint '{joint}' at eccentricity ε = {eps:.6}");
+                    value.setattr("reason", &full)?;
+                    value.setattr("args", (full,))?;
+                }
             }
             d.set_item("error", value)?;
         }
@@ -506,16 +515,27 @@ fn compile(py: Python<'_>, description: &Bound<'_, PyDict>) -> PyResult<Compiled
     CompiledModel::build(py, desc)
 }
 
-/// Run many descriptions with the same settings in parallel (rayon; GIL released).
-/// Returns one result dict per description, or the exception that prevented the run.
+/// Run many descriptions in parallel (rayon; GIL released). `settings` is one dict shared by
+/// all runs or a list with one dict per description. Returns one result dict per description,
+/// or the exception that prevented that run.
 #[pyfunction]
 #[pyo3(signature = (descriptions, settings, threads=0))]
-fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyDict>>, settings: &Bound<'py, PyDict>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
+fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyDict>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
-    let rs = read_settings(settings)?;
-    rs.validate().map_err(|e| to_pyerr(py, &e))?;
+    let settings: Vec<RunSettings> = if let Ok(d) = settings.cast::<PyDict>() {
+        vec![read_settings(d)?]
+    } else {
+        let list: Vec<Bound<'py, PyDict>> = settings.extract().map_err(|_| input_error(py, "settings", "<not a dict or list of dicts>", "must be a dict or a list of dicts"))?;
+        if list.len() != descs.len() {
+            return Err(input_error(py, "settings", format!("{} entries", list.len()), &format!("must have one entry per description ({})", descs.len())));
+        }
+        list.iter().map(|d| read_settings(d)).collect::<PyResult<Vec<_>>>()?
+    };
+    for rs in &settings {
+        rs.validate().map_err(|e| to_pyerr(py, &e))?;
+    }
     let stop = make_stop();
-    let outs = py.detach(|| run_batch(&descs, &rs, threads, Some(&stop)));
+    let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
     for (d, o) in descs.iter().zip(outs) {
         match o {

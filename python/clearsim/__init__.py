@@ -9,7 +9,8 @@ from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, Si
 from .joints import Dry, Lubricated
 from .mechanism import GROUND, Mechanism
 from .result import Result
-from . import models
+from . import models, reliability
+from .montecarlo import monte_carlo
 
 __version__ = _core.__version__
 
@@ -25,4 +26,6 @@ __all__ = [
     "Result",
     "SimulationError",
     "models",
+    "monte_carlo",
+    "reliability",
 ]

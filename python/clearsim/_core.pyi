@@ -26,8 +26,9 @@ class CompiledModel:
 
 def compile(description: Dict[str, Any]) -> CompiledModel: ...
 def run_batch(
-    descriptions: List[Dict[str, Any]], settings: Dict[str, Any], threads: int = 0
+    descriptions: List[Dict[str, Any]],
+    settings: Union[Dict[str, Any], List[Dict[str, Any]]],
+    threads: int = 0,
 ) -> List[Union[Dict[str, Any], BaseException]]: ...
-def run_batch_py(
-    descriptions: List[Dict[str, Any]], settings: Dict[str, Any], threads: int = 0
-) -> List[Union[Dict[str, Any], BaseException]]: ...
+
+run_batch_py = run_batch
