@@ -11,6 +11,7 @@ from .mechanism import GROUND, Mechanism
 from .result import Result
 from . import models, reliability
 from .montecarlo import monte_carlo
+from .scene import load_scene
 
 __version__ = _core.__version__
 
@@ -24,6 +25,7 @@ __all__ = [
     "Lubricated",
     "Mechanism",
     "Result",
+    "load_scene",
     "SimulationError",
     "models",
     "monte_carlo",

@@ -21,7 +21,7 @@ from .result import Result
 
 GROUND = "ground"
 Point = Sequence[float]
-INTEGRATORS = ("rk45", "rk4", "dop853")
+INTEGRATORS = ("rk45", "rk4", "dop853", "rodas4")
 OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation")
 DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
 
@@ -34,6 +34,12 @@ def _point(field: str, p: Any) -> List[float]:
     if len(seq) != 2:
         raise InputError(f"invalid {field} = {p!r}: must be a pair (x, y)", field=field, value=p)
     return [check_finite(f"{field}[0]", seq[0]), check_finite(f"{field}[1]", seq[1])]
+
+
+def _positive_int(field: str, value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise InputError(f"invalid {field} = {value!r}: must be a positive integer", field=field, value=value)
+    return int(value)
 
 
 class Mechanism:
@@ -64,6 +70,14 @@ class Mechanism:
         self._clearance: List[Dict[str, Any]] = []
         self._names: set = set()
         self._compiled: Any = None
+
+    def __deepcopy__(self, memo: Dict[int, Any]) -> "Mechanism":
+        # The compiled Rust model cannot be copied (nor pickled); a copy recompiles on demand.
+        new = self.__class__.__new__(self.__class__)
+        memo[id(self)] = new
+        for key, value in self.__dict__.items():
+            setattr(new, key, None if key == "_compiled" else copy.deepcopy(value, memo))
+        return new
 
     # ------------------------------------------------------------------ building
     def add_body(
@@ -247,6 +261,23 @@ class Mechanism:
                 field="journal_body",
                 value=journal_body,
             )
+        r_j = check_positive(f"clearance joint '{name}'.journal_radius", journal_radius)
+        c = check_finite(f"clearance joint '{name}'.clearance", clearance)
+        if c <= 0.0:
+            raise InputError(
+                f"invalid clearance joint '{name}'.clearance = {clearance!r}: must be positive "
+                f"(c = R_b − R_j: the journal radius R_j = {r_j!r} must be below the bearing radius R_b = R_j + c)",
+                field=f"clearance joint '{name}'.clearance",
+                value=clearance,
+            )
+        e_init = _point(f"clearance joint '{name}'.initial_eccentricity", initial_eccentricity)
+        if math.hypot(*e_init) > 2.0 * c:
+            raise InputError(
+                f"invalid clearance joint '{name}'.initial_eccentricity = {initial_eccentricity!r}: its length "
+                f"must not exceed 2 × clearance = {2.0 * c!r} m (give e in metres, not in units of c)",
+                field=f"clearance joint '{name}'.initial_eccentricity",
+                value=initial_eccentricity,
+            )
         model = Dry() if model is None else model
         if not isinstance(model, (Dry, Lubricated)):
             raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
@@ -257,10 +288,10 @@ class Mechanism:
                 "bearing_point": _point("bearing_point", bearing_point),
                 "journal_body": j,
                 "journal_point": _point("journal_point", journal_point),
-                "journal_radius": check_positive(f"clearance joint '{name}'.journal_radius", journal_radius),
-                "clearance": check_positive(f"clearance joint '{name}'.clearance", clearance),
+                "journal_radius": r_j,
+                "clearance": c,
                 "model": model._as_dict(),
-                "initial_eccentricity": _point("initial_eccentricity", initial_eccentricity),
+                "initial_eccentricity": e_init,
             }
         )
         return self
@@ -289,7 +320,11 @@ class Mechanism:
 
     def idealized(self) -> "Mechanism":
         """A copy with every clearance joint replaced by an ideal revolute joint (spec §5)."""
-        m = copy.deepcopy(self)
+        compiled, self._compiled = self._compiled, None  # the compiled model is not copyable
+        try:
+            m = copy.deepcopy(self)
+        finally:
+            self._compiled = compiled
         for c in m._clearance:
             m._joints.append(
                 {
@@ -386,7 +421,7 @@ class Mechanism:
             "t_end": t_end,
             "t_out": np.ascontiguousarray(grid),
             "h_min": check_positive("h_min", h_min),
-            "max_steps": int(max_steps),
+            "max_steps": _positive_int("max_steps", max_steps),
             "channels": {k: (k in wanted) for k in OUTPUTS},
         }
         if step is not None:
@@ -402,7 +437,11 @@ class Mechanism:
         -----------------
         integrator:
             ``"rk45"`` (default, Dormand–Prince 5(4), adaptive), ``"dop853"`` (8th order, for
-            tight tolerances) or ``"rk4"`` (classic, fixed ``step`` [s]).
+            tight tolerances), ``"rk4"`` (classic, fixed ``step`` [s]) or ``"rodas4"``
+            (L-stable Rosenbrock 4(3) with a finite-difference Jacobian, for stiff phases: a
+            film near ε → 1 at low viscosity or tiny clearance, very stiff contacts; each step
+            costs about ``state_dim + 7`` right-hand sides, so use it only when the explicit
+            methods are held to tiny steps by stability rather than accuracy).
         rtol, atol:
             Tolerances of the adaptive methods (default 1e-6, 1e-9).
         dt_out / t_out:

@@ -1,0 +1,430 @@
+"""The ``clearsim`` command line (also ``python -m clearsim``).
+
+Subcommands::
+
+    clearsim run SCENE.toml [-o OUTDIR] [--no-plots] [--t-end T] [--integrator NAME] [-q]
+    clearsim paper [-o OUTDIR] [--quick] [--cycles N] [-q]
+    clearsim info
+    clearsim --version
+
+``run`` writes into OUTDIR (default ``clearsim-<scene name>``): CSV files with a header row
+naming every column and its unit (``bodies.csv``, ``bodies_ideal.csv``, ``errors.csv``,
+``joints.csv``, ``reliability_<quantity>.csv``), PNG figures and ``summary.json`` /
+``summary.md``. A :class:`clearsim.ClearsimError` is printed as one line on stderr with exit
+code 2 (no traceback); a failed simulation also writes its partial results.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import __version__, models
+from .errors import ClearsimError
+from .mechanism import INTEGRATORS
+from .scene import BODY_QUANTITIES, COMPONENTS, ERROR_QUANTITIES, JOINT_QUANTITIES, Scene, SceneRun, load_scene_file
+
+#: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
+EXIT_ERROR = 2
+
+_THETA_INFO = {  # plot labels of the error of an angle (plots.QUANTITIES covers x and y)
+    "displacement": ("Angle error", "rad", 1.0),
+    "velocity": ("Angular velocity error", "rad/s", 1.0),
+    "acceleration": ("Angular acceleration error", "rad/s²", 1.0),
+}
+
+
+# ====================================================================== tables of columns
+Columns = List[Tuple[str, np.ndarray]]  # (header "name [unit]", values (N,))
+
+
+def _unit(quantity: str, component: str) -> str:
+    return BODY_QUANTITIES[quantity][COMPONENTS.index(component)]
+
+
+def _body_columns(run: SceneRun, which: str) -> Columns:
+    """Columns of the selected body quantities: ``which`` = ``"result"``, ``"ideal"`` or
+    ``"errors"`` (clearance − ideal)."""
+    out = run.scene.outputs
+    cols: Columns = []
+    for body in out.bodies:
+        for quantity in out.quantities:
+            error = ERROR_QUANTITIES[quantity]
+            if which == "errors":
+                if (body, error) not in run.errors:
+                    continue
+                data, name = run.errors[(body, error)], f"{error}_error"
+            else:
+                result = run.result if which == "result" else run.ideal
+                assert result is not None
+                data, name = getattr(result, quantity)(body), quantity
+            for component in out.components:
+                c = COMPONENTS.index(component)
+                cols.append((f"{body}.{name}.{component} [{_unit(quantity, component)}]", data[:, c]))
+    return cols
+
+
+def _joint_columns(run: SceneRun) -> Columns:
+    """Columns of the selected clearance-joint quantities (eccentricity also as ε = e/c)."""
+    result, out = run.result, run.scene.outputs
+    clearance = _clearances(run.scene)
+    getters = {
+        "eccentricity_rate": result.eccentricity_rate,
+        "force": result.joint_force,
+        "contact_force": result.contact_force,
+        "film_force": result.film_force,
+    }
+    cols: Columns = []
+    for joint in out.joints:
+        for quantity in out.joint_quantities:
+            if quantity == "eccentricity":
+                e = result.eccentricity(joint)
+                data = np.column_stack([e, np.hypot(e[:, 0], e[:, 1]) / clearance[joint]])
+            elif quantity == "state":
+                data = np.column_stack([result.contact_state(joint), result.dry_weight(joint)])
+            else:
+                data = getters[quantity](joint)
+            for k, (name, unit) in enumerate(JOINT_QUANTITIES[quantity]):
+                cols.append((f"{joint}.{name} [{unit}]", data[:, k]))
+    return cols
+
+
+def _clearances(scene: Scene) -> Dict[str, float]:
+    return {c["name"]: float(c["clearance"]) for c in scene.mechanism.description()["clearance_joints"]}
+
+
+def write_csv(path: Path, t: np.ndarray, columns: Columns) -> Path:
+    """A CSV file: ``t [s]`` and the columns, header row ``name [unit]``, 10 significant digits."""
+    n = min([len(t)] + [len(v) for _, v in columns])
+    data = np.column_stack([t[:n]] + [np.asarray(v, dtype=float)[:n] for _, v in columns])
+    header = ",".join(["t [s]"] + [name for name, _ in columns])
+    np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
+    return path
+
+
+# ====================================================================== figures
+def _model_label(scene: Scene) -> str:
+    """``dry``, ``lubricated`` or ``dry + lubricated``: picks the series style of clearsim.plots."""
+    kinds = sorted({c["model"]["kind"] for c in scene.mechanism.description()["clearance_joints"]})
+    return " + ".join(kinds) if kinds else "mechanism"
+
+
+def _figures(run: SceneRun, out_dir: Path) -> List[Path]:
+    """PNG figures: body histories (with the ideal response), errors, journal orbits (in units
+    of the clearance) and FOSM reliability."""
+    from matplotlib.figure import Figure
+
+    from . import plots
+
+    scene, result, out = run.scene, run.result, run.scene.outputs
+    label = _model_label(scene)
+    title = scene.name
+    written: List[Path] = []
+    for body in out.bodies:
+        for component in out.components:
+            c = COMPONENTS.index(component)
+            series = {label: result}
+            if run.ideal is not None:
+                series["ideal"] = run.ideal
+            styles = plots.series_style(series)
+            with plots.style():
+                fig = Figure(figsize=(7.0, 2.3 * len(out.quantities) + 0.6), layout="constrained")
+                axes = fig.subplots(len(out.quantities), 1, sharex=True, squeeze=False)[:, 0]
+                for ax, quantity in zip(axes, out.quantities):
+                    for name, res in series.items():
+                        st = styles[name]
+                        ax.plot(res.t, getattr(res, quantity)(body)[:, c], color=st["color"], linestyle=st["linestyle"], label=name)
+                    ax.set_ylabel(f"{quantity.capitalize()} {component} [{_unit(quantity, component).replace('^2', '²')}]")
+                axes[-1].set_xlabel("Time [s]")
+                axes[0].legend(loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=len(series))
+                fig.suptitle(f"{title}: {body}")
+            written.append(plots.save(fig, out_dir / f"{body}_{component}.png"))
+            errors = {ERROR_QUANTITIES[q]: run.errors[(body, ERROR_QUANTITIES[q])][:, c] for q in out.quantities if (body, ERROR_QUANTITIES[q]) in run.errors}
+            if errors:
+                n = len(next(iter(errors.values())))
+                fig = plots.plot_error_histories(
+                    result.t[:n], {label: errors}, quantities=list(errors),
+                    quantity_info=_THETA_INFO if component == "theta" else None, title=f"{title}: {body} {component} error",
+                )  # fmt: skip
+                written.append(plots.save(fig, out_dir / f"{body}_{component}_error.png"))
+    if out.joints and len(result.t):
+        desc = {c["name"]: c for c in scene.mechanism.description()["clearance_joints"]}
+        names = {j: f"{j} ({desc[j]['model']['kind']})" for j in out.joints}
+        orbits = {names[j]: tuple(result.eccentricity(j).T) for j in out.joints}
+        clearance = {names[j]: float(desc[j]["clearance"]) for j in out.joints}
+        band = {names[j]: _transition_band(desc[j]) for j in out.joints if desc[j]["model"]["kind"] == "lubricated"}
+        fig = plots.plot_journal_orbits(orbits, clearance, transition_band=band or None, title=title)
+        written.append(plots.save(fig, out_dir / "orbits.png"))
+    if run.reliability:
+        spec = scene.reliability
+        assert spec is not None
+        # No title: plot_reliability_panels puts its legend where a suptitle would go.
+        fig = plots.plot_reliability_panels({q: {f"{label}, {spec.body} {spec.component}": res} for q, res in run.reliability.items()})
+        written.append(plots.save(fig, out_dir / "reliability.png"))
+    return written
+
+
+def _transition_band(joint: Dict[str, Any]) -> float:
+    """Width e0 [m] of a lubricated joint's film-to-contact band (default 5 % of c, spec §4)."""
+    e0 = joint["model"].get("e0")
+    return 0.05 * float(joint["clearance"]) if e0 is None else float(e0)
+
+
+# ====================================================================== summary
+def _finite(value: Any) -> Any:
+    """JSON-safe: non-finite floats → None, numpy scalars → Python numbers, recursively."""
+    if isinstance(value, dict):
+        return {str(k): _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    if isinstance(value, (np.integer,)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    return value
+
+
+def summarize(run: SceneRun) -> Dict[str, Any]:
+    """Summary of a scene run: run statistics, impacts, maximum constraint violation, maximum
+    |error| per body output, and the minimum FOSM reliability per quantity."""
+    scene = run.scene
+    out: Dict[str, Any] = {
+        "scene": scene.name,
+        "file": str(scene.path) if scene.path else None,
+        "clearsim_version": __version__,
+        "t_end": scene.simulation.t_end,
+        "integrator": scene.simulation.integrator,
+        "run": run.result.summary(),
+    }
+    if run.ideal is not None:
+        out["ideal_run"] = run.ideal.summary()
+    if run.errors:
+        out["max_abs_error"] = {
+            f"{body}.{quantity}_error.{component}": float(np.max(np.abs(err[:, COMPONENTS.index(component)]))) if len(err) else None
+            for (body, quantity), err in run.errors.items()
+            for component in scene.outputs.components
+        }
+    if run.reliability:
+        spec = scene.reliability
+        assert spec is not None
+        out["reliability"] = {
+            "body": spec.body,
+            "component": spec.component,
+            "bin_width_deg": spec.bin_width,
+            "minimum": {
+                q: {"reliability": r.min_reliability, "beta": r.min_beta, "angle_deg": r.min_angle, "allowable": list(spec.allowable[q])}
+                for q, r in run.reliability.items()
+            },
+        }
+    return _finite(out)
+
+
+def _markdown(summary: Dict[str, Any], files: Sequence[Path]) -> str:
+    run = summary["run"]
+    lines = [
+        f"# {summary['scene']}",
+        "",
+        f"Scene file `{summary['file']}`, clearsim {summary['clearsim_version']}, "
+        f"integrator {summary['integrator']}, t_end = {summary['t_end']:g} s.",
+        "",
+        "| run | outputs | steps | rejected | min step [s] | wall time [s] | max ‖Φ‖ | impacts |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for label, key in (("clearance", "run"), ("ideal", "ideal_run")):
+        r = summary.get(key)
+        if r is None:
+            continue
+        impacts = ", ".join(f"{j}: {n}" for j, n in r.get("impacts", {}).items()) or "–"
+        viol = r.get("max_constraint_violation")
+        lines.append(
+            f"| {label} | {r['outputs']} | {r['steps']} | {r['rejected_steps']} | {r['min_step']:.3g} | "
+            f"{r['wall_time']:.3g} | {'–' if viol is None else f'{viol:.3g}'} | {impacts} |"
+        )
+    if run.get("failure"):
+        lines += ["", f"**The run stopped early:** {run['failure']}"]
+    if "max_abs_error" in summary:
+        lines += ["", "| output (clearance − ideal) | max abs error [SI] |", "|---|---|"]
+        lines += [f"| {k} | {'–' if v is None else f'{v:.4g}'} |" for k, v in summary["max_abs_error"].items()]
+    rel = summary.get("reliability")
+    if rel:
+        lines += [
+            "",
+            f"FOSM dynamic-accuracy reliability of {rel['body']} {rel['component']} ({rel['bin_width_deg']:g}° bins):",
+            "",
+            "| quantity | allowable | min R | β | at crank angle [deg] |",
+            "|---|---|---|---|---|",
+        ]
+        for q, m in rel["minimum"].items():
+            r_min = "–" if m["reliability"] is None else f"{m['reliability']:.6f}"
+            beta = "–" if m["beta"] is None else f"{m['beta']:.3f}"
+            lines.append(f"| {q} | [{m['allowable'][0]:g}, {m['allowable'][1]:g}] | {r_min} | {beta} | {m['angle_deg']:g} |")
+    lines += ["", "Files: " + ", ".join(f"`{p.name}`" for p in files), ""]
+    return "\n".join(lines)
+
+
+def write_run(run: SceneRun, out_dir: Path, plots: bool = True) -> List[Path]:
+    """Write the CSV files, figures (if ``plots`` and the scene asks for them) and summaries of
+    a scene run into ``out_dir``; returns the paths written."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    scene, result = run.scene, run.result
+    files: List[Path] = []
+    if scene.outputs.csv:
+        if scene.outputs.bodies:
+            files.append(write_csv(out_dir / "bodies.csv", result.t, _body_columns(run, "result")))
+            if run.ideal is not None:
+                files.append(write_csv(out_dir / "bodies_ideal.csv", run.ideal.t, _body_columns(run, "ideal")))
+            errors = _body_columns(run, "errors")
+            if errors:
+                files.append(write_csv(out_dir / "errors.csv", result.t, errors))
+        if scene.outputs.joints:
+            files.append(write_csv(out_dir / "joints.csv", result.t, _joint_columns(run)))
+        for quantity, fosm in run.reliability.items():
+            path = out_dir / f"reliability_{quantity}.csv"
+            rows = fosm.to_rows()
+            with path.open("w", newline="", encoding="utf-8") as fh:
+                writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+                writer.writeheader()
+                writer.writerows(rows)
+            files.append(path)
+    if plots and scene.outputs.plots:
+        files += _figures(run, out_dir)
+    summary = summarize(run)
+    files += [out_dir / "summary.json", out_dir / "summary.md"]
+    summary["files"] = [p.name for p in files]
+    (out_dir / "summary.json").write_text(json.dumps(summary, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+    (out_dir / "summary.md").write_text(_markdown(summary, files), encoding="utf-8")
+    return files
+
+
+# ====================================================================== commands
+def _cmd_run(args: argparse.Namespace) -> int:
+    scene = load_scene_file(args.scene).with_overrides(t_end=args.t_end, integrator=args.integrator)
+    out_dir = Path(args.output) if args.output else Path(f"clearsim-{Path(args.scene).stem}")
+    run = scene.run(progress=not args.quiet)
+    files = write_run(run, out_dir, plots=not args.no_plots)
+    if not args.quiet:
+        r = run.result.summary()
+        print(f"{scene.name}: {r['outputs']} outputs to t = {r['t_reached']:g} s in {r['steps']} steps ({r['wall_time']:.3g} s)")
+        if run.result.impacts:
+            print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
+        for q, res in run.reliability.items():
+            print(f"FOSM {q}: min R = {res.min_reliability:.6f} (β = {res.min_beta:.3f}) at {res.min_angle:g}°")
+        print(f"wrote {len(files)} files to {out_dir}")
+    if run.failure is not None:
+        err = run.failure
+        print(f"clearsim: simulation failed: {err.reason}", file=sys.stderr)
+        print(f"clearsim: partial results (to t = {run.result.stats.get('t_reached', float('nan')):g} s) written to {out_dir}", file=sys.stderr)
+        return EXIT_ERROR
+    return 0
+
+
+def _cmd_paper(args: argparse.Namespace) -> int:
+    try:
+        from .study.paper import run_paper_study
+    except ImportError as err:
+        if not (err.name or "").startswith("clearsim.study"):
+            raise
+        print("clearsim: error: the paper study (clearsim.study.paper) is not available in this installation", file=sys.stderr)
+        return EXIT_ERROR
+    out = run_paper_study(Path(args.output), cycles=args.cycles, quick=args.quick, progress=not args.quiet)
+    if not args.quiet:
+        print(f"paper study written to {out}")
+    return 0
+
+
+def _first_line(obj: Any) -> str:
+    return " ".join((obj.__doc__ or "").strip().split("\n\n")[0].split())
+
+
+def _cmd_info(args: argparse.Namespace) -> int:
+    from .joints import FILM_MODELS, NORMAL_LAWS
+
+    print(f"clearsim {__version__}: planar mechanisms with dry and lubricated revolute clearance joints")
+    print("\nModels (clearsim.models):")
+    for name in models.__all__:
+        obj = getattr(models, name)
+        if callable(obj):
+            print(f"  {name:14s} {_first_line(obj)}")
+    print(f"\nIntegrators: {', '.join(INTEGRATORS)}")
+    print(f"Dry contact laws: {', '.join(NORMAL_LAWS)}")
+    print(f"Lubricated film models: {', '.join(FILM_MODELS)}")
+    scenes = Path(__file__).resolve().parents[2] / "scenes"  # a source checkout
+    if scenes.is_dir():
+        print(f"\nScenes ({scenes}):")
+        for path in sorted(scenes.glob("*.toml")):
+            print(f"  {path.name}")
+    print("\nScene file format: python -m pydoc clearsim.scene")
+    return 0
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not (value > 0 and math.isfinite(value)):
+        raise argparse.ArgumentTypeError(f"{text!r} must be a positive number")
+    return value
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} must be a positive integer")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``clearsim`` command."""
+    parser = argparse.ArgumentParser(
+        prog="clearsim", description="Planar mechanisms with dry and lubricated revolute clearance joints."
+    )
+    parser.add_argument("--version", action="version", version=f"clearsim {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    run = sub.add_parser("run", help="run a scene file: CSV, figures and a summary", description="Run a scene file (TOML).")
+    run.add_argument("scene", metavar="SCENE.toml", help="scene file (format: python -m pydoc clearsim.scene)")
+    run.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>)")
+    run.add_argument("--no-plots", action="store_true", help="write no figures")
+    run.add_argument("--t-end", type=_positive_float, metavar="T", help="end time [s] instead of the scene's")
+    run.add_argument("--integrator", choices=INTEGRATORS, help="integrator instead of the scene's")
+    run.add_argument("-q", "--quiet", action="store_true", help="no progress bar, no summary on stdout")
+    run.set_defaults(func=_cmd_run)
+
+    paper = sub.add_parser("paper", help="reproduce the paper's study", description="Reproduce the paper's study (spec §7).")
+    paper.add_argument("-o", "--output", metavar="OUTDIR", default="clearsim-paper", help="output directory (default clearsim-paper)")
+    paper.add_argument("--quick", action="store_true", help="coarser, faster runs (a smoke test)")
+    paper.add_argument("--cycles", type=_positive_int, default=3, metavar="N", help="crank cycles per run (default 3)")
+    paper.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
+    paper.set_defaults(func=_cmd_paper)
+
+    info = sub.add_parser("info", help="version and model catalogue", description="Print the version and the model catalogue.")
+    info.set_defaults(func=_cmd_info)
+    return parser
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Entry point of the ``clearsim`` command; returns the exit code (0, or 2 on error)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help(sys.stderr)
+        return EXIT_ERROR
+    try:
+        return int(args.func(args))
+    except ClearsimError as err:
+        print(f"clearsim: error: {err}", file=sys.stderr)
+        return EXIT_ERROR
+
+
+__all__ = ["build_parser", "main", "summarize", "write_csv", "write_run"]

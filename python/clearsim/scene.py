@@ -1,0 +1,889 @@
+"""Scene files: a planar mechanism and its run, described in TOML.
+
+``load_scene(path)`` gives the :class:`~clearsim.Mechanism`; ``load_scene_file(path)`` gives a
+:class:`Scene` with the mechanism plus the run, output and reliability settings (what
+``clearsim run`` uses). SI units throughout: m, kg, s, rad (angles of the crank in the
+``[reliability]`` block in degrees, as in the paper).
+
+Format
+------
+Every table and key is listed below; anything else is an error naming the key, the file and the
+line. ``[[...]]`` tables may repeat. Points on a body are in the body's frame (from its
+centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
+
+    [mechanism]                      # optional
+    name = "my press"                # free text (optional)
+    description = "..."              # free text (optional)
+    gravity = [0.0, -9.81]           # m/s² (default (0, -9.81))
+    baumgarte = [50.0, 50.0]         # α, β [1/s] (default 50, 50)
+
+    [[body]]                         # one per rigid body
+    name = "crank"
+    mass = 0.30                      # kg
+    inertia = 1.0e-4                 # kg m², about the centroid
+    position = [0.025, 0.0]          # m, approximate (the assembly at t0 refines it) ...
+    angle = 0.0                      # rad (default 0)
+    # ... or, for a link: ends = [[0.0, 0.0], [0.05, 0.0]]  (centroid at mid-length,
+    #     angle of the line ends[0] → ends[1]); not together with position/angle.
+    velocity = [0.0, 0.0, 0.0]       # optional guess (ẋ, ẏ, θ̇)
+
+    [[joint]]                        # ideal joints
+    type = "revolute"                # or "prismatic"
+    name = "crank-ground"            # optional (default revolute1, prismatic1, ...)
+    bodies = ["ground", "crank"]
+    points = [[0.0, 0.0], [-0.025, 0.0]]
+    # prismatic only: axis = [1.0, 0.0]  (guide direction in the first body's frame);
+    # the second body (the slider) moves on the line through the first point.
+
+    [[driver]]                       # θ(t) of a body: exactly one of
+    body = "crank"
+    omega = 523.6                    # rad/s, θ = angle0 + ω t (angle0 [rad], default the
+    angle0 = 0.0                     #   body's angle), or rpm = 5000 instead of omega,
+    # polynomial = [c0, c1, c2]      # θ = Σ c_k t^k, or
+    # times = [...], angles = [...]  # samples [s], [rad] through a natural cubic spline
+    name = "crank-drive"             # optional
+
+    [[clearance_joint]]              # revolute joint with radial clearance (spec §2)
+    name = "rod-slider"
+    bearing_body = "slider"          # the hole, radius journal_radius + clearance
+    bearing_point = [0.0, 0.0]
+    journal_body = "rod"             # the pin
+    journal_point = [0.06, 0.0]
+    journal_radius = 9.5e-3          # m
+    clearance = 0.5e-3               # m, radial
+    initial_eccentricity = [0.0, 0.0]  # m, global (default centred)
+    model = "dry"                    # or "lubricated" (default "dry")
+    [clearance_joint.dry]            # optional: fields of clearsim.Dry
+    restitution = 0.9
+    friction = 0.1
+    # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
+    # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
+
+    [simulation]
+    t_end = 0.4                      # s, or: cycles = 3 (× period [s], default 2π/|ω| of
+                                     #   the first constant-speed driver; period = ... to set it)
+    integrator = "rk45"              # rk45 | dop853 | rk4 (rk4 needs step [s])
+    rtol = 1e-6
+    atol = 1e-9
+    dt_out = 1e-4                    # s, output grid (default (t_end − t0)/1000)
+    # t0, step, h_max, h_min, max_steps: as Mechanism.simulate
+    outputs = ["reactions"]          # extra channels to store (those [outputs] and
+                                     #   [reliability] need are added automatically)
+
+    [outputs]                        # what `clearsim run` writes and plots
+    bodies = ["slider"]              # body histories (default: none)
+    quantities = ["position", "velocity", "acceleration"]   # default all three
+    components = ["x"]               # of x, y, theta (default all three)
+    joints = ["rod-slider"]          # clearance joints (default: all)
+    joint_quantities = ["eccentricity", "force"]  # + eccentricity_rate, contact_force,
+                                                  #   film_force, state
+    ideal = true                     # also run the ideal mechanism; write its response and
+                                     #   the errors (default: true if there are clearance joints)
+    csv = true                       # default true
+    plots = true                     # default true
+
+    [reliability]                    # optional: FOSM dynamic-accuracy reliability (spec §6)
+    body = "slider"
+    component = "x"                  # x | y | theta
+    bin_width = 18.0                 # deg
+    omega = 523.6                    # rad/s; crank angle = |ω| (t − t0) in degrees
+                                     #   (default: the first constant-speed driver)
+    t_start = 0.0                    # s, analyse from here on (drop a start-up transient)
+    [reliability.allowable]          # [Δv, Δu] per analysed quantity (default: the paper's)
+    displacement = [0.0, 0.004]      # m
+    velocity = [0.0, 0.6]            # m/s
+    acceleration = [0.0, 200.0]      # m/s²
+
+TOML is read with :mod:`tomllib` (Python ≥ 3.11) or the ``tomli`` package.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from .errors import InputError, SimulationError
+from .joints import Dry, Lubricated
+from .mechanism import OUTPUTS, Mechanism
+from .result import Result
+
+try:  # Python ≥ 3.11
+    import tomllib as _toml
+except ModuleNotFoundError:  # pragma: no cover - Python < 3.11
+    try:
+        import tomli as _toml  # type: ignore[no-redef]
+    except ModuleNotFoundError:
+        _toml = None  # type: ignore[assignment]
+
+PathLike = Union[str, Path]
+
+#: Body quantities and their components: (name, unit) per component x, y, theta.
+BODY_QUANTITIES: Dict[str, Tuple[str, str, str]] = {
+    "position": ("m", "m", "rad"),
+    "velocity": ("m/s", "m/s", "rad/s"),
+    "acceleration": ("m/s^2", "m/s^2", "rad/s^2"),
+}
+COMPONENTS = ("x", "y", "theta")
+#: Clearance-joint quantities: their columns (name, unit).
+JOINT_QUANTITIES: Dict[str, Tuple[Tuple[str, str], ...]] = {
+    "eccentricity": (("ex", "m"), ("ey", "m"), ("eps", "-")),
+    "eccentricity_rate": (("ex_dot", "m/s"), ("ey_dot", "m/s")),
+    "force": (("fx", "N"), ("fy", "N")),
+    "contact_force": (("normal", "N"), ("tangential", "N")),
+    "film_force": (("film_xi", "N"), ("film_eta", "N")),
+    "state": (("state", "-"), ("w_dry", "-")),
+}
+#: Body quantity → the name of its error against the ideal mechanism (as in
+#: :meth:`Result.error` and the reliability analysis).
+ERROR_QUANTITIES: Dict[str, str] = {"position": "displacement", "velocity": "velocity", "acceleration": "acceleration"}
+RELIABILITY_QUANTITIES: Tuple[str, ...] = tuple(ERROR_QUANTITIES.values())
+_CHANNEL_OF = {"position": "states", "velocity": "states", "acceleration": "accelerations"}
+
+# A location in the file: the table path, e.g. ("body", 2) for the third [[body]],
+# ("clearance_joint", 0, "dry") for a sub-table, ("simulation",) or () for the top level.
+Where = Tuple[Union[str, int], ...]
+
+
+# ====================================================================== file text and lines
+_HEADER = re.compile(r"^\s*(\[\[?)\s*([^\[\]#]+?)\s*\]\]?\s*(#.*)?$")
+
+
+def _split_key(dotted: str) -> Tuple[str, ...]:
+    return tuple(part.strip().strip("\"'") for part in dotted.split("."))
+
+
+class _Source:
+    """The text of a scene file, to find the line of a key (tomllib gives no positions).
+
+    Finds the table of a location by counting ``[[name]]`` headers, then the key's line inside
+    that table's span (its sub-tables included); falls back to the table's header line.
+    """
+
+    def __init__(self, path: Path, text: str) -> None:
+        self.path = path
+        self.lines = text.splitlines()
+        # (line index, is array table, name parts)
+        self.headers: List[Tuple[int, bool, Tuple[str, ...]]] = []
+        for k, line in enumerate(self.lines):
+            m = _HEADER.match(line)
+            if m:
+                self.headers.append((k, m.group(1) == "[[", _split_key(m.group(2))))
+
+    def _span(self, where: Where) -> Tuple[int, int, Optional[int]]:
+        """(first line, end line, header line) of the table at ``where`` (of the deepest
+        enclosing table written as a header if ``where`` itself is not)."""
+        start, end, header = 0, len(self.lines), None
+        if not where:
+            return 0, (self.headers[0][0] if self.headers else len(self.lines)), None
+        prefix: Tuple[str, ...] = ()
+        k = 0
+        while k < len(where):
+            prefix += (str(where[k]),)
+            nth = where[k + 1] if k + 1 < len(where) and isinstance(where[k + 1], int) else 0
+            k += 2 if k + 1 < len(where) and isinstance(where[k + 1], int) else 1
+            matches = [h for h, (n, _array, parts) in enumerate(self.headers) if start <= n < end and parts == prefix]
+            if nth >= len(matches):
+                break
+            h = matches[nth]
+            header = self.headers[h][0]
+            start, end = header + 1, len(self.lines)
+            for n, _array, parts in self.headers[h + 1 :]:
+                if parts[: len(prefix)] != prefix or parts == prefix:
+                    end = n
+                    break
+        return start, end, header
+
+    def line(self, where: Where, key: Optional[str] = None) -> Optional[int]:
+        """1-based line of ``key`` in the table at ``where`` (of the table itself if no key or
+        the key is not written there); ``None`` if neither is found."""
+        start, end, header = self._span(where)
+        if key is not None:
+            k = re.escape(key)
+            patterns = (
+                re.compile(rf"^\s*(?:{k}|\"{k}\"|'{k}')\s*="),  # key = ...
+                re.compile(rf"[{{,.]\s*(?:{k}|\"{k}\"|'{k}')\s*="),  # inline table / dotted key
+            )
+            for pattern in patterns:
+                for n in range(start, end):
+                    if pattern.search(self.lines[n].split("#", 1)[0]):
+                        return n + 1
+            # A table written as a header: [key] or [[key]], [parent.key]
+            sub = self._span(where + (key,))[2]
+            if sub is not None:
+                return sub + 1
+        return None if header is None else header + 1
+
+    def error(self, where: Where, key: Optional[str], message: str, value: Any = None) -> InputError:
+        """An :class:`InputError` ``file:line: message`` with ``file``, ``line``, ``field``."""
+        line = self.line(where, key)
+        dotted = _dotted(where, key)
+        pos = f"{self.path}:{line}" if line is not None else f"{self.path}"
+        return InputError(f"{pos}: {message}", field=dotted, value=value, file=str(self.path), line=line)
+
+
+def _dotted(where: Where, key: Optional[str]) -> str:
+    parts: List[str] = []
+    for p in where:
+        if isinstance(p, int):
+            parts[-1] += f"[{p}]"
+        else:
+            parts.append(p)
+    if key is not None:
+        parts.append(key)
+    return ".".join(parts)
+
+
+def _label(where: Where) -> str:
+    """Human name of a table: ``[[body]] #3``, ``[simulation]``."""
+    names = [p for p in where if isinstance(p, str)]
+    if not names:
+        return "top level"
+    idx = [p for p in where if isinstance(p, int)]
+    if idx:
+        return f"[[{names[0]}]] #{idx[0] + 1}" + "".join(f" [{n}]" for n in names[1:])
+    return "[" + ".".join(names) + "]"
+
+
+# ====================================================================== typed table reader
+_REQUIRED = object()
+
+
+def _type_name(value: Any) -> str:
+    return {bool: "a boolean", str: "a string", int: "an integer", float: "a number", list: "an array", dict: "a table"}.get(
+        type(value), type(value).__name__
+    )
+
+
+class _Table:
+    """One TOML table being read: typed getters whose errors point at the key's line."""
+
+    def __init__(self, src: _Source, where: Where, data: Any, known: Sequence[str]) -> None:
+        if not isinstance(data, dict):
+            parent = where[:-2] if isinstance(where[-1], int) else where[:-1]
+            raise src.error(parent, _last_name(where), f"invalid {_dotted(where, None)}: must be a table, not {_type_name(data)}", data)
+        self.src, self.where, self.data = src, where, data
+        for key in data:
+            if key not in known:
+                raise src.error(
+                    where, key, f"unknown key '{key}' in {_label(where)} (known: {', '.join(known)})", data[key]
+                )
+
+    def __contains__(self, key: str) -> bool:
+        return key in self.data
+
+    def error(self, key: Optional[str], message: str, value: Any = None) -> InputError:
+        return self.src.error(self.where, key, message, value)
+
+    def _get(self, key: str, default: Any) -> Any:
+        if key in self.data:
+            return self.data[key]
+        if default is _REQUIRED:
+            raise self.error(None, f"missing key '{key}' in {_label(self.where)}")
+        return default
+
+    def _bad(self, key: str, value: Any, what: str) -> InputError:
+        return self.error(key, f"invalid {_dotted(self.where, key)} = {value!r}: must be {what}, not {_type_name(value)}", value)
+
+    def number(self, key: str, default: Any = _REQUIRED) -> Any:
+        value = self._get(key, default)
+        if key not in self.data:
+            return value
+        return self._as_number(key, value)
+
+    def _as_number(self, key: str, value: Any) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self._bad(key, value, "a number")
+        return float(value)
+
+    def integer(self, key: str, default: Any = _REQUIRED) -> Any:
+        value = self._get(key, default)
+        if key in self.data and (isinstance(value, bool) or not isinstance(value, int)):
+            raise self._bad(key, value, "an integer")
+        return value
+
+    def boolean(self, key: str, default: Any = _REQUIRED) -> Any:
+        value = self._get(key, default)
+        if key in self.data and not isinstance(value, bool):
+            raise self._bad(key, value, "true or false")
+        return value
+
+    def string(self, key: str, default: Any = _REQUIRED, choices: Optional[Sequence[str]] = None) -> Any:
+        value = self._get(key, default)
+        if key not in self.data:
+            return value
+        if not isinstance(value, str):
+            raise self._bad(key, value, "a string")
+        if choices is not None and value not in choices:
+            raise self.error(key, f"invalid {_dotted(self.where, key)} = {value!r}: must be one of {', '.join(choices)}", value)
+        return value
+
+    def strings(self, key: str, default: Any = _REQUIRED, choices: Optional[Sequence[str]] = None) -> Any:
+        value = self._get(key, default)
+        if key not in self.data:
+            return value
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise self._bad(key, value, "an array of strings")
+        for v in value:
+            if choices is not None and v not in choices:
+                raise self.error(key, f"invalid {_dotted(self.where, key)} entry {v!r}: must be one of {', '.join(choices)}", value)
+        return list(value)
+
+    def numbers(self, key: str, default: Any = _REQUIRED, length: Optional[int] = None) -> Any:
+        value = self._get(key, default)
+        if key not in self.data:
+            return value
+        what = f"an array of {length} numbers" if length else "an array of numbers"
+        if not isinstance(value, list) or (length is not None and len(value) != length):
+            raise self._bad(key, value, what)
+        if any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value):
+            raise self._bad(key, value, what)
+        return [float(v) for v in value]
+
+    def point(self, key: str, default: Any = _REQUIRED) -> Any:
+        return self.numbers(key, default, length=2)
+
+    def points(self, key: str, count: int, default: Any = _REQUIRED) -> Any:
+        value = self._get(key, default)
+        if key not in self.data:
+            return value
+        what = f"an array of {count} points [x, y]"
+        if not isinstance(value, list) or len(value) != count:
+            raise self._bad(key, value, what)
+        for p in value:
+            if not (isinstance(p, list) and len(p) == 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in p)):
+                raise self._bad(key, value, what)
+        return [[float(v) for v in p] for p in value]
+
+    def table(self, key: str, known: Sequence[str]) -> Optional["_Table"]:
+        if key not in self.data:
+            return None
+        return _Table(self.src, self.where + (key,), self.data[key], known)
+
+    def array_of_tables(self, key: str, known: Sequence[str]) -> List["_Table"]:
+        value = self.data.get(key, [])
+        if not isinstance(value, list):
+            raise self.error(key, f"invalid {key}: must be written as [[{key}]] tables", value)
+        return [_Table(self.src, self.where + (key, k), entry, known) for k, entry in enumerate(value)]
+
+
+def _last_name(where: Where) -> Optional[str]:
+    names = [p for p in where if isinstance(p, str)]
+    return names[-1] if names else None
+
+
+# ====================================================================== settings
+@dataclass
+class SimulationSettings:
+    """The ``[simulation]`` table: the arguments of :meth:`Mechanism.simulate` (SI units).
+
+    ``t_end`` [s] is given or ``t0 + cycles · period``; ``outputs`` lists the channels to
+    store (already including those the outputs and the reliability analysis need).
+    """
+
+    t_end: float
+    integrator: str = "rk45"
+    rtol: float = 1e-6
+    atol: float = 1e-9
+    t0: float = 0.0
+    step: Optional[float] = None
+    dt_out: Optional[float] = None
+    h_max: Optional[float] = None
+    h_min: Optional[float] = None
+    max_steps: Optional[int] = None
+    outputs: Tuple[str, ...] = ("states", "accelerations", "joints", "violation")
+    cycles: Optional[float] = None
+    period: Optional[float] = None
+
+    def kwargs(self) -> Dict[str, Any]:
+        """Keyword arguments of :meth:`Mechanism.simulate` (all but ``t_end``)."""
+        out: Dict[str, Any] = {"integrator": self.integrator, "rtol": self.rtol, "atol": self.atol, "t0": self.t0}
+        for name in ("step", "dt_out", "h_max", "h_min", "max_steps"):
+            value = getattr(self, name)
+            if value is not None:
+                out[name] = value
+        out["outputs"] = list(self.outputs)
+        return out
+
+
+@dataclass
+class OutputSettings:
+    """The ``[outputs]`` table: what ``clearsim run`` writes (CSV) and plots (PNG)."""
+
+    bodies: List[str] = field(default_factory=list)
+    quantities: List[str] = field(default_factory=lambda: list(BODY_QUANTITIES))
+    components: List[str] = field(default_factory=lambda: list(COMPONENTS))
+    joints: List[str] = field(default_factory=list)
+    joint_quantities: List[str] = field(default_factory=lambda: ["eccentricity", "force"])
+    ideal: bool = False
+    csv: bool = True
+    plots: bool = True
+
+
+@dataclass
+class ReliabilitySettings:
+    """The ``[reliability]`` table: FOSM reliability of one body coordinate (spec §6).
+
+    ``allowable`` maps ``displacement`` / ``velocity`` / ``acceleration`` to the allowable
+    error range (Δv, Δu) [m, m/s, m/s² (rad… for ``theta``)]; ``omega`` [rad/s] gives the crank
+    angle |ω| (t − t0) [deg]; samples before ``t_start`` [s] are left out; ``bin_width`` [deg].
+    """
+
+    body: str
+    component: str
+    allowable: Dict[str, Tuple[float, float]]
+    omega: float
+    bin_width: float = 18.0
+    t_start: float = 0.0
+
+
+@dataclass
+class SceneRun:
+    """The runs of a scene: the clearance run, the ideal run (if made) and the errors.
+
+    ``errors[(body, quantity)]`` (quantity ``displacement``, ``velocity``, ``acceleration``) is
+    the (N, 3) error clearance − ideal [SI] of :meth:`Result.error` (common part of both runs); ``reliability[quantity]`` the :class:`clearsim.reliability.FosmResult`.
+    ``failure`` is the :class:`SimulationError` that stopped the clearance run early, if any
+    (``result`` then holds the partial result).
+    """
+
+    scene: "Scene"
+    result: Result
+    ideal: Optional[Result] = None
+    errors: Dict[Tuple[str, str], np.ndarray] = field(default_factory=dict)
+    reliability: Dict[str, Any] = field(default_factory=dict)
+    failure: Optional[SimulationError] = None
+
+
+@dataclass
+class Scene:
+    """A mechanism with the run, output and reliability settings of a scene file."""
+
+    mechanism: Mechanism
+    simulation: SimulationSettings
+    outputs: OutputSettings
+    reliability: Optional[ReliabilitySettings] = None
+    name: str = ""
+    description: str = ""
+    path: Optional[Path] = None
+    _ideal: Optional[Mechanism] = field(default=None, repr=False, compare=False)
+
+    def with_overrides(self, *, t_end: Optional[float] = None, integrator: Optional[str] = None) -> "Scene":
+        """A copy with another ``t_end`` [s] and/or integrator (validated)."""
+        sim = dataclasses.replace(
+            self.simulation,
+            t_end=self.simulation.t_end if t_end is None else float(t_end),
+            integrator=self.simulation.integrator if integrator is None else integrator,
+        )
+        self.mechanism.run_settings(sim.t_end, **sim.kwargs())  # raises InputError if invalid
+        return dataclasses.replace(self, simulation=sim)
+
+    def simulate(self) -> Result:
+        """Run the mechanism with the scene's settings."""
+        return self.mechanism.simulate(self.simulation.t_end, **self.simulation.kwargs())
+
+    def ideal_mechanism(self) -> Mechanism:
+        """The ideal counterpart of the mechanism (clearance joints → revolute joints)."""
+        if self._ideal is None:
+            self._ideal = self.mechanism.idealized()
+        return self._ideal
+
+    def run(self, ideal: Optional[bool] = None, progress: bool = False) -> SceneRun:
+        """Run the scene: the ideal mechanism first (if ``ideal``, default from ``[outputs]``,
+        or if ``[reliability]`` needs it), then the mechanism; errors and FOSM reliability.
+
+        A :class:`SimulationError` of the clearance run is kept in ``SceneRun.failure`` with
+        the partial result, not raised (the errors cover the part that was computed); one of the
+        ideal run is raised. ``progress`` shows a tqdm bar when more than one run is made.
+        """
+        has_clearance = bool(self.mechanism.clearance_joint_names)
+        want_ideal = has_clearance and ((self.outputs.ideal if ideal is None else ideal) or self.reliability is not None)
+        jobs: List[Tuple[str, Mechanism]] = [("ideal", self.ideal_mechanism())] if want_ideal else []
+        jobs.append(("clearance" if has_clearance else "run", self.mechanism))
+        results: Dict[str, Result] = {}
+        failure: Optional[SimulationError] = None
+        desc = self.path.stem if self.path is not None else "clearsim"
+        for label, mech in _progress(jobs, progress, desc=desc):
+            try:
+                results[label] = mech.simulate(self.simulation.t_end, **self.simulation.kwargs())
+            except SimulationError as err:
+                if label == "ideal" or err.result is None:
+                    raise
+                results[label], failure = err.result, err
+        run = SceneRun(self, results[jobs[-1][0]], results.get("ideal"), failure=failure)
+        if run.ideal is not None and len(run.result.t):
+            bodies = set(self.outputs.bodies) | ({self.reliability.body} if self.reliability else set())
+            for body in sorted(bodies):
+                for quantity, error in ERROR_QUANTITIES.items():
+                    if _CHANNEL_OF[quantity] in self.simulation.outputs:
+                        run.errors[(body, error)] = run.result.error(run.ideal, body, error)
+            if self.reliability is not None:
+                run.reliability = self._fosm(run)
+        return run
+
+    def _fosm(self, run: SceneRun) -> Dict[str, Any]:
+        from . import reliability as rel  # imported here: only scenes with [reliability] need it
+
+        spec = self.reliability
+        assert spec is not None
+        c = COMPONENTS.index(spec.component)
+        out: Dict[str, Any] = {}
+        for quantity, allowable in spec.allowable.items():
+            error = run.errors[(spec.body, quantity)][:, c]
+            t = run.result.t[: len(error)]
+            keep = t >= spec.t_start
+            if np.any(keep):
+                angle = np.degrees(abs(spec.omega) * (t[keep] - self.simulation.t0))
+                out[quantity] = rel.fosm(error[keep], angle, allowable, bin_width=spec.bin_width)
+        return out
+
+
+def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
+    """``items``, with a tqdm bar when enabled and there is more than one."""
+    if enabled and len(items) > 1:
+        from tqdm import tqdm
+
+        bar = tqdm(items, desc=desc, unit="run", leave=False)
+        for item in bar:
+            bar.set_postfix_str(item[0] if isinstance(item, tuple) else str(item))
+            yield item
+    else:
+        yield from items
+
+
+# ====================================================================== reading a scene
+_TOP_KEYS = ("mechanism", "body", "joint", "driver", "clearance_joint", "simulation", "outputs", "reliability")
+_MECHANISM_KEYS = ("name", "description", "gravity", "baumgarte")
+_BODY_KEYS = ("name", "mass", "inertia", "position", "angle", "ends", "velocity")
+_JOINT_KEYS = {"revolute": ("type", "name", "bodies", "points"), "prismatic": ("type", "name", "bodies", "points", "axis")}
+_DRIVER_KEYS = ("name", "body", "omega", "rpm", "angle0", "polynomial", "times", "angles")
+_CLEARANCE_KEYS = (
+    "name", "bearing_body", "bearing_point", "journal_body", "journal_point",
+    "journal_radius", "clearance", "initial_eccentricity", "model", "dry", "lubricated",
+)  # fmt: skip
+_SIM_KEYS = (
+    "t_end", "cycles", "period", "t0", "integrator", "rtol", "atol", "step", "dt_out", "h_max", "h_min", "max_steps", "outputs",
+)  # fmt: skip
+_OUTPUT_KEYS = ("bodies", "quantities", "components", "joints", "joint_quantities", "ideal", "csv", "plots")
+_RELIABILITY_KEYS = ("body", "component", "bin_width", "omega", "t_start", "allowable")
+# Builder field → scene key, for errors raised by Mechanism methods.
+_FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "point_b": "points", "driver": None}
+
+
+def _read(path: Path) -> Tuple[_Source, Dict[str, Any]]:
+    if _toml is None:  # pragma: no cover - Python < 3.11 without tomli
+        raise InputError(
+            f"{path}: reading scene files on Python < 3.11 needs the 'tomli' package: pip install tomli", field="file", value=str(path)
+        )
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as err:
+        raise InputError(f"{path}: cannot read the scene file: {err.strerror or err}", field="file", value=str(path), file=str(path)) from None
+    src = _Source(path, text)
+    try:
+        data = _toml.loads(text)
+    except _toml.TOMLDecodeError as err:
+        m = re.search(r"line (\d+)", str(err))
+        line = int(m.group(1)) if m else None
+        pos = f"{path}:{line}" if line else str(path)
+        raise InputError(f"{pos}: invalid TOML: {err}", field="file", value=str(path), file=str(path), line=line) from None
+    return src, data
+
+
+def _model_fields(cls: type) -> Tuple[str, ...]:
+    return tuple(f.name for f in dataclasses.fields(cls))
+
+
+def _read_model(table: _Table, cls: type) -> Any:
+    """A :class:`Dry` or :class:`Lubricated` from a sub-table using the dataclass's field names."""
+    kwargs: Dict[str, Any] = {}
+    for f in dataclasses.fields(cls):
+        if f.name not in table:
+            continue
+        if f.name == "dry":
+            sub = table.table("dry", _model_fields(Dry))
+            assert sub is not None
+            kwargs["dry"] = _read_model(sub, Dry)
+        elif isinstance(f.default, str):
+            kwargs[f.name] = table.string(f.name)
+        else:
+            kwargs[f.name] = table.number(f.name)
+    try:
+        return cls(**kwargs)
+    except InputError as err:
+        raise table.error(err.field or None, err.reason, err.value) from None
+
+
+class _Builder:
+    """Builds the Mechanism of a scene, entry by entry, locating every error in the file."""
+
+    def __init__(self, src: _Source, top: _Table) -> None:
+        self.src = src
+        self.top = top
+        self.entries: Dict[Tuple[str, str], _Table] = {}  # (kind, name) → its table
+        self.mechanism_table = top.table("mechanism", _MECHANISM_KEYS) or _Table(src, ("mechanism",), {}, ())
+
+    def call(self, table: _Table, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+        """``fn(*args, **kwargs)``, with an InputError relocated to ``table``'s key."""
+        try:
+            return fn(*args, **kwargs)
+        except InputError as err:
+            raise self.relocate(err, table) from None
+
+    def relocate(self, err: InputError, table: Optional[_Table]) -> InputError:
+        """``err`` (raised by the builder or the Rust core) with the file and line."""
+        fld = getattr(err, "field", "") or ""
+        m = re.match(r"^(body|clearance joint|joint|driver|revolute|prismatic) '([^']*)'\.(.+)$", fld)
+        if m:
+            kind = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint"}.get(m.group(1), m.group(1))
+            table = self.entries.get((kind, m.group(2)), table)
+            fld = m.group(3)
+        key = re.sub(r"\[\d+\]$", "", fld.split(".")[-1]) if fld else None
+        key = _FIELD_KEYS.get(key, key) if key else None
+        if table is None:
+            return InputError(f"{self.src.path}: {err.reason}", field=err.field, value=err.value, file=str(self.src.path), line=None)
+        return table.error(key, err.reason, err.value)
+
+    def build(self) -> Mechanism:
+        top = self.top
+        mech_t = self.mechanism_table
+        kwargs = {k: mech_t.point(k) for k in ("gravity", "baumgarte") if k in mech_t}
+        m: Mechanism = self.call(mech_t, Mechanism, **kwargs)
+        for t in top.array_of_tables("body", _BODY_KEYS):
+            self.body(m, t)
+        for t in top.array_of_tables("joint", sorted(set(_JOINT_KEYS["revolute"]) | set(_JOINT_KEYS["prismatic"]))):
+            self.joint(m, t)
+        for t in top.array_of_tables("driver", _DRIVER_KEYS):
+            self.driver(m, t)
+        for t in top.array_of_tables("clearance_joint", _CLEARANCE_KEYS):
+            self.clearance_joint(m, t)
+        return m
+
+    def _register(self, kind: str, name: Optional[str], table: _Table) -> None:
+        if name is not None:
+            self.entries[(kind, name)] = table
+
+    def body(self, m: Mechanism, t: _Table) -> None:
+        name = t.string("name")
+        self._register("body", name, t)
+        if "ends" in t:
+            for key in ("position", "angle"):
+                if key in t:
+                    raise t.error(key, f"[[body]] '{name}': give either ends or position/angle, not both")
+            (p, q) = t.points("ends", 2)
+            position = [(p[0] + q[0]) / 2, (p[1] + q[1]) / 2]
+            angle = math.atan2(q[1] - p[1], q[0] - p[0])
+        else:
+            position = t.point("position", [0.0, 0.0])
+            angle = t.number("angle", 0.0)
+        self.call(
+            t, m.add_body, name, mass=t.number("mass"), inertia=t.number("inertia"),
+            position=position, angle=angle, velocity=t.numbers("velocity", None, length=3),
+        )  # fmt: skip
+
+    def joint(self, m: Mechanism, t: _Table) -> None:
+        kind = t.string("type", choices=tuple(_JOINT_KEYS))
+        for key in t.data:
+            if key not in _JOINT_KEYS[kind]:
+                raise t.error(key, f"unknown key '{key}' in a {kind} [[joint]] (known: {', '.join(_JOINT_KEYS[kind])})", t.data[key])
+        name = t.string("name", None)
+        self._register("joint", name, t)
+        bodies = t.strings("bodies")
+        if len(bodies) != 2:
+            raise t.error("bodies", f"invalid {_dotted(t.where, 'bodies')} = {bodies!r}: must name two bodies", bodies)
+        (pa, pb) = t.points("points", 2)
+        extra = {"axis": t.point("axis")} if "axis" in t else {}
+        fn = m.revolute if kind == "revolute" else m.prismatic
+        self.call(t, fn, bodies[0], pa, bodies[1], pb, name=name, **extra)
+
+    def driver(self, m: Mechanism, t: _Table) -> None:
+        name = t.string("name", None)
+        self._register("driver", name, t)
+        body = t.string("body")
+        if "rpm" in t:
+            if "omega" in t:
+                raise t.error("rpm", "invalid [[driver]]: give omega [rad/s] or rpm, not both")
+            omega: Optional[float] = t.number("rpm") * 2 * math.pi / 60.0
+        else:
+            omega = t.number("omega", None)
+        kwargs = dict(
+            omega=omega, angle0=t.number("angle0", None), polynomial=t.numbers("polynomial", None),
+            times=t.numbers("times", None), angles=t.numbers("angles", None), name=name,
+        )  # fmt: skip
+        self.call(t, m.driver, body, **kwargs)
+
+    def clearance_joint(self, m: Mechanism, t: _Table) -> None:
+        name = t.string("name")
+        self._register("clearance_joint", name, t)
+        kind = t.string("model", "dry", choices=("dry", "lubricated"))
+        other = "lubricated" if kind == "dry" else "dry"
+        if other in t:
+            raise t.error(other, f"[clearance_joint.{other}] given but model = {kind!r} (set model = {other!r} or remove the table)")
+        sub = t.table(kind, _model_fields(Dry if kind == "dry" else Lubricated))
+        model = (Dry() if kind == "dry" else Lubricated()) if sub is None else _read_model(sub, Dry if kind == "dry" else Lubricated)
+        self.call(
+            t, m.clearance_joint, name, t.string("bearing_body"), t.point("bearing_point"),
+            t.string("journal_body"), t.point("journal_point"), journal_radius=t.number("journal_radius"),
+            clearance=t.number("clearance"), model=model, initial_eccentricity=t.point("initial_eccentricity", [0.0, 0.0]),
+        )  # fmt: skip
+
+
+def _drive_speed(m: Mechanism) -> Optional[float]:
+    """ω [rad/s] of the first constant-speed driver, if any."""
+    for d in m.description()["drivers"]:
+        if d["law"]["kind"] == "constant_speed":
+            return float(d["law"]["omega"])
+    return None
+
+
+def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationSettings:
+    t = b.top.table("simulation", _SIM_KEYS)
+    if t is None:
+        raise b.src.error((), "simulation", "missing table [simulation] (with t_end [s] or cycles)")
+    t0 = t.number("t0", 0.0)
+    cycles = t.number("cycles", None)
+    period = t.number("period", None)
+    if "t_end" in t:
+        for key in ("cycles", "period"):
+            if key in t:
+                raise t.error(key, "invalid [simulation]: give t_end or cycles (× period), not both")
+        t_end = t.number("t_end")
+    elif cycles is not None:
+        if period is None:
+            omega = _drive_speed(m)
+            if not omega:
+                raise t.error("cycles", "invalid [simulation]: cycles needs period = ... [s] (no constant-speed driver to take it from)")
+            period = 2 * math.pi / abs(omega)
+        t_end = t0 + cycles * period
+    else:
+        raise t.error(None, "missing key 't_end' (or 'cycles') in [simulation]")
+    extra = t.strings("outputs", [], choices=OUTPUTS)
+    outputs = tuple(k for k in OUTPUTS if k in set(extra) | set(needed))
+    sim = SimulationSettings(
+        t_end=t_end, integrator=t.string("integrator", "rk45"), rtol=t.number("rtol", 1e-6), atol=t.number("atol", 1e-9),
+        t0=t0, step=t.number("step", None), dt_out=t.number("dt_out", None), h_max=t.number("h_max", None),
+        h_min=t.number("h_min", None), max_steps=t.integer("max_steps", None), outputs=outputs, cycles=cycles, period=period,
+    )  # fmt: skip
+    try:
+        m.run_settings(sim.t_end, **sim.kwargs())
+    except InputError as err:
+        key = err.field if err.field in t else ("cycles" if err.field == "t_end" and cycles is not None else None)
+        raise t.error(key, err.reason, err.value) from None
+    return sim
+
+
+def _outputs(b: _Builder, m: Mechanism) -> OutputSettings:
+    t = b.top.table("outputs", _OUTPUT_KEYS) or _Table(b.src, ("outputs",), {}, ())
+    joints = m.clearance_joint_names
+    out = OutputSettings(
+        bodies=t.strings("bodies", [], choices=m.body_names),
+        quantities=t.strings("quantities", list(BODY_QUANTITIES), choices=tuple(BODY_QUANTITIES)),
+        components=t.strings("components", list(COMPONENTS), choices=COMPONENTS),
+        joints=t.strings("joints", list(joints), choices=joints),
+        joint_quantities=t.strings("joint_quantities", ["eccentricity", "force"], choices=tuple(JOINT_QUANTITIES)),
+        ideal=t.boolean("ideal", bool(joints)),
+        csv=t.boolean("csv", True),
+        plots=t.boolean("plots", True),
+    )
+    return out
+
+
+def _reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]:
+    from .reliability import PAPER_ALLOWABLE
+
+    t = b.top.table("reliability", _RELIABILITY_KEYS)
+    if t is None:
+        return None
+    if not m.clearance_joint_names:
+        raise t.error(None, "invalid [reliability]: the mechanism has no clearance joint (errors are clearance − ideal)")
+    body = t.string("body", choices=m.body_names)
+    allowable: Dict[str, Tuple[float, float]] = dict(PAPER_ALLOWABLE)
+    a = t.table("allowable", tuple(RELIABILITY_QUANTITIES))
+    if a is not None:
+        allowable = {}
+        for q in RELIABILITY_QUANTITIES:
+            if q in a:
+                lo, hi = a.numbers(q, length=2)
+                if not lo < hi:
+                    raise a.error(q, f"invalid {_dotted(a.where, q)} = {[lo, hi]!r}: must be [lower, upper] with lower < upper", [lo, hi])
+                allowable[q] = (lo, hi)
+        if not allowable:
+            raise a.error(None, "invalid [reliability.allowable]: give at least one of " + ", ".join(RELIABILITY_QUANTITIES))
+    omega = t.number("omega", None)
+    if omega is None:
+        omega = _drive_speed(m)
+        if omega is None:
+            raise t.error(None, "missing key 'omega' in [reliability] (no constant-speed driver to take it from)")
+    if omega == 0.0 or not math.isfinite(omega):
+        raise t.error("omega", f"invalid reliability.omega = {omega!r}: must be a non-zero drive speed [rad/s]", omega)
+    bin_width = t.number("bin_width", 18.0)
+    if not 0.0 < bin_width <= 360.0:
+        raise t.error("bin_width", f"invalid reliability.bin_width = {bin_width!r}: must lie in (0, 360] degrees", bin_width)
+    return ReliabilitySettings(
+        body=body, component=t.string("component", choices=COMPONENTS), allowable=allowable, omega=omega,
+        bin_width=bin_width, t_start=t.number("t_start", 0.0),
+    )  # fmt: skip
+
+
+def _needed_channels(outputs: OutputSettings, reliability: Optional[ReliabilitySettings]) -> List[str]:
+    needed = ["violation"]
+    if outputs.bodies:
+        needed += [_CHANNEL_OF[q] for q in outputs.quantities]
+    if outputs.joints:
+        needed.append("joints")
+    if reliability is not None:
+        needed += [_CHANNEL_OF[b] for b, e in ERROR_QUANTITIES.items() if e in reliability.allowable]
+    return needed
+
+
+def load_scene_file(path: PathLike) -> Scene:
+    """Read a scene file: the mechanism and its run, output and reliability settings.
+
+    Raises :class:`InputError` ``"FILE:LINE: message"`` (attributes ``file``, ``line``,
+    ``field``, ``value``) for invalid TOML, unknown keys, wrong types, missing keys and values
+    the mechanism builder or the Rust core rejects.
+    """
+    path = Path(path)
+    src, data = _read(path)
+    top = _Table(src, (), data, _TOP_KEYS)
+    builder = _Builder(src, top)
+    mech = builder.build()
+    try:
+        # The Rust core's checks, located in the file. Not mech.compile(): a cached compiled
+        # model would make Mechanism.idealized() (a deepcopy) fail.
+        _core.compile(mech.description())
+    except InputError as err:
+        raise builder.relocate(err, None) from None
+    name = builder.mechanism_table.string("name", path.stem)
+    description = builder.mechanism_table.string("description", "")
+    outputs = _outputs(builder, mech)
+    reliability = _reliability(builder, mech)
+    sim = _simulation(builder, mech, _needed_channels(outputs, reliability))
+    # The ideal counterpart is made now: Mechanism.idealized() deep-copies, which fails once the
+    # mechanism holds a compiled Rust model (after a run).
+    return Scene(mech, sim, outputs, reliability, name=name, description=description, path=path, _ideal=mech.idealized())
+
+
+def load_scene(path: PathLike) -> Mechanism:
+    """The :class:`Mechanism` of a scene file (see :func:`load_scene_file` and the module
+    docstring for the format)."""
+    return load_scene_file(path).mechanism
+
+
+__all__ = [
+    "BODY_QUANTITIES",
+    "JOINT_QUANTITIES",
+    "OutputSettings",
+    "ReliabilitySettings",
+    "Scene",
+    "SceneRun",
+    "SimulationSettings",
+    "load_scene",
+    "load_scene_file",
+]
