@@ -44,6 +44,15 @@ impl RunSettings {
         if !(self.ode.atol > 0.0 && self.ode.atol.is_finite()) {
             return Err(Error::invalid("atol", self.ode.atol, "must be positive and finite"));
         }
+        if self.ode.max_steps == 0 {
+            return Err(Error::invalid("max_steps", self.ode.max_steps, "must be a positive integer"));
+        }
+        if !(self.ode.h_min >= 0.0 && self.ode.h_min.is_finite()) {
+            return Err(Error::invalid("h_min", self.ode.h_min, "must be a finite number ≥ 0"));
+        }
+        if !(self.ode.h_max > 0.0) {
+            return Err(Error::invalid("h_max", self.ode.h_max, "must be positive"));
+        }
         if let Method::Rk4 { step } = self.method {
             if !(step > 0.0 && step.is_finite()) {
                 return Err(Error::invalid("step", step, "must be positive and finite"));
@@ -107,24 +116,14 @@ impl<'a> MechanismSystem<'a> {
 
     /// Clearance-joint kinematics of joint `j` at state `y`.
     fn joint_kinematics(&self, j: usize, y: &[f64]) -> JointKinematics {
-        let joint = &self.model.clearance[j];
         let n = 3 * self.model.n_bodies();
-        let body = |b: Option<u32>| match b {
+        self.model.clearance[j].kinematics_with(|b| match b {
             None => BodyKin::GROUND,
             Some(i) => {
                 let o = 3 * i as usize;
                 BodyKin::new(&y[o..o + 3], &y[n + o..n + o + 3])
             }
-        };
-        JointKinematics::new(
-            &body(joint.bearing),
-            joint.bearing_point,
-            &body(joint.journal),
-            joint.journal_point,
-            joint.journal_radius,
-            joint.bearing_radius,
-            joint.clearance,
-        )
+        })
     }
 
     /// The clearance joint closest to (or deepest in) contact at the last accepted state.

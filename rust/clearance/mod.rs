@@ -65,11 +65,16 @@ impl ClearanceJoint {
     /// Kinematics of the journal relative to the bearing (spec §2).
     #[inline]
     pub fn kinematics(&self, kin: &[BodyKin]) -> JointKinematics {
-        let get = |b: Option<u32>| b.map_or(BodyKin::GROUND, |i| kin[i as usize]);
+        self.kinematics_with(|b| b.map_or(BodyKin::GROUND, |i| kin[i as usize]))
+    }
+
+    /// The same, with the bodies' kinematics supplied by `body` (`None` is the ground).
+    #[inline]
+    pub fn kinematics_with(&self, body: impl Fn(Option<u32>) -> BodyKin) -> JointKinematics {
         JointKinematics::new(
-            &get(self.bearing),
+            &body(self.bearing),
             self.bearing_point,
-            &get(self.journal),
+            &body(self.journal),
             self.journal_point,
             self.journal_radius,
             self.bearing_radius,
