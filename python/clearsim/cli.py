@@ -428,3 +428,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 
 
 __all__ = ["build_parser", "main", "summarize", "write_csv", "write_run"]
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
