@@ -155,3 +155,20 @@ def test_lubricated_nine_bar_holds_the_journals_in_the_film():
         eps = np.linalg.norm(res.eccentricity(j), axis=1) / 0.5e-3
         assert np.max(eps) < 1.0
         assert np.all(res.contact_state(j) == 0)
+
+
+def test_lubricated_joint_uses_the_dry_law_only_beyond_the_clearance():
+    """μ = 0.04 Pa s lets the journals sink into the transition band (spec §7): the dry weight
+    is 0 for e ≤ c, the linear blend (e − c)/e0 inside the band and 1 beyond (P18)."""
+    c = 0.5e-3
+    lub = clearsim.Lubricated(viscosity=0.04, length=0.05)
+    res = models.nine_bar("lubricated", clearance=c, lubricated=lub).simulate(0.2, dt_out=1e-4)
+    seen_band = False
+    for j in ("A", "B"):
+        e = np.linalg.norm(res.eccentricity(j), axis=1)
+        w = res.dry_weight(j)
+        expected = np.clip((e - c) / (0.05 * c), 0.0, 1.0)
+        np.testing.assert_allclose(w, expected, atol=1e-12)
+        assert np.all(res.film_force(j)[e >= 1.05 * c] == 0.0)
+        seen_band |= bool(np.any((e > c) & (e < 1.05 * c)))
+    assert seen_band
