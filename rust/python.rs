@@ -299,6 +299,7 @@ fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
     let method = match r.string("method")?.as_str() {
         "rk45" | "dopri5" => Method::Dopri5,
         "dop853" => Method::Dop853,
+        "rodas4" => Method::Rodas4,
         "rk4" => Method::Rk4 { step: r.f64("step")? },
         other => return Err(input_error(py, "integrator", other, "must be 'rk45', 'dop853', 'rk4' or 'rodas4'")),
     };

@@ -13,6 +13,7 @@ use crate::error::Error;
 pub mod controller;
 pub mod dense;
 mod explicit_rk;
+mod stiff;
 pub mod tableau;
 
 /// A first-order ODE system `ẏ = f(t, y)` with hooks the mechanism needs.
@@ -57,6 +58,9 @@ pub enum Method {
     Dopri5,
     /// Dormand–Prince 8(5,3) with 7th-order dense output (Hairer's DOP853).
     Dop853,
+    /// RODAS4: L-stable, stiffly accurate Rosenbrock 4(3) with 3rd-order dense output and a
+    /// finite-difference Jacobian (Hairer–Wanner's RODAS), for stiff phases (`stiff.rs`).
+    Rodas4,
 }
 
 /// Tolerances and limits for adaptive methods (ignored by RK4 except `max_steps`).

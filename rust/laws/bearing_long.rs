@@ -116,6 +116,7 @@ fn wedge_squeeze_zero(eps: f64, a: f64, s: f64) -> f64 {
     let (a, s) = if a > 0.0 { (a, s) } else { (-a, -s) };
     let (mut lo, mut hi) = (0.0_f64, PI);
     let mut phi = a.atan2(-s);
+    let mut last_newton = f64::INFINITY;
     for _ in 0..80 {
         let (sp, cp) = phi.sin_cos();
         let c2 = cp * cp;
@@ -130,12 +131,21 @@ fn wedge_squeeze_zero(eps: f64, a: f64, s: f64) -> f64 {
         }
         let df = -a * sp * (2.0 - eps + 6.0 * eps * c2) + 2.0 * s * cp * (1.0 + eps * c2 - 2.0 * eps * sp * sp);
         let newton = phi - f / df;
-        let next = if newton >= lo && newton <= hi { newton } else { 0.5 * (lo + hi) };
+        let in_bracket = newton >= lo && newton <= hi;
+        let next = if in_bracket { newton } else { 0.5 * (lo + hi) };
         let step = (next - phi).abs();
         phi = next;
         let tol = 4e-16 * phi;
         if step <= tol || hi - lo <= tol {
             break;
+        }
+        // Newton has stalled at the rounding level of f (small φ, where the relative tolerance
+        // is below f's absolute noise): stop instead of spinning through all 80 iterations.
+        if in_bracket {
+            if step >= 0.5 * last_newton && step <= 1e-12 * phi {
+                break;
+            }
+            last_newton = step;
         }
     }
     phi

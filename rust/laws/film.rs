@@ -52,13 +52,17 @@ impl FilmState {
 
 /// Which hydrodynamic film model a lubricated joint uses.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 pub enum FilmModel {
     /// Long (Pinkus–Sternlicht, infinitely long) bearing, pressure P12 corrected, Gümbel
     /// condition on the exact zeros of p (the paper's model; L/D > 2).
+    #[cfg_attr(feature = "serde", serde(rename = "long"))]
     LongBearing,
     /// Short (Ocvirk) bearing with wedge and squeeze, Gümbel condition (L/D < 1).
+    #[cfg_attr(feature = "serde", serde(rename = "short"))]
     ShortBearing,
     /// The paper's printed closed forms, Eqs. (13)–(14), errors included (labelled variant).
+    #[cfg_attr(feature = "serde", serde(rename = "long_paper"))]
     LongBearingPaperClosedForm,
 }
 

@@ -5,6 +5,7 @@ use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
 
 /// A rigid body: reference point at the centroid (spec §1, P19).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyDesc {
     pub name: String,
@@ -15,8 +16,10 @@ pub struct BodyDesc {
     /// Approximate centroid position [m] at t0 (refined by the kinematic assembly).
     pub position: [f64; 2],
     /// Approximate angle [rad] at t0.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub angle: f64,
     /// Optional initial velocity guess (ẋ, ẏ, θ̇) [m/s, rad/s]; projected onto the constraints.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub velocity: [f64; 3],
 }
 
@@ -24,6 +27,8 @@ pub struct BodyDesc {
 pub type BodyRef = Option<usize>;
 
 /// An ideal joint: a set of holonomic constraints (spec §1).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum JointDesc {
     /// Revolute joint: point `point_a` of body a coincides with `point_b` of body b (2 equations).
@@ -35,6 +40,8 @@ pub enum JointDesc {
 }
 
 /// A prescribed angle law θ(t) for a driving constraint `θ_body − f(t) = 0`.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum AngleLaw {
     /// θ = angle0 + ω t.
@@ -46,6 +53,7 @@ pub enum AngleLaw {
 }
 
 /// A driving constraint on a body's angle.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct DriverDesc {
     pub name: String,
@@ -54,6 +62,7 @@ pub struct DriverDesc {
 }
 
 /// Parameters of a dry clearance joint (spec §3).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct DryDesc {
     pub normal_law: NormalLaw,
@@ -81,6 +90,7 @@ pub struct DryDesc {
 }
 
 /// Parameters of a lubricated clearance joint (spec §4).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct LubricatedDesc {
     pub film: FilmModel,
@@ -99,6 +109,8 @@ pub struct LubricatedDesc {
     pub dry: DryDesc,
 }
 
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum ClearanceModelDesc {
     Dry(DryDesc),
@@ -106,6 +118,7 @@ pub enum ClearanceModelDesc {
 }
 
 /// A revolute joint with radial clearance: bearing (hole) on one body, journal (pin) on another.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClearanceJointDesc {
     pub name: String,
@@ -119,10 +132,12 @@ pub struct ClearanceJointDesc {
     pub clearance: f64,
     pub model: ClearanceModelDesc,
     /// Initial eccentricity vector e = r_Pj − r_Pi [m] (global frame); zero is centred.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub initial_eccentricity: [f64; 2],
 }
 
 /// Everything needed to compile a model.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct MechanismDesc {
     pub bodies: Vec<BodyDesc>,

@@ -1,0 +1,207 @@
+"""Work–precision study: error of the slider's displacement and acceleration against wall time.
+
+For the nine-bar (dry, lubricated μ = 0.4 Pa s and the stiff hard case μ = 0.04 Pa s; 0.5 mm;
+one cycle) and the slider-crank (dry, lubricated; one cycle), against a DOP853 reference at
+rtol 1e-12: clearsim's RK4 at several steps, RK45, DOP853 and RODAS4 at several tolerances, and
+SciPy's RK45, DOP853 and Radau driving ``m.rhs``. Writes ``docs/work_precision.csv`` and
+``docs/work_precision.png`` (plus one PNG per case from ``clearsim.plots.plot_work_precision``).
+
+Usage: ``python benches/work_precision.py [--quick] [--cases nine_bar_lubricated,...]``
+(a few minutes; not part of CI). SciPy runs are stopped after ``--budget`` seconds each.
+
+Note: ``m.rhs`` has no impact memory (δ̇⁽⁻⁾ is the current approach speed), so on the dry models
+SciPy integrates a slightly different contact law; its error there includes that difference.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from fixtures import CYCLE, MODELS  # noqa: E402
+
+DOCS = Path(__file__).resolve().parent.parent / "docs"
+
+#: case -> (fixture, slider body, axis of motion, RK4 steps [s])
+CASES = {
+    "nine_bar_dry": ("nine_bar_dry", "slider9", 1, [2e-5, 1e-5, 5e-6, 2e-6]),
+    "nine_bar_lubricated": ("nine_bar_lubricated", "slider9", 1, [4e-5, 2e-5, 1e-5, 5e-6]),
+    "nine_bar_lubricated_mu004": ("nine_bar_lubricated_mu004", "slider9", 1, [4e-5, 2e-5, 1e-5, 5e-6]),
+    "slider_crank_dry": ("slider_crank_dry", "slider", 0, [2e-6, 1e-6, 5e-7, 2e-7]),
+    "slider_crank_lubricated": ("slider_crank_lubricated", "slider", 0, [1e-6, 5e-7, 2e-7, 1e-7]),
+}
+
+TOLS = {
+    "rk45": [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
+    "dop853": [1e-4, 1e-6, 1e-8, 1e-10],
+    "rodas4": [1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
+    "scipy_RK45": [1e-3, 1e-4, 1e-6, 1e-8],
+    "scipy_DOP853": [1e-4, 1e-6, 1e-8],
+    "scipy_Radau": [1e-3, 1e-4, 1e-5],
+}
+
+
+class Budget(Exception):
+    pass
+
+
+def errors(pos, acc, ref_pos, ref_acc):
+    return float(np.max(np.abs(pos - ref_pos))), float(np.max(np.abs(acc - ref_acc)))
+
+
+def run_case(case, quick, budget, rows):
+    fixture, slider, axis, rk4_steps = CASES[case]
+    m = MODELS[fixture]()
+    family = "nine_bar" if case.startswith("nine") else "slider_crank"
+    t_end = CYCLE[family]
+    t = np.linspace(0.0, t_end, 1001)
+    k = m.body_names.index(slider)
+    n = 3 * len(m.body_names)
+    # The reference: DOP853 at rtol 1e-12; a lubricated journal crossing the small-eccentricity
+    # regularisation (ε^m for ε < ε0, non-smooth at ε0) can underflow the step there, then the
+    # next tolerance is used (recorded in the CSV's note column).
+    for ref_tol in (1e-12, 1e-11, 1e-10):
+        try:
+            ref = m.simulate(t_end, integrator="dop853", rtol=ref_tol, atol=ref_tol * 1e-3, t_out=t)
+            break
+        except Exception as e:
+            print(f"reference at rtol {ref_tol:g} failed: {e}"[:160])
+    ref_pos, ref_acc = ref.position(slider)[:, axis], ref.acceleration(slider)[:, axis]
+    print(f"\n== {case}: reference DOP853 {ref_tol:g}, {ref.stats['steps']} steps, {ref.stats['wall_time']:.2f} s", flush=True)
+
+    def record(method, param, wall, stats, pos, acc, note=""):
+        ep, ea = errors(pos, acc, ref_pos, ref_acc) if pos is not None else (math.nan, math.nan)
+        row = dict(case=case, method=method, param=param, wall_time=wall, err_displacement=ep, err_acceleration=ea,
+                   steps=stats.get("steps", ""), rhs_evals=stats.get("rhs_evaluations", ""),
+                   note=(note + f" ref rtol {ref_tol:g}" if ref_tol != 1e-12 else note).strip())
+        rows.append(row)
+        print(f"{method:>14} {param:>9.1e}  {wall:9.4f} s  err_x={ep:9.2e} m  err_a={ea:9.2e} m/s²  steps={row['steps']} {note}", flush=True)
+
+    def own(integrator, param, **kw):
+        t0 = time.perf_counter()
+        try:
+            r = m.simulate(t_end, integrator=integrator, t_out=t, **kw)
+            wall = time.perf_counter() - t0
+            record(integrator, param, wall, r.stats, r.position(slider)[:, axis], r.acceleration(slider)[:, axis])
+        except Exception as e:  # a failed run is a data point too
+            record(integrator, param, time.perf_counter() - t0, getattr(getattr(e, "result", None), "stats", {}) or {}, None, None,
+                   note=f"failed: {type(e).__name__}")
+
+    for h in rk4_steps[: 2 if quick else None]:
+        own("rk4", h, step=h)
+    for integ in ("rk45", "dop853", "rodas4"):
+        for tol in TOLS[integ][: 3 if quick else None]:
+            kw = dict(rtol=tol, atol=tol * 1e-3)
+            if integ == "rodas4":
+                kw["max_steps"] = 60_000
+            own(integ, tol, **kw)
+
+    y0 = m.initial_state()
+    for method in ("RK45", "DOP853", "Radau"):
+        for tol in TOLS[f"scipy_{method}"][: 2 if quick else None]:
+            calls = [0]
+            t0 = time.perf_counter()
+
+            def f(tt, y):
+                calls[0] += 1
+                if calls[0] % 256 == 0 and time.perf_counter() - t0 > budget:
+                    raise Budget()
+                return m.rhs(tt, y)
+
+            try:
+                sol = solve_ivp(f, (0.0, t_end), y0, method=method, rtol=tol, atol=tol * 1e-3, t_eval=t)
+                wall = time.perf_counter() - t0
+                if not sol.success:
+                    raise RuntimeError(sol.message)
+                pos = sol.y[3 * k + axis]
+                acc = np.array([m.rhs(tt, sol.y[:, i])[n + 3 * k + axis] for i, tt in enumerate(sol.t)])
+                record(f"scipy_{method}", tol, wall, {"steps": sol.t.size and len(sol.t), "rhs_evaluations": sol.nfev}, pos, acc,
+                       note="no impact memory" if "dry" in case else "")
+                rows[-1]["steps"] = ""
+            except Budget:
+                record(f"scipy_{method}", tol, time.perf_counter() - t0, {"rhs_evaluations": calls[0]}, None, None, note=f"stopped after {budget:.0f} s")
+            except Exception as e:
+                record(f"scipy_{method}", tol, time.perf_counter() - t0, {}, None, None, note=f"failed: {e}"[:80])
+
+
+def speedups(rows):
+    """clearsim RK45 vs SciPy RK45 at the same tolerance (hence about the same error)."""
+    out = []
+    for r in rows:
+        if r["method"] != "rk45":
+            continue
+        for s in rows:
+            if s["case"] == r["case"] and s["method"] == "scipy_RK45" and s["param"] == r["param"] and math.isfinite(s["err_displacement"]):
+                out.append((r["case"], r["param"], s["wall_time"] / r["wall_time"], r["err_displacement"], s["err_displacement"]))
+    return out
+
+
+def plot(rows, cases):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, len(cases), figsize=(4.2 * len(cases), 7.5), squeeze=False)
+    methods = ["rk4", "rk45", "dop853", "rodas4", "scipy_RK45", "scipy_DOP853", "scipy_Radau"]
+    markers = dict(zip(methods, "osD^vPX"))
+    for j, case in enumerate(cases):
+        for i, (key, unit) in enumerate([("err_displacement", "m"), ("err_acceleration", "m/s²")]):
+            ax = axes[i, j]
+            for meth in methods:
+                pts = sorted((r["wall_time"], r[key]) for r in rows if r["case"] == case and r["method"] == meth and r[key] > 0 and math.isfinite(r[key]))
+                if pts:
+                    ax.loglog(*zip(*pts), marker=markers[meth], ls="--" if meth.startswith("scipy") else "-", label=meth)
+            ax.set_title(f"{case}\n{'displacement' if i == 0 else 'acceleration'}", fontsize=9)
+            ax.set_xlabel("wall time [s]")
+            ax.set_ylabel(f"max |error| [{unit}]")
+            ax.grid(True, which="both", alpha=0.3)
+    axes[0, 0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(DOCS / "work_precision.png", dpi=110)
+    try:
+        from clearsim.plots import plot_work_precision
+
+        for case in cases:
+            sub = [dict(r, error=r["err_displacement"]) for r in rows if r["case"] == case]
+            f = plot_work_precision(sub, y="error", annotate="param", title=f"{case}: slider displacement, one cycle")
+            f.savefig(DOCS / f"work_precision_{case}.png", dpi=110)
+    except Exception as e:  # the plotting helper is optional
+        print("plot_work_precision unavailable:", e)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--budget", type=float, default=60.0)
+    a = ap.parse_args()
+    cases = a.cases.split(",")
+    rows = []
+    DOCS.mkdir(exist_ok=True)
+    for case in cases:
+        try:
+            run_case(case, a.quick, a.budget, rows)
+        except Exception as e:
+            print(f"case {case} failed: {e}")
+        with open(DOCS / "work_precision.csv", "w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+    print("\nclearsim RK45 vs SciPy RK45 on m.rhs (same rtol):")
+    for case, tol, ratio, e1, e2 in speedups(rows):
+        print(f"  {case:28s} rtol {tol:.0e}: {ratio:7.1f}x faster  (errors {e1:.2e} vs {e2:.2e} m)")
+    plot(rows, cases)
+    print("wrote", DOCS / "work_precision.csv", DOCS / "work_precision.png")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,608 @@
+//! RODAS4: a stiffly accurate, L-stable Rosenbrock method of order 4 with an embedded 3rd-order
+//! error estimate and a 3rd-order dense output (Hairer & Wanner, *Solving ODEs II*, §IV.7 and
+//! §VI.4; coefficients and algorithm of their code `RODAS`, `METH = 1`).
+//!
+//! For stiff phases of a mechanism: a lubricated joint whose film squeeze term grows without
+//! bound as ε → 1 (low viscosity, small clearance), high contact stiffness, or a journal resting
+//! in the film-to-contact transition. Each step solves six linear systems with the same matrix
+//! `E = I/(hγ) − J`, where `J = ∂f/∂y` is a forward-difference Jacobian (one `f` per state
+//! component, recomputed after every accepted step and kept on rejections) and `∂f/∂t` a forward
+//! difference in `t`. `E` is factorised by faer's partial-pivoting LU, in place, with a scratch
+//! stack allocated once; the whole workspace is allocated once per run.
+//!
+//! In the transformed form (Hairer–Wanner IV.7.25) with `u_i` the stage increments,
+//! `(I/(hγ) − J) u_i = f(t + c_i h, y + Σ_{j<i} a_ij u_j) + Σ_{j<i} (c_ij/h) u_j + h d_i f_t`;
+//! the method is stiffly accurate, so `y1 = y + a_51..a_54 u + u_5 + u_6` and `u_6` is the error.
+//! Dense output: `y(θ) = (1−θ) y0 + θ (y1 + (1−θ)(r2 + θ r3))`, `r2 = Σ d2j u_j`, `r3 = Σ d3j u_j`.
+//!
+//! Cost per step: `n + 7` evaluations of `f` (Jacobian, `f_t`, the initial `f` and five stages)
+//! and one LU of an `n × n` matrix: much more than an explicit step, worth it when an explicit
+//! method is held to tiny steps by stability rather than accuracy.
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve};
+use faer::perm::PermRef;
+use faer::{Mat, Par};
+
+use super::controller::initial_step;
+use super::{DenseOutput, OdeSystem, Settings, Stats};
+use crate::error::Error;
+
+/// Coefficients of RODAS4 (Hairer's `ROCOE`, `METH = 1`).
+#[allow(clippy::excessive_precision)]
+pub mod rodas4 {
+    pub const GAMMA: f64 = 0.25;
+    pub const C2: f64 = 0.386;
+    pub const C3: f64 = 0.21;
+    pub const C4: f64 = 0.63;
+    /// `γ_i` multiplying `h f_t` in stages 1–4 (stages 5–6: 0).
+    pub const D: [f64; 4] = [0.25, -0.1043, 0.1035, -0.03620000000000023];
+    pub const A21: f64 = 1.544;
+    pub const A31: f64 = 0.9466785280815826;
+    pub const A32: f64 = 0.2557011698983284;
+    pub const A41: f64 = 3.314825187068521;
+    pub const A42: f64 = 2.896124015972201;
+    pub const A43: f64 = 0.9986419139977817;
+    pub const A51: f64 = 1.221224509226641;
+    pub const A52: f64 = 6.019134481288629;
+    pub const A53: f64 = 12.53708332932087;
+    pub const A54: f64 = -0.687886036105895;
+    pub const C21: f64 = -5.6688;
+    pub const C31: f64 = -2.430093356833875;
+    pub const C32: f64 = -0.2063599157091915;
+    pub const C41: f64 = -0.1073529058151375;
+    pub const C42: f64 = -9.594562251023355;
+    pub const C43: f64 = -20.47028614809616;
+    pub const C51: f64 = 7.496443313967647;
+    pub const C52: f64 = -10.24680431464352;
+    pub const C53: f64 = -33.99990352819905;
+    pub const C54: f64 = 11.7089089320616;
+    pub const C61: f64 = 8.083246795921522;
+    pub const C62: f64 = -7.981132988064893;
+    pub const C63: f64 = -31.52159432874371;
+    pub const C64: f64 = 16.31930543123136;
+    pub const C65: f64 = -6.058818238834054;
+    /// Dense output rows `r2`, `r3` (weights of `u_1..u_5`).
+    pub const D2: [f64; 5] = [10.12623508344586, -7.487995877610167, -34.80091861555747, -7.992771707568823, 1.025137723295662];
+    pub const D3: [f64; 5] = [-0.6762803392801253, 6.087714651680015, 16.43084320892478, 24.76722511418386, -6.594389125716872];
+}
+
+const UROUND: f64 = f64::EPSILON;
+
+/// Dense output of one RODAS4 step.
+struct RodasDense {
+    t0: f64,
+    t1: f64,
+    y0: Vec<f64>,
+    y1: Vec<f64>,
+    r2: Vec<f64>,
+    r3: Vec<f64>,
+}
+
+impl DenseOutput for RodasDense {
+    fn interval(&self) -> (f64, f64) {
+        (self.t0, self.t1)
+    }
+    fn eval(&self, t: f64, out: &mut [f64]) {
+        let span = self.t1 - self.t0;
+        let s = if span != 0.0 { (t - self.t0) / span } else { 0.0 };
+        let s1 = 1.0 - s;
+        for (i, o) in out.iter_mut().enumerate().take(self.y0.len()) {
+            *o = s1 * self.y0[i] + s * (self.y1[i] + s1 * (self.r2[i] + s * self.r3[i]));
+        }
+    }
+}
+
+/// The LU-factorised iteration matrix `E = I/(hγ) − J` and its preallocated storage.
+struct Lu {
+    e: Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    rhs: Mat<f64>,
+    mem: MemBuffer,
+}
+
+impl Lu {
+    fn new(n: usize) -> Self {
+        let req = StackReq::any_of(&[
+            lu_factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default()),
+            lu_solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq),
+        ]);
+        Lu { e: Mat::zeros(n, n), perm: vec![0; n], perm_inv: vec![0; n], rhs: Mat::zeros(n, 1), mem: MemBuffer::new(req) }
+    }
+
+    /// Factorise `fac·I − J`.
+    fn factor(&mut self, jac: &Mat<f64>, fac: f64) {
+        let n = self.perm.len();
+        for j in 0..n {
+            for i in 0..n {
+                self.e[(i, j)] = -jac[(i, j)];
+            }
+            self.e[(j, j)] += fac;
+        }
+        let mut stack = MemStack::new(&mut self.mem);
+        lu_factor::lu_in_place(self.e.as_mut(), &mut self.perm, &mut self.perm_inv, Par::Seq, &mut stack, Default::default());
+    }
+
+    /// `x ← E⁻¹ x`.
+    fn solve(&mut self, x: &mut [f64]) {
+        let n = x.len();
+        for (i, v) in x.iter().enumerate() {
+            self.rhs[(i, 0)] = *v;
+        }
+        let perm = PermRef::new_checked(&self.perm, &self.perm_inv, n);
+        let mut stack = MemStack::new(&mut self.mem);
+        let lu = self.e.as_ref();
+        lu_solve::solve_in_place(lu, lu, perm, self.rhs.as_mut(), Par::Seq, &mut stack);
+        for (i, v) in x.iter_mut().enumerate() {
+            *v = self.rhs[(i, 0)];
+        }
+    }
+}
+
+/// `out = y + Σ w_j u_j` (`u_j = u[j*n..]`).
+fn lincomb(out: &mut [f64], y: &[f64], w: &[f64], u: &[f64]) {
+    let n = out.len();
+    out.copy_from_slice(y);
+    for (j, &wj) in w.iter().enumerate() {
+        for (o, v) in out.iter_mut().zip(&u[j * n..(j + 1) * n]) {
+            *o += wj * v;
+        }
+    }
+}
+
+/// `out = Σ w_j u_j`.
+fn weighted(out: &mut [f64], w: &[f64], u: &[f64]) {
+    let n = out.len();
+    out.fill(0.0);
+    for (j, &wj) in w.iter().enumerate() {
+        for (o, v) in out.iter_mut().zip(&u[j * n..(j + 1) * n]) {
+            *o += wj * v;
+        }
+    }
+}
+
+fn all_finite(v: &[f64]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+fn non_finite(t: f64) -> Error {
+    Error::NonFinite { t, detail: String::new() }
+}
+
+/// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.
+fn emit<S: OdeSystem>(sys: &mut S, t_out: &[f64], next: &mut usize, t1: f64, dense: &dyn DenseOutput, buf: &mut [f64]) -> Result<(), Error> {
+    while let Some(&t) = t_out.get(*next) {
+        if t > t1 {
+            break;
+        }
+        dense.eval(t, buf);
+        sys.output(t, buf)?;
+        *next += 1;
+    }
+    Ok(())
+}
+
+/// The RODAS4 driver loop (Hairer's `ROSCOR`), with the same contract as the explicit drivers:
+/// outputs from the dense output, `step_accepted` after every accepted step, errors
+/// `StepSizeUnderflow` / `NonFinite` / `TooManySteps`. The input has been validated.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn drive_rodas4<S: OdeSystem>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    t_out: &[f64],
+    st: &Settings,
+    stats: &mut Stats,
+) -> Result<(), Error> {
+    use rodas4::*;
+    let n = y0.len();
+    // Work vectors, allocated once.
+    let mut y = y0.to_vec();
+    let mut ynew = vec![0.0; n];
+    let mut f0 = vec![0.0; n]; // f(t, y)
+    let mut ft = vec![0.0; n]; // ∂f/∂t
+    let mut dy = vec![0.0; n];
+    let mut ysafe = vec![0.0; n];
+    let mut u = vec![0.0; 6 * n];
+    let mut buf = vec![0.0; n];
+    let mut jac = Mat::<f64>::zeros(n, n);
+    let mut lu = Lu::new(n);
+    let mut dense = RodasDense { t0, t1: t0, y0: vec![0.0; n], y1: vec![0.0; n], r2: vec![0.0; n], r3: vec![0.0; n] };
+
+    let mut next_out = t_out.partition_point(|&t| t < t0);
+    while t_out.get(next_out) == Some(&t0) {
+        sys.output(t0, y0)?;
+        next_out += 1;
+    }
+    if t_end == t0 {
+        return Ok(());
+    }
+    let mut t = t0;
+    sys.rhs(t, &y, &mut f0)?;
+    stats.rhs_evals += 1;
+    if !all_finite(&f0) {
+        return Err(non_finite(t));
+    }
+    let mut h = match st.h0 {
+        Some(h0) => h0,
+        None => {
+            let h = initial_step(sys, t, &y, &f0, 4, st.h_max.min(t_end - t0), st.rtol, st.atol, &mut ynew, &mut dy)?;
+            stats.rhs_evals += 1;
+            h.max(st.h_min)
+        }
+    };
+    // Step-size control of RODAS: h_new/h ∈ [1/5, 6], safety 0.9, Gustafsson's predictive
+    // controller after the first accepted step.
+    let (fac_lo, fac_hi, safe) = (1.0 / 6.0, 5.0, 0.9);
+    let (mut h_acc, mut err_acc) = (h, 1.0f64);
+    let mut reject = false;
+    let mut need_jac = true;
+    let mut singular = 0usize;
+
+    loop {
+        h = h.min(st.h_max);
+        let floor = st.h_min.max(1e-14 * t.abs());
+        if !(h > 0.0 && h >= floor) {
+            return Err(Error::StepSizeUnderflow { t, h, detail: String::new() });
+        }
+        if stats.steps_accepted + stats.steps_rejected >= st.max_steps {
+            return Err(Error::TooManySteps { t, max_steps: st.max_steps });
+        }
+        let (hs, t1, last) = if t + 1.01 * h < t_end {
+            (h, t + h, false)
+        } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
+            (t_end - t, t_end, true)
+        } else {
+            let half = 0.5 * (t_end - t);
+            (half, t + half, false)
+        };
+
+        if need_jac {
+            // ∂f/∂t and J = ∂f/∂y by forward differences (RODAS's increments).
+            let delt = (UROUND * t.abs().max(1e-5)).sqrt();
+            sys.rhs(t + delt, &y, &mut ft)?;
+            for i in 0..n {
+                ft[i] = (ft[i] - f0[i]) / delt;
+            }
+            ysafe.copy_from_slice(&y);
+            for j in 0..n {
+                let delt = (UROUND * 1e-5f64.max(y[j].abs())).sqrt();
+                ysafe[j] = y[j] + delt;
+                sys.rhs(t, &ysafe, &mut dy)?;
+                ysafe[j] = y[j];
+                for i in 0..n {
+                    jac[(i, j)] = (dy[i] - f0[i]) / delt;
+                }
+            }
+            stats.rhs_evals += n + 1;
+            need_jac = false;
+        }
+
+        let fac = 1.0 / (hs * GAMMA);
+        lu.factor(&jac, fac);
+        let hd: [f64; 4] = [hs * D[0], hs * D[1], hs * D[2], hs * D[3]];
+        // Stage 1.
+        for i in 0..n {
+            u[i] = f0[i] + hd[0] * ft[i];
+        }
+        lu.solve(&mut u[..n]);
+        // Stages 2..6.
+        let stage_a: [&[f64]; 4] = [&[A21], &[A31, A32], &[A41, A42, A43], &[A51, A52, A53, A54]];
+        let stage_c: [&[f64]; 5] = [&[C21], &[C31, C32], &[C41, C42, C43], &[C51, C52, C53, C54], &[C61, C62, C63, C64, C65]];
+        let stage_t = [t + C2 * hs, t + C3 * hs, t + C4 * hs, t1, t1];
+        for s in 1..6 {
+            if s < 5 {
+                lincomb(&mut ynew, &y, stage_a[s - 1], &u);
+            } else {
+                // Embedded solution y + Σ a5j u_j + u_5, already in ynew after stage 5.
+                for i in 0..n {
+                    ynew[i] += u[4 * n + i];
+                }
+            }
+            sys.rhs(stage_t[s - 1], &ynew, &mut dy)?;
+            stats.rhs_evals += 1;
+            let (done, cur) = u.split_at_mut(s * n);
+            let cur = &mut cur[..n];
+            cur.copy_from_slice(&dy);
+            if s < 4 {
+                let hds = hd[s];
+                for i in 0..n {
+                    cur[i] += hds * ft[i];
+                }
+            }
+            for (j, &cij) in stage_c[s - 1].iter().enumerate() {
+                let w = cij / hs;
+                for (c, v) in cur.iter_mut().zip(&done[j * n..(j + 1) * n]) {
+                    *c += w * v;
+                }
+            }
+            lu.solve(cur);
+        }
+        for i in 0..n {
+            ynew[i] += u[5 * n + i];
+        }
+
+        // Error estimate u_6, RMS norm scaled by atol + rtol·max(|y|, |y1|).
+        let mut err = 0.0;
+        for i in 0..n {
+            let sk = st.atol + st.rtol * y[i].abs().max(ynew[i].abs());
+            err += (u[5 * n + i] / sk) * (u[5 * n + i] / sk);
+        }
+        let err = (err / n.max(1) as f64).sqrt();
+        if !err.is_finite() {
+            // A singular or hopeless iteration matrix: halve the step a few times (RODAS), then give up.
+            singular += 1;
+            if singular >= 5 || !all_finite(&f0) {
+                return Err(non_finite(t));
+            }
+            stats.steps_rejected += 1;
+            reject = true;
+            h = 0.5 * hs;
+            continue;
+        }
+        singular = 0;
+        let mut q = (err.powf(0.25) / safe).clamp(fac_lo, fac_hi);
+        if err <= 1.0 {
+            if stats.steps_accepted > 0 {
+                let qg = ((h_acc / hs) * (err * err / err_acc).powf(0.25) / safe).clamp(fac_lo, fac_hi);
+                q = q.max(qg);
+            }
+            h_acc = hs;
+            err_acc = err.max(1e-2);
+            if !all_finite(&ynew) {
+                return Err(non_finite(t));
+            }
+            // Dense output of [t, t1].
+            dense.t0 = t;
+            dense.t1 = t1;
+            dense.y0.copy_from_slice(&y);
+            dense.y1.copy_from_slice(&ynew);
+            weighted(&mut dense.r2, &D2, &u);
+            weighted(&mut dense.r3, &D3, &u);
+            stats.steps_accepted += 1;
+            stats.h_min_used = stats.h_min_used.min(hs);
+            stats.h_max_used = stats.h_max_used.max(hs);
+            stats.t_reached = t1;
+            sys.step_accepted(t, &y, t1, &ynew, &dense)?;
+            emit(sys, t_out, &mut next_out, t1, &dense, &mut buf)?;
+            std::mem::swap(&mut y, &mut ynew);
+            t = t1;
+            if last {
+                return Ok(());
+            }
+            // f at the new point (always fresh: the system may have changed its memory).
+            sys.rhs(t, &y, &mut f0)?;
+            stats.rhs_evals += 1;
+            if !all_finite(&f0) {
+                return Err(non_finite(t));
+            }
+            need_jac = true;
+            let mut h_new = hs / q;
+            if reject {
+                h_new = h_new.min(hs);
+            }
+            reject = false;
+            h = h_new;
+        } else {
+            stats.steps_rejected += 1;
+            reject = true;
+            h = hs / q;
+        }
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::excessive_precision)] // literature values of the test problems
+mod tests {
+    use super::super::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
+    use crate::error::Error;
+
+    type Rhs = fn(f64, &[f64], &mut [f64]) -> Result<(), Error>;
+
+    struct Sys {
+        dim: usize,
+        f: Rhs,
+        outputs: Vec<(f64, Vec<f64>)>,
+        accepted: usize,
+        /// Largest |dense(t) − exact(t)| at step midpoints, when `exact` is given.
+        exact: Option<fn(f64) -> Vec<f64>>,
+        dense_err: f64,
+    }
+
+    impl Sys {
+        fn new(dim: usize, f: Rhs) -> Self {
+            Sys { dim, f, outputs: vec![], accepted: 0, exact: None, dense_err: 0.0 }
+        }
+    }
+
+    impl OdeSystem for Sys {
+        fn dim(&self) -> usize {
+            self.dim
+        }
+        fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+            (self.f)(t, y, dy)
+        }
+        fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], d: &dyn DenseOutput) -> Result<bool, Error> {
+            assert_eq!(d.interval(), (t0, t1));
+            let mut b = vec![0.0; self.dim];
+            d.eval(t0, &mut b);
+            assert!(b.iter().zip(y0).all(|(a, c)| (a - c).abs() <= 1e-14 * (1.0 + c.abs())));
+            d.eval(t1, &mut b);
+            assert!(b.iter().zip(y1).all(|(a, c)| (a - c).abs() <= 1e-14 * (1.0 + c.abs())));
+            if let Some(ex) = self.exact {
+                let tm = 0.5 * (t0 + t1);
+                d.eval(tm, &mut b);
+                let e = ex(tm);
+                // Local dense error relative to the step's own end-point error.
+                let y1e = ex(t1);
+                let end_err = y1.iter().zip(&y1e).map(|(a, c)| (a - c).abs()).fold(0.0, f64::max);
+                let mid_err = b.iter().zip(&e).map(|(a, c)| (a - c).abs()).fold(0.0, f64::max);
+                self.dense_err = self.dense_err.max(mid_err - end_err);
+            }
+            self.accepted += 1;
+            Ok(false)
+        }
+        fn output(&mut self, t: f64, y: &[f64]) -> Result<(), Error> {
+            self.outputs.push((t, y.to_vec()));
+            Ok(())
+        }
+    }
+
+    /// y' = −y + sin t·y₂ …: a smooth non-autonomous linear test with a known solution
+    /// y = (cos t, sin t)·e^{−t/10}.
+    fn spiral(_t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = -0.1 * y[0] - y[1];
+        dy[1] = y[0] - 0.1 * y[1];
+        Ok(())
+    }
+    fn spiral_exact(t: f64) -> Vec<f64> {
+        let d = (-0.1 * t).exp();
+        vec![d * t.cos(), d * t.sin()]
+    }
+    /// Non-autonomous scalar: y' = −50 (y − cos t), exact solution from y(0) = 0.
+    fn prothero(t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = -50.0 * (y[0] - t.cos());
+        Ok(())
+    }
+    fn prothero_exact(t: f64) -> f64 {
+        // y = (2500 cos t + 50 sin t)/2501 − 2500/2501 e^{−50t}
+        (2500.0 * t.cos() + 50.0 * t.sin()) / 2501.0 - 2500.0 / 2501.0 * (-50.0 * t).exp()
+    }
+
+    fn fixed(f: Rhs, y0: &[f64], t_end: f64, steps: usize) -> Vec<f64> {
+        let h = t_end / steps as f64;
+        let s = Settings { rtol: 1e6, atol: 1e6, h0: Some(h), h_max: h, ..Settings::default() };
+        let mut sys = Sys::new(y0.len(), f);
+        let st = integrate(&mut sys, Method::Rodas4, 0.0, y0, t_end, &[t_end], &s).unwrap();
+        assert_eq!(st.steps_accepted, steps);
+        assert_eq!(st.steps_rejected, 0);
+        sys.outputs[0].1.clone()
+    }
+
+    fn dist(a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt()
+    }
+
+    #[test]
+    fn observed_order_is_four() {
+        let ex = spiral_exact(4.0);
+        let errs: Vec<f64> = [10, 20, 40].iter().map(|&n| dist(&fixed(spiral, &[1.0, 0.0], 4.0, n), &ex)).collect();
+        for w in errs.windows(2) {
+            let p = (w[0] / w[1]).log2();
+            assert!((3.6..4.6).contains(&p), "observed order {p} from {errs:?}");
+        }
+        // Non-autonomous (∂f/∂t by differences), beyond the stiff transient.
+        let ex = [prothero_exact(2.0)];
+        let errs: Vec<f64> = [20, 40, 80].iter().map(|&n| dist(&fixed(prothero, &[0.0], 2.0, n), &ex)).collect();
+        let p = (errs[1] / errs[2]).log2();
+        assert!(p > 3.0, "observed order {p} from {errs:?}");
+    }
+
+    #[test]
+    fn dense_output_is_accurate_between_steps() {
+        let mut sys = Sys::new(2, spiral);
+        sys.exact = Some(spiral_exact);
+        let s = Settings { rtol: 1e-8, atol: 1e-10, ..Settings::default() };
+        let ts: Vec<f64> = (0..=100).map(|k| 0.1 * k as f64).collect();
+        let st = integrate(&mut sys, Method::Rodas4, 0.0, &[1.0, 0.0], 10.0, &ts, &s).unwrap();
+        assert_eq!(sys.outputs.len(), 101);
+        assert_eq!(sys.accepted, st.steps_accepted);
+        assert!(sys.dense_err < 1e-6, "dense error {}", sys.dense_err);
+        let worst = sys.outputs.iter().map(|(t, y)| dist(y, &spiral_exact(*t))).fold(0.0, f64::max);
+        assert!(worst < 1e-6, "worst output error {worst}");
+    }
+
+    /// Robertson's chemical kinetics (Hairer–Wanner II, §IV.1), stiffness ~1e4.
+    fn robertson(_t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
+        dy[2] = 3e7 * y[1] * y[1];
+        dy[1] = -dy[0] - dy[2];
+        Ok(())
+    }
+
+    fn run(method: Method, f: Rhs, y0: &[f64], t_end: f64, rtol: f64, atol: f64) -> (Stats, Vec<f64>) {
+        let s = Settings { rtol, atol, ..Settings::default() };
+        let mut sys = Sys::new(y0.len(), f);
+        let st = integrate(&mut sys, method, 0.0, y0, t_end, &[t_end], &s).unwrap();
+        (st, sys.outputs[0].1.clone())
+    }
+
+    #[test]
+    fn robertson_matches_reference_with_few_steps() {
+        // Reference y(40) (Hairer–Wanner II, Table of the Robertson problem), and DOP853 at 1e-12.
+        let lit = [0.7158270687193605, 9.185534764529569e-06, 0.2841637457458749];
+        let (sd, yd) = run(Method::Dop853, robertson, &[1.0, 0.0, 0.0], 40.0, 1e-12, 1e-16);
+        assert!((yd[0] - lit[0]).abs() < 1e-10 && (yd[1] / lit[1] - 1.0).abs() < 1e-7, "{yd:?}");
+        let (sr, yr) = run(Method::Rodas4, robertson, &[1.0, 0.0, 0.0], 40.0, 1e-7, 1e-12);
+        assert!((yr[0] - lit[0]).abs() < 1e-6, "{yr:?}");
+        assert!((yr[1] / lit[1] - 1.0).abs() < 1e-4, "{yr:?}");
+        assert!((yr[2] - lit[2]).abs() < 1e-6, "{yr:?}");
+        assert!(sr.steps_accepted * 20 < sd.steps_accepted, "rodas {} vs dop853 {}", sr.steps_accepted, sd.steps_accepted);
+    }
+
+    /// Van der Pol, μ = 1000 (y₁'' − μ(1 − y₁²) y₁' + y₁ = 0).
+    fn vdp(_t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = y[1];
+        dy[1] = 1000.0 * (1.0 - y[0] * y[0]) * y[1] - y[0];
+        Ok(())
+    }
+
+    #[test]
+    fn van_der_pol_mu_1000_matches_dop853_reference() {
+        let t_end = 1500.0;
+        let (sd, yd) = run(Method::Dop853, vdp, &[2.0, 0.0], t_end, 1e-11, 1e-11);
+        let (sr, yr) = run(Method::Rodas4, vdp, &[2.0, 0.0], t_end, 1e-7, 1e-7);
+        assert!((yr[0] - yd[0]).abs() < 1e-4 * yd[0].abs().max(1.0), "{yr:?} vs {yd:?}");
+        assert!((yr[1] - yd[1]).abs() < 1e-3 * yd[1].abs().max(1e-3), "{yr:?} vs {yd:?}");
+        assert!(sr.steps_accepted * 20 < sd.steps_accepted, "rodas {} vs dop853 {}", sr.steps_accepted, sd.steps_accepted);
+    }
+
+    fn nan_after_1(t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = if t > 1.0 { f64::NAN } else { -y[0] };
+        Ok(())
+    }
+    fn blow_up(_t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+        dy[0] = y[0] * y[0];
+        Ok(())
+    }
+
+    #[test]
+    fn errors_follow_the_contract() {
+        let s = Settings::default();
+        let mut sys = Sys::new(1, nan_after_1);
+        let ts = [0.5, 0.9, 1.5];
+        let (e, st) = integrate(&mut sys, Method::Rodas4, 0.0, &[1.0], 2.0, &ts, &s).unwrap_err();
+        assert!(matches!(e, Error::NonFinite { t, .. } if t <= 1.0 + 1e-9), "{e:?}");
+        assert_eq!(sys.outputs.len(), 2);
+        assert!(st.t_reached <= 1.0);
+        let mut sys = Sys::new(1, blow_up);
+        let (e, _) = integrate(&mut sys, Method::Rodas4, 0.0, &[1.0], 2.0, &[], &s).unwrap_err();
+        assert!(matches!(e, Error::StepSizeUnderflow { .. } | Error::NonFinite { .. }), "{e:?}");
+        let mut sys = Sys::new(2, spiral);
+        let s2 = Settings { max_steps: 5, ..s };
+        let (e, st) = integrate(&mut sys, Method::Rodas4, 0.0, &[1.0, 0.0], 100.0, &[], &s2).unwrap_err();
+        assert!(matches!(e, Error::TooManySteps { max_steps: 5, .. }), "{e:?}");
+        assert_eq!(st.steps_accepted + st.steps_rejected, 5);
+        let s3 = Settings { h_min: 1.0, h0: Some(1.0), ..s };
+        let mut sys = Sys::new(1, blow_up);
+        let (e, _) = integrate(&mut sys, Method::Rodas4, 0.0, &[1.0], 2.0, &[], &s3).unwrap_err();
+        assert!(matches!(e, Error::StepSizeUnderflow { .. }), "{e:?}");
+    }
+
+    #[test]
+    fn stats_and_outputs_are_consistent() {
+        let s = Settings { rtol: 1e-6, atol: 1e-9, h_max: 0.3, ..Settings::default() };
+        let mut sys = Sys::new(2, spiral);
+        let ts = [0.0, 1.0, 5.0, 5.0 + 1e-9, 7.0];
+        let st = integrate(&mut sys, Method::Rodas4, 0.0, &[1.0, 0.0], 7.0, &ts, &s).unwrap();
+        assert_eq!(st.t_reached, 7.0);
+        assert!(st.h_max_used <= 0.3 + 1e-15);
+        assert_eq!(sys.outputs.len(), 5);
+        assert_eq!(sys.outputs[0].1, vec![1.0, 0.0]);
+        assert_eq!(sys.accepted, st.steps_accepted);
+        // n + 7 evaluations per step plus the initial ones.
+        assert!(st.rhs_evals >= st.steps_accepted * 9);
+    }
+}
