@@ -206,7 +206,12 @@ fn record_accepted(stats: &mut Stats, h: f64, t1: f64) {
     stats.t_reached = t1;
 }
 
-/// Adaptive DOPRI5 / DOP853 driver (Hairer's `DOPCOR` / `DP86CO` loop).
+/// Consecutive trial steps that may fail (non-finite, singular) before the run stops.
+const MAX_TRIAL_FAILURES: usize = 12;
+
+/// Adaptive DOPRI5 / DOP853 driver (Hairer's `DOPCOR` / `DP86CO` loop). A trial step whose
+/// stages leave the domain of f (non-finite values, a singular constraint Jacobian) is rejected
+/// and retried with a quarter of the step, up to `MAX_TRIAL_FAILURES` times in a row.
 #[allow(clippy::too_many_arguments)]
 fn drive_adaptive<S: OdeSystem>(
     sys: &mut S,
@@ -248,6 +253,8 @@ fn drive_adaptive<S: OdeSystem>(
     } else {
         (Controller::dopri5(), 5)
     };
+    let mut trial_failures = 0usize;
+    let mut last_trial_error = non_finite(t);
     let mut h = match st.h0 {
         Some(h0) => h0,
         None => {
@@ -275,6 +282,10 @@ fn drive_adaptive<S: OdeSystem>(
         h = h.min(st.h_max);
         let floor = st.h_min.max(1e-14 * t.abs());
         if !(h > 0.0 && h >= floor) {
+            if trial_failures > 0 {
+                // Shrinking did not get the trial steps back into the domain of f.
+                return Err(last_trial_error);
+            }
             return Err(Error::StepSizeUnderflow {
                 t,
                 h,
@@ -299,47 +310,73 @@ fn drive_adaptive<S: OdeSystem>(
             (half, t + half, false)
         };
 
-        let err = if dop {
-            stages(
-                sys,
-                &dop853::C,
-                &dop853::A,
-                1..dop853::STAGES,
-                t,
-                t1,
-                h_step,
-                &y,
-                &mut k,
-                &mut ytmp,
-                stats,
-            )?;
-            advance(&y, h_step, &dop853::B, &k, &mut y1);
-            combine(h_step, &dop853::E5, &k, &mut e5);
-            combine(h_step, &dop853::E3, &k, &mut e3);
-            dop853_error(&e5, &e3, &y, &y1, st.rtol, st.atol)
-        } else {
-            stages(
-                sys,
-                &dopri5::C,
-                &dopri5::A,
-                1..6,
-                t,
-                t1,
-                h_step,
-                &y,
-                &mut k,
-                &mut ytmp,
-                stats,
-            )?;
-            advance(&y, h_step, &dopri5::B, &k, &mut y1);
-            // FSAL stage 6 = f(t1, y1), part of the error estimate.
-            sys.rhs(t1, &y1, &mut k[6 * n..7 * n])?;
-            stats.rhs_evals += 1;
-            combine(h_step, &dopri5::E, &k, &mut e5);
-            rms_error(&e5, &y, &y1, st.rtol, st.atol)
+        // The trial step: its stages may leave the region where f is defined (a huge
+        // penetration, a singular pose); that rejects the step, it does not end the run.
+        let mut trial = || -> Result<f64, Error> {
+            Ok(if dop {
+                stages(
+                    sys,
+                    &dop853::C,
+                    &dop853::A,
+                    1..dop853::STAGES,
+                    t,
+                    t1,
+                    h_step,
+                    &y,
+                    &mut k,
+                    &mut ytmp,
+                    stats,
+                )?;
+                advance(&y, h_step, &dop853::B, &k, &mut y1);
+                combine(h_step, &dop853::E5, &k, &mut e5);
+                combine(h_step, &dop853::E3, &k, &mut e3);
+                dop853_error(&e5, &e3, &y, &y1, st.rtol, st.atol)
+            } else {
+                stages(
+                    sys,
+                    &dopri5::C,
+                    &dopri5::A,
+                    1..6,
+                    t,
+                    t1,
+                    h_step,
+                    &y,
+                    &mut k,
+                    &mut ytmp,
+                    stats,
+                )?;
+                advance(&y, h_step, &dopri5::B, &k, &mut y1);
+                // FSAL stage 6 = f(t1, y1), part of the error estimate.
+                sys.rhs(t1, &y1, &mut k[6 * n..7 * n])?;
+                stats.rhs_evals += 1;
+                combine(h_step, &dopri5::E, &k, &mut e5);
+                rms_error(&e5, &y, &y1, st.rtol, st.atol)
+            })
         };
-        if !err.is_finite() {
-            return Err(non_finite(t));
+        let err = match trial() {
+            Ok(e) if e.is_finite() => {
+                trial_failures = 0;
+                e
+            }
+            Ok(_) => {
+                trial_failures += 1;
+                last_trial_error = non_finite(t);
+                f64::NAN
+            }
+            Err(e @ (Error::NonFinite { .. } | Error::SingularJacobian { .. })) => {
+                trial_failures += 1;
+                last_trial_error = e;
+                f64::NAN
+            }
+            Err(e) => return Err(e),
+        };
+        if err.is_nan() {
+            if trial_failures > MAX_TRIAL_FAILURES {
+                return Err(last_trial_error);
+            }
+            stats.steps_rejected += 1;
+            h = 0.25 * h_step;
+            continue;
         }
 
         match ctrl.decide(err, h_step) {

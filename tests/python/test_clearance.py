@@ -172,3 +172,12 @@ def test_lubricated_joint_uses_the_dry_law_only_beyond_the_clearance():
         assert np.all(res.film_force(j)[e >= 1.05 * c] == 0.0)
         seen_band |= bool(np.any((e > c) & (e < 1.05 * c)))
     assert seen_band
+
+
+@pytest.mark.parametrize("integrator", ["rk45", "dop853"])
+def test_adaptive_methods_survive_trial_steps_deep_into_contact(integrator):
+    """A trial step of a high-order method can drive a journal far into its bearing, where f is
+    not finite; the step must be rejected and retried, not end the run."""
+    res = models.nine_bar("dry", clearance=0.5e-3).simulate(0.4, integrator=integrator, rtol=1e-6, atol=1e-9)
+    assert res.completed
+    assert np.all(np.isfinite(res.acceleration("slider9")))
