@@ -11,6 +11,22 @@ from typing import Any, Dict, Optional
 from .errors import InputError, check_finite, check_positive
 
 NORMAL_LAWS = ("lankarani_nikravesh", "hertz", "hunt_crossley", "flores")
+
+
+def _check_range(field: str, value: Any, lo: float, hi: float, lo_open: bool, hi_open: bool) -> float:
+    """``float(value)``, or :class:`InputError` naming ``field`` unless it lies in the interval."""
+    v = check_finite(field, value)
+    if (v > lo if lo_open else v >= lo) and (v < hi if hi_open else v <= hi):
+        return v
+    interval = f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
+    raise InputError(f"invalid {field} = {value!r}: must lie in {interval}", field=field, value=value)
+
+
+def _check_non_negative(field: str, value: Any) -> float:
+    v = check_finite(field, value)
+    if v < 0.0:
+        raise InputError(f"invalid {field} = {value!r}: must not be negative", field=field, value=value)
+    return v
 FILM_MODELS = ("long", "short", "long_paper")
 
 
@@ -70,6 +86,22 @@ class Dry:
                 field="stiffness_form",
                 value=self.stiffness_form,
             )
+        check_positive("youngs_modulus", self.youngs_modulus)
+        _check_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, True, True)
+        if self.journal_youngs_modulus is not None:
+            check_positive("journal_youngs_modulus", self.journal_youngs_modulus)
+        if self.journal_poisson_ratio is not None:
+            _check_range("journal_poisson_ratio", self.journal_poisson_ratio, -1.0, 0.5, True, True)
+        _check_range("restitution", self.restitution, 0.0, 1.0, True, False)
+        check_positive("exponent", self.exponent)
+        if self.stiffness is not None:
+            check_positive("stiffness", self.stiffness)
+        _check_non_negative("friction", self.friction)
+        _check_non_negative("v0", self.v0)
+        check_positive("v1", self.v1)
+        if float(self.v1) <= float(self.v0):
+            raise InputError(f"invalid v1 = {self.v1!r}: must exceed v0 = {self.v0!r}", field="v1", value=self.v1)
+        check_positive("impact_speed_floor", self.impact_speed_floor)
 
     def _as_dict(self) -> Dict[str, Any]:
         e_j = self.youngs_modulus if self.journal_youngs_modulus is None else self.journal_youngs_modulus
@@ -133,7 +165,13 @@ class Lubricated:
             )
         check_positive("viscosity", self.viscosity)
         check_positive("length", self.length)
-        check_finite("eps_max", self.eps_max)
+        _check_range("eps0", self.eps0, 0.0, 1.0, False, True)
+        _check_range("m", self.m, 0.0, 1.0, True, True)
+        if self.e0 is not None:
+            check_positive("e0", self.e0)
+        _check_range("eps_max", self.eps_max, 0.0, 1.0, True, True)
+        if not isinstance(self.dry, Dry):
+            raise InputError(f"invalid dry = {self.dry!r}: must be clearsim.Dry(...)", field="dry", value=self.dry)
 
     def _as_dict(self) -> Dict[str, Any]:
         d = {

@@ -24,6 +24,8 @@ Point = Sequence[float]
 INTEGRATORS = ("rk45", "rk4", "dop853", "rodas4")
 OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation")
 DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
+#: Most outputs a dt_out grid may ask for (each holds every stored channel).
+MAX_OUTPUTS = 1e7
 
 
 def _point(field: str, p: Any) -> List[float]:
@@ -270,6 +272,14 @@ class Mechanism:
                 field=f"clearance joint '{name}'.clearance",
                 value=clearance,
             )
+        if c < 1e-9 * r_j:
+            raise InputError(
+                f"invalid clearance joint '{name}'.clearance = {clearance!r}: is too small against the journal radius "
+                f"R_j = {r_j!r}: c/R_j must be at least 1e-9 (R_b = R_j + c would round to R_j and the contact "
+                "stiffness diverge)",
+                field=f"clearance joint '{name}'.clearance",
+                value=clearance,
+            )
         e_init = _point(f"clearance joint '{name}'.initial_eccentricity", initial_eccentricity)
         if math.hypot(*e_init) > 2.0 * c:
             raise InputError(
@@ -399,7 +409,15 @@ class Mechanism:
             if dt_out is None:
                 dt_out = (t_end - t0) / 1000.0
             dt_out = check_positive("dt_out", dt_out)
-            n = int(math.floor((t_end - t0) / dt_out * (1 + 1e-12)))
+            count = (t_end - t0) / dt_out
+            if not count <= MAX_OUTPUTS:
+                raise InputError(
+                    f"invalid dt_out = {dt_out!r}: gives {count:.3g} outputs over [{t0}, {t_end}] s, more than "
+                    f"{MAX_OUTPUTS:.0e}; choose a coarser grid",
+                    field="dt_out",
+                    value=dt_out,
+                )
+            n = int(math.floor(count * (1 + 1e-12)))
             grid = t0 + dt_out * np.arange(n + 1)
         else:
             grid = np.asarray(t_out, dtype=float)

@@ -585,6 +585,10 @@ def _read(path: Path) -> Tuple[_Source, Dict[str, Any]]:
         text = path.read_text(encoding="utf-8")
     except OSError as err:
         raise InputError(f"{path}: cannot read the scene file: {err.strerror or err}", field="file", value=str(path), file=str(path)) from None
+    except UnicodeDecodeError as err:
+        raise InputError(
+            f"{path}: the scene file is not UTF-8 text (byte {err.start}); save it as UTF-8", field="file", value=str(path), file=str(path)
+        ) from None
     src = _Source(path, text)
     try:
         data = _toml.loads(text)

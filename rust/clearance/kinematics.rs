@@ -34,11 +34,12 @@ impl JointKinematics {
         let e_vec = journal.point(sj).sub(bearing.point(sb));
         let e_dot = journal.point_velocity(sj).sub(bearing.point_velocity(sb));
         let e = e_vec.norm();
-        let (n, gamma_dot) = if e > 0.0 {
-            (e_vec.scale(1.0 / e), e_vec.cross(e_dot) / (e * e))
-        } else {
-            (V2::new(1.0, 0.0), 0.0)
-        };
+        // Below 1e-12 c the journal counts as centred: n is kept from e when it can be formed
+        // (e/e, never 1/e, which overflows for subnormal e) and γ̇ = (e × ė)/e², whose e² would
+        // underflow, is taken as 0 (the film force is scaled by ε^m ≤ 1e-6 there anyway, P15).
+        let n = if e > 0.0 { V2::new(e_vec.x / e, e_vec.y / e) } else { V2::new(1.0, 0.0) };
+        let n = if n.x.is_finite() && n.y.is_finite() { n } else { V2::new(1.0, 0.0) };
+        let gamma_dot = if e > 1e-12 * c { e_vec.cross(e_dot) / (e * e) } else { 0.0 };
         let t = n.perp();
         let delta_dot = n.dot(e_dot);
         // Contact-point velocities: material points of journal and bearing at Q_k = P_k + R_k n.

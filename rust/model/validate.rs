@@ -5,11 +5,22 @@ use std::collections::HashSet;
 use super::description::*;
 use crate::error::{Error, Result};
 
+/// A number as it appears in a message: plain for ordinary magnitudes, scientific for very
+/// small or large ones (Rust's `Display` would print 1e-300 with 300 digits).
+fn num(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !a.is_finite() || (1e-4..1e15).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 fn finite(field: &str, v: f64) -> Result<()> {
     if v.is_finite() {
         Ok(())
     } else {
-        Err(Error::invalid(field, v, "must be a finite number"))
+        Err(Error::invalid(field, num(v), "must be a finite number"))
     }
 }
 
@@ -18,7 +29,7 @@ fn positive(field: &str, v: f64) -> Result<()> {
     if v > 0.0 {
         Ok(())
     } else {
-        Err(Error::invalid(field, v, "must be positive"))
+        Err(Error::invalid(field, num(v), "must be positive"))
     }
 }
 
@@ -27,7 +38,7 @@ fn non_negative(field: &str, v: f64) -> Result<()> {
     if v >= 0.0 {
         Ok(())
     } else {
-        Err(Error::invalid(field, v, "must not be negative"))
+        Err(Error::invalid(field, num(v), "must not be negative"))
     }
 }
 
@@ -39,7 +50,7 @@ fn within(field: &str, v: f64, lo: f64, hi: f64, lo_open: bool, hi_open: bool) -
         Ok(())
     } else {
         let (l, r) = (if lo_open { "(" } else { "[" }, if hi_open { ")" } else { "]" });
-        Err(Error::invalid(field, v, format!("must lie in {l}{lo}, {hi}{r}")))
+        Err(Error::invalid(field, num(v), format!("must lie in {l}{lo}, {hi}{r}")))
     }
 }
 
@@ -85,7 +96,7 @@ pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
     non_negative(&format!("{f}.v0"), d.v0)?;
     positive(&format!("{f}.v1"), d.v1)?;
     if d.v1 <= d.v0 {
-        return Err(Error::invalid(format!("{f}.v1"), d.v1, format!("must exceed v0 = {}", d.v0)));
+        return Err(Error::invalid(format!("{f}.v1"), num(d.v1), format!("must exceed v0 = {}", num(d.v0))));
     }
     positive(&format!("{f}.impact_speed_floor"), d.impact_speed_floor)
 }
@@ -158,7 +169,35 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
         point(&format!("{f}.journal_point"), c.journal_point)?;
         point(&format!("{f}.initial_eccentricity"), c.initial_eccentricity)?;
         positive(&format!("{f}.journal_radius"), c.journal_radius)?;
-        positive(&format!("{f}.clearance"), c.clearance)?;
+        finite(&format!("{f}.clearance"), c.clearance)?;
+        if c.clearance <= 0.0 {
+            return Err(Error::invalid(
+                format!("{f}.clearance"),
+                num(c.clearance),
+                format!(
+                    "must be positive (c = R_b − R_j: the journal radius R_j = {} must be below the bearing radius R_b = R_j + c)",
+                    c.journal_radius
+                ),
+            ));
+        }
+        if c.clearance < 1e-9 * c.journal_radius {
+            return Err(Error::invalid(
+                format!("{f}.clearance"),
+                num(c.clearance),
+                format!(
+                    "is too small against the journal radius R_j = {}: c/R_j must be at least 1e-9 (R_b = R_j + c would round to R_j and the contact stiffness diverge)",
+                    c.journal_radius
+                ),
+            ));
+        }
+        let e_init = c.initial_eccentricity[0].hypot(c.initial_eccentricity[1]);
+        if e_init > 2.0 * c.clearance {
+            return Err(Error::invalid(
+                format!("{f}.initial_eccentricity"),
+                format!("{:?}", c.initial_eccentricity),
+                format!("its length must not exceed 2 × clearance = {} m (give e in metres, not in units of c)", 2.0 * c.clearance),
+            ));
+        }
         match &c.model {
             ClearanceModelDesc::Dry(d) => validate_dry(&f, d)?,
             ClearanceModelDesc::Lubricated(l) => {
