@@ -107,7 +107,7 @@ fn validate(
 }
 
 /// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.
-fn emit<S: OdeSystem>(
+pub(super) fn emit<S: OdeSystem>(
     sys: &mut S,
     t_out: &[f64],
     next: &mut usize,
@@ -127,7 +127,7 @@ fn emit<S: OdeSystem>(
 }
 
 /// Skips output times before `t0` and delivers those equal to `t0` from `y0`.
-fn emit_initial<S: OdeSystem>(sys: &mut S, t_out: &[f64], t0: f64, y0: &[f64]) -> Result<usize, Error> {
+pub(super) fn emit_initial<S: OdeSystem>(sys: &mut S, t_out: &[f64], t0: f64, y0: &[f64]) -> Result<usize, Error> {
     let mut next = t_out.partition_point(|&t| t < t0);
     while t_out.get(next) == Some(&t0) {
         sys.output(t0, y0)?;
@@ -136,11 +136,11 @@ fn emit_initial<S: OdeSystem>(sys: &mut S, t_out: &[f64], t0: f64, y0: &[f64]) -
     Ok(next)
 }
 
-fn all_finite(v: &[f64]) -> bool {
+pub(super) fn all_finite(v: &[f64]) -> bool {
     v.iter().all(|x| x.is_finite())
 }
 
-fn non_finite(t: f64) -> Error {
+pub(super) fn non_finite(t: f64) -> Error {
     Error::NonFinite {
         t,
         detail: String::new(),
@@ -206,6 +206,41 @@ fn record_accepted(stats: &mut Stats, h: f64, t1: f64) {
     stats.t_reached = t1;
 }
 
+/// `out = f(t, y)`, counted, and checked to be finite.
+pub(super) fn fresh_rhs<S: OdeSystem>(sys: &mut S, stats: &mut Stats, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), Error> {
+    sys.rhs(t, y, out)?;
+    stats.rhs_evals += 1;
+    if all_finite(out) {
+        Ok(())
+    } else {
+        Err(non_finite(t))
+    }
+}
+
+/// Everything a driver does once a step `[t, t1]` of size `h` is accepted, with its dense
+/// output filled: count it, let the system update its memory, deliver the outputs inside the
+/// step, and move `y1` into `y`. Returns whether the system asked for `f(t1, y1)` afresh.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn accept_step<S: OdeSystem>(
+    sys: &mut S,
+    stats: &mut Stats,
+    h: f64,
+    t: f64,
+    t1: f64,
+    y: &mut Vec<f64>,
+    y1: &mut Vec<f64>,
+    dense: &dyn DenseOutput,
+    t_out: &[f64],
+    next_out: &mut usize,
+    buf: &mut [f64],
+) -> Result<bool, Error> {
+    record_accepted(stats, h, t1);
+    let refresh = sys.step_accepted(t, y, t1, y1, dense)?;
+    emit(sys, t_out, next_out, t1, dense, buf)?;
+    std::mem::swap(y, y1);
+    Ok(refresh)
+}
+
 /// Consecutive trial steps that may fail (non-finite, singular) before the run stops.
 const MAX_TRIAL_FAILURES: usize = 12;
 
@@ -243,11 +278,7 @@ fn drive_adaptive<S: OdeSystem>(
         return Ok(());
     }
     let mut t = t0;
-    sys.rhs(t, &y, &mut k[..n])?;
-    stats.rhs_evals += 1;
-    if !all_finite(&k[..n]) {
-        return Err(non_finite(t));
-    }
+    fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
     let (mut ctrl, order) = if dop {
         (Controller::dop853(), 8)
     } else {
@@ -414,21 +445,14 @@ fn drive_adaptive<S: OdeSystem>(
                 } else {
                     dense.fill_dopri5(t, t1, h_step, &y, &y1, &k);
                 }
-                record_accepted(stats, h_step, t1);
-                let refresh = sys.step_accepted(t, &y, t1, &y1, &dense)?;
-                emit(sys, t_out, &mut next_out, t1, &dense, &mut buf)?;
-                std::mem::swap(&mut y, &mut y1);
+                let refresh = accept_step(sys, stats, h_step, t, t1, &mut y, &mut y1, &dense, t_out, &mut next_out, &mut buf)?;
                 t = t1;
                 if last {
                     return Ok(());
                 }
                 if refresh {
                     // The system changed its memory: no FSAL reuse.
-                    sys.rhs(t, &y, &mut k[..n])?;
-                    stats.rhs_evals += 1;
-                    if !all_finite(&k[..n]) {
-                        return Err(non_finite(t));
-                    }
+                    fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
                 } else {
                     k.copy_within(fsal * n..(fsal + 1) * n, 0);
                 }
@@ -465,11 +489,7 @@ fn drive_rk4<S: OdeSystem>(
         return Ok(());
     }
     let mut t = t0;
-    sys.rhs(t, &y, &mut k[..n])?;
-    stats.rhs_evals += 1;
-    if !all_finite(&k[..n]) {
-        return Err(non_finite(t));
-    }
+    fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
     let mut i: u64 = 0;
     loop {
         if stats.steps_accepted >= st.max_steps {
@@ -494,20 +514,13 @@ fn drive_rk4<S: OdeSystem>(
             return Err(non_finite(t));
         }
         dense.fill_hermite(t, t1, &y, &y1, &k[..n], &f1);
-        record_accepted(stats, h, t1);
-        let refresh = sys.step_accepted(t, &y, t1, &y1, &dense)?;
-        emit(sys, t_out, &mut next_out, t1, &dense, &mut buf)?;
-        std::mem::swap(&mut y, &mut y1);
+        let refresh = accept_step(sys, stats, h, t, t1, &mut y, &mut y1, &dense, t_out, &mut next_out, &mut buf)?;
         t = t1;
         if last {
             return Ok(());
         }
         if refresh {
-            sys.rhs(t, &y, &mut k[..n])?;
-            stats.rhs_evals += 1;
-            if !all_finite(&k[..n]) {
-                return Err(non_finite(t));
-            }
+            fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
         } else {
             k[..n].copy_from_slice(&f1);
         }

@@ -25,6 +25,7 @@ use faer::perm::PermRef;
 use faer::{Mat, Par};
 
 use super::controller::initial_step;
+use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite};
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
@@ -162,27 +163,6 @@ fn weighted(out: &mut [f64], w: &[f64], u: &[f64]) {
     }
 }
 
-fn all_finite(v: &[f64]) -> bool {
-    v.iter().all(|x| x.is_finite())
-}
-
-fn non_finite(t: f64) -> Error {
-    Error::NonFinite { t, detail: String::new() }
-}
-
-/// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.
-fn emit<S: OdeSystem>(sys: &mut S, t_out: &[f64], next: &mut usize, t1: f64, dense: &dyn DenseOutput, buf: &mut [f64]) -> Result<(), Error> {
-    while let Some(&t) = t_out.get(*next) {
-        if t > t1 {
-            break;
-        }
-        dense.eval(t, buf);
-        sys.output(t, buf)?;
-        *next += 1;
-    }
-    Ok(())
-}
-
 /// The RODAS4 driver loop (Hairer's `ROSCOR`), with the same contract as the explicit drivers:
 /// outputs from the dense output, `step_accepted` after every accepted step, errors
 /// `StepSizeUnderflow` / `NonFinite` / `TooManySteps`. The input has been validated.
@@ -211,20 +191,12 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
     let mut lu = Lu::new(n);
     let mut dense = RodasDense { t0, t1: t0, y0: vec![0.0; n], y1: vec![0.0; n], r2: vec![0.0; n], r3: vec![0.0; n] };
 
-    let mut next_out = t_out.partition_point(|&t| t < t0);
-    while t_out.get(next_out) == Some(&t0) {
-        sys.output(t0, y0)?;
-        next_out += 1;
-    }
+    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
     if t_end == t0 {
         return Ok(());
     }
     let mut t = t0;
-    sys.rhs(t, &y, &mut f0)?;
-    stats.rhs_evals += 1;
-    if !all_finite(&f0) {
-        return Err(non_finite(t));
-    }
+    fresh_rhs(sys, stats, t, &y, &mut f0)?;
     let mut h = match st.h0 {
         Some(h0) => h0,
         None => {
@@ -361,23 +333,13 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
             dense.y1.copy_from_slice(&ynew);
             weighted(&mut dense.r2, &D2, &u);
             weighted(&mut dense.r3, &D3, &u);
-            stats.steps_accepted += 1;
-            stats.h_min_used = stats.h_min_used.min(hs);
-            stats.h_max_used = stats.h_max_used.max(hs);
-            stats.t_reached = t1;
-            sys.step_accepted(t, &y, t1, &ynew, &dense)?;
-            emit(sys, t_out, &mut next_out, t1, &dense, &mut buf)?;
-            std::mem::swap(&mut y, &mut ynew);
+            accept_step(sys, stats, hs, t, t1, &mut y, &mut ynew, &dense, t_out, &mut next_out, &mut buf)?;
             t = t1;
             if last {
                 return Ok(());
             }
             // f at the new point (always fresh: the system may have changed its memory).
-            sys.rhs(t, &y, &mut f0)?;
-            stats.rhs_evals += 1;
-            if !all_finite(&f0) {
-                return Err(non_finite(t));
-            }
+            fresh_rhs(sys, stats, t, &y, &mut f0)?;
             need_jac = true;
             let mut h_new = hs / q;
             if reject {
