@@ -4,12 +4,12 @@ use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::model::{MechanismDesc, Model};
-use crate::simulate::{simulate, RunOutput, RunSettings};
+use crate::simulate::{simulate, RunOutput, RunSettings, StopCheck};
 
 /// Compile and run every description, in parallel on `threads` threads (0: all cores).
 /// `settings` holds one entry per description, or a single entry shared by all.
 /// Each entry of the result is the run's output or the error that prevented it.
-pub fn run_batch(descs: &[MechanismDesc], settings: &[RunSettings], threads: usize, stop: Option<&(dyn Fn() -> bool + Sync)>) -> Vec<Result<RunOutput>> {
+pub fn run_batch(descs: &[MechanismDesc], settings: &[RunSettings], threads: usize, stop: Option<StopCheck<'_>>) -> Vec<Result<RunOutput>> {
     let pick = |k: usize| if settings.len() == 1 { &settings[0] } else { &settings[k] };
     let work = || {
         descs

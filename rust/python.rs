@@ -408,17 +408,27 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
     Ok(d)
 }
 
-/// A stop check for long runs: polls Python's signal handlers (Ctrl-C) at most every 50 ms.
-fn make_stop() -> impl Fn() -> bool + Sync {
+/// The check polled during long runs (at most every 50 ms): runs Python's signal handlers
+/// (Ctrl-C interrupts the run) and reports the simulated time reached to `progress(t)` if given
+/// (an exception raised there also stops the run).
+fn make_stop(progress: Option<Py<PyAny>>) -> impl Fn(f64) -> bool + Sync {
     let start = Instant::now();
     let last = AtomicU64::new(0);
-    move || {
+    move |t: f64| {
         let now = start.elapsed().as_millis() as u64;
         if now.saturating_sub(last.load(Ordering::Relaxed)) < 50 {
             return false;
         }
         last.store(now, Ordering::Relaxed);
-        Python::attach(|py| py.check_signals().is_err())
+        Python::attach(|py| {
+            if py.check_signals().is_err() {
+                return true;
+            }
+            match &progress {
+                Some(cb) => cb.call1(py, (t,)).is_err(),
+                None => false,
+            }
+        })
     }
 }
 
@@ -484,11 +494,13 @@ impl CompiledModel {
         Ok(PyArray1::from_vec(py, dy))
     }
 
-    /// Run the model; returns a dict of arrays (see `clearsim.result.Result`).
-    fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
+    /// Run the model; returns a dict of arrays (see `clearsim.result.Result`). `progress(t)`,
+    /// if given, is called with the simulated time reached [s] about every 50 ms.
+    #[pyo3(signature = (settings, progress=None))]
+    fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let rs = read_settings(settings)?;
         let model = &self.model;
-        let stop = make_stop();
+        let stop = make_stop(progress);
         let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
         output_to_dict(py, model, &out)
     }
@@ -534,7 +546,7 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyDict>>, set
     for rs in &settings {
         rs.validate().map_err(|e| to_pyerr(py, &e))?;
     }
-    let stop = make_stop();
+    let stop = make_stop(None);
     let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
     for (d, o) in descs.iter().zip(outs) {

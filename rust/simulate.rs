@@ -12,6 +12,11 @@ use crate::model::Model;
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 
+/// Polled between steps (about every 64 accepted steps) with the time reached [s]; returning
+/// `true` interrupts the run ([`Error::Interrupted`]). The Python glue uses it for Ctrl-C and
+/// progress bars.
+pub type StopCheck<'a> = &'a (dyn Fn(f64) -> bool + Sync);
+
 /// What to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
@@ -91,7 +96,7 @@ pub struct MechanismSystem<'a> {
     pub ws: Workspace,
     pub memory: Vec<ImpactMemory>,
     pub recording: Recording,
-    stop: Option<&'a (dyn Fn() -> bool + Sync)>,
+    stop: Option<StopCheck<'a>>,
     accepted: usize,
     scratch: Vec<f64>,
     /// Last accepted state (for the diagnosis of a failure).
@@ -100,7 +105,7 @@ pub struct MechanismSystem<'a> {
 }
 
 impl<'a> MechanismSystem<'a> {
-    pub fn new(model: &'a Model, channels: Channels, capacity: usize, stop: Option<&'a (dyn Fn() -> bool + Sync)>) -> Self {
+    pub fn new(model: &'a Model, channels: Channels, capacity: usize, stop: Option<StopCheck<'a>>) -> Self {
         MechanismSystem {
             model,
             ws: Workspace::new(model),
@@ -226,7 +231,7 @@ impl OdeSystem for MechanismSystem<'_> {
         self.accepted += 1;
         if self.accepted % 64 == 0 {
             if let Some(stop) = self.stop {
-                if stop() {
+                if stop(t1) {
                     return Err(Error::Interrupted { t: t1 });
                 }
             }
@@ -245,7 +250,7 @@ impl OdeSystem for MechanismSystem<'_> {
 
 /// Run a compiled model. Bad settings are an `Err`; a run that fails part-way is an `Ok` whose
 /// `error` says why, with everything recorded until then.
-pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<&(dyn Fn() -> bool + Sync)>) -> Result<RunOutput> {
+pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
     rs.validate()?;
     let start = Instant::now();
     let (q0, qd0) = match assemble(model, rs.t0) {

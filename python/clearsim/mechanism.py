@@ -448,7 +448,7 @@ class Mechanism:
             settings["h_max"] = check_positive("h_max", h_max)
         return settings
 
-    def simulate(self, t_end: float, **kwargs: Any) -> Result:
+    def simulate(self, t_end: float, progress: bool = True, **kwargs: Any) -> Result:
         """Integrate from t0 (default 0) to ``t_end`` [s].
 
         Keyword arguments
@@ -471,11 +471,27 @@ class Mechanism:
         h_max, h_min, max_steps:
             Step limits [s] and the step budget.
 
+        progress:
+            Show a progress bar (simulated time) for runs that take longer than a second.
+
         Raises :class:`clearsim.SimulationError` (with ``.result`` holding the partial result)
         if the run cannot go on; a Ctrl-C returns the partial result with a warning.
         """
         settings = self.run_settings(t_end, **kwargs)
-        raw = self.compile().simulate(settings)
+        compiled = self.compile()
+        if not progress:
+            return self._finish(compiled.simulate(settings))
+        from tqdm.auto import tqdm
+
+        t0 = settings["t0"]
+        # Shown only for runs longer than a second; updated about every 50 ms from the core.
+        with tqdm(total=settings["t_end"] - t0, unit="s", unit_scale=True, desc="simulating", delay=1.0, leave=False) as bar:
+
+            def advance(t: float) -> None:
+                bar.n = min(t - t0, bar.total)
+                bar.refresh()
+
+            raw = compiled.simulate(settings, advance)
         return self._finish(raw)
 
     def simulate_with_ideal(self, t_end: float, **kwargs: Any) -> Tuple[Result, Result]:

@@ -511,7 +511,7 @@ class Scene:
         desc = self.path.stem if self.path is not None else "clearsim"
         for label, mech in _progress(jobs, progress, desc=desc):
             try:
-                results[label] = mech.simulate(self.simulation.t_end, **self.simulation.kwargs())
+                results[label] = mech.simulate(self.simulation.t_end, progress=progress, **self.simulation.kwargs())
             except SimulationError as err:
                 if label == "ideal" or err.result is None:
                     raise

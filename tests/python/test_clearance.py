@@ -181,3 +181,22 @@ def test_adaptive_methods_survive_trial_steps_deep_into_contact(integrator):
     res = models.nine_bar("dry", clearance=0.5e-3).simulate(0.4, integrator=integrator, rtol=1e-6, atol=1e-9)
     assert res.completed
     assert np.all(np.isfinite(res.acceleration("slider9")))
+
+
+def test_progress_callback_sees_the_simulated_time():
+    m = models.nine_bar("lubricated")
+    seen = []
+    raw = m.compile().simulate(m.run_settings(0.4, dt_out=1e-3), seen.append)
+    assert raw["error"] is None
+    assert seen and all(0.0 < t <= 0.4 for t in seen) and seen == sorted(seen)
+
+
+def test_an_exception_in_the_progress_callback_interrupts_and_keeps_the_partial_result():
+    m = models.nine_bar("lubricated")
+
+    def stop(t):
+        raise KeyboardInterrupt
+
+    raw = m.compile().simulate(m.run_settings(0.4, dt_out=1e-3), stop)
+    assert isinstance(raw["error"], clearsim.InterruptedRun)
+    assert 0 < len(raw["t"]) < 401

@@ -164,7 +164,7 @@ def _simulate(case: Case, grid: np.ndarray) -> Run:
     start = time.perf_counter()
     failure = None
     try:
-        res = mech.simulate(float(grid[-1]), t_out=grid)
+        res = mech.simulate(float(grid[-1]), t_out=grid, progress=False)
     except SimulationError as err:
         res = getattr(err, "result", None)
         if res is None:
