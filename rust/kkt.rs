@@ -26,20 +26,85 @@ use crate::constraints::JacRow;
 /// [`cholesky_solve_small`]; larger systems go to faer's blocked LLᵀ.
 pub const SMALL: usize = 64;
 
-/// In-place Cholesky LLᵀ of the lower triangle of the column-major n×n matrix `s`
-/// (left-looking, column by column), then `S x = rhs` by forward and backward substitution.
-/// Returns the index of a non-positive pivot (singular or indefinite `S`).
-fn cholesky_solve_small(s: &mut [f64], rhs: &mut [f64], n: usize) -> Result<(), usize> {
-    for j in 0..n {
-        // Column j below the diagonal: s[j.., j] −= L[j.., k] L[j, k] for k < j.
-        for k in 0..j {
-            let ljk = s[j + k * n];
-            if ljk != 0.0 {
-                let (left, right) = s.split_at_mut(j * n);
-                let col_k = &left[k * n + j..k * n + n];
-                for (dst, src) in right[j..n].iter_mut().zip(col_k) {
-                    *dst -= ljk * src;
+/// The structurally non-zero entries of the Cholesky factor L of S (fill-in included), row by
+/// row below the diagonal: fixed by which constraint rows share a body, so computed once.
+#[derive(Debug, Clone, Default)]
+pub struct LowerPattern {
+    start: Vec<usize>,
+    cols: Vec<u32>,
+}
+
+impl LowerPattern {
+    /// Symbolic factorisation of an n×n pattern given by `nonzero(i, j)` for i > j.
+    fn new(n: usize, nonzero: impl Fn(usize, usize) -> bool) -> Self {
+        let mut p = vec![false; n * n]; // p[i * n + j], i > j
+        for i in 0..n {
+            for j in 0..i {
+                p[i * n + j] = nonzero(i, j);
+            }
+        }
+        for j in 0..n {
+            for k in 0..j {
+                if p[j * n + k] {
+                    for i in j + 1..n {
+                        if p[i * n + k] {
+                            p[i * n + j] = true; // fill-in
+                        }
+                    }
                 }
+            }
+        }
+        let mut start = vec![0];
+        let mut cols = Vec::new();
+        for i in 0..n {
+            cols.extend((0..i).filter(|&j| p[i * n + j]).map(|j| j as u32));
+            start.push(cols.len());
+        }
+        LowerPattern { start, cols }
+    }
+
+    /// The columns k < i with L[i, k] ≠ 0.
+    #[inline]
+    fn row(&self, i: usize) -> &[u32] {
+        &self.cols[self.start[i]..self.start[i + 1]]
+    }
+}
+
+/// Σ a_i b_i with four independent partial sums (a single running sum waits on the
+/// floating-point add latency at every term).
+#[inline]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let (mut s0, mut s1, mut s2, mut s3) = (0.0, 0.0, 0.0, 0.0);
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        s0 += x[0] * y[0];
+        s1 += x[1] * y[1];
+        s2 += x[2] * y[2];
+        s3 += x[3] * y[3];
+    }
+    for (x, y) in ra.iter().zip(rb) {
+        s0 += x * y;
+    }
+    (s0 + s1) + (s2 + s3)
+}
+
+/// In-place Cholesky LLᵀ of the lower triangle of the column-major n×n matrix `s`
+/// (left-looking, column by column, visiting only the structural non-zeros of `pattern`), then
+/// `S x = rhs` by forward and backward substitution.
+/// Returns the index of a non-positive pivot (singular or indefinite `S`).
+fn cholesky_solve_small(s: &mut [f64], rhs: &mut [f64], n: usize, pattern: &LowerPattern) -> Result<(), usize> {
+    for j in 0..n {
+        // Column j below the diagonal: s[j.., j] −= L[j.., k] L[j, k] for the k < j with
+        // L[j, k] structurally non-zero (no test on values in the loop).
+        let (left, right) = s.split_at_mut(j * n);
+        let col_j = &mut right[j..n];
+        for &k in pattern.row(j) {
+            let k = k as usize;
+            let ljk = left[j + k * n];
+            let col_k = &left[k * n + j..k * n + n];
+            for (dst, src) in col_j.iter_mut().zip(col_k) {
+                *dst -= ljk * src;
             }
         }
         let d = s[j + j * n];
@@ -63,10 +128,7 @@ fn cholesky_solve_small(s: &mut [f64], rhs: &mut [f64], n: usize) -> Result<(), 
     }
     // Lᵀ x = y (row j of Lᵀ is column j of L).
     for j in (0..n).rev() {
-        let mut v = rhs[j];
-        for i in j + 1..n {
-            v -= s[i + j * n] * rhs[i];
-        }
+        let v = rhs[j] - dot(&s[j * n + j + 1..j * n + n], &rhs[j + 1..n]);
         rhs[j] = v / s[j + j * n];
     }
     Ok(())
@@ -83,6 +145,7 @@ pub struct KktSolver {
     /// S, column-major (`s[i + j·rows]`); only the lower triangle is used.
     s: Vec<f64>,
     rhs: Vec<f64>,
+    pattern: LowerPattern,
     w: Vec<f64>,
     mem: MemBuffer,
 }
@@ -105,10 +168,22 @@ impl KktSolver {
             body_rows.extend(list);
             body_start.push(body_rows.len());
         }
+        // S[i, j] is non-zero where rows i and j share a body.
+        let mut shared = vec![false; rows * rows];
+        for b in 0..nb {
+            let list = &body_rows[body_start[b]..body_start[b + 1]];
+            for &(r1, _) in list {
+                for &(r2, _) in list {
+                    shared[r1 as usize * rows + r2 as usize] = true;
+                }
+            }
+        }
+        let pattern = LowerPattern::new(rows, |i, j| shared[i * rows + j]);
         let req = llt::factor::cholesky_in_place_scratch::<f64>(rows, Par::Seq, Default::default())
             .or(llt::solve::solve_in_place_scratch::<f64>(rows, 1, Par::Seq));
         KktSolver {
             rows,
+            pattern,
             w: vec![0.0; inv_mass.len()],
             inv_mass,
             body_start,
@@ -158,7 +233,7 @@ impl KktSolver {
             }
         }
         if m <= SMALL {
-            cholesky_solve_small(&mut self.s, &mut self.rhs, m)?;
+            cholesky_solve_small(&mut self.s, &mut self.rhs, m, &self.pattern)?;
         } else {
             let mut stack = MemStack::new(&mut self.mem);
             let mut s = MatMut::from_column_major_slice_mut(&mut self.s, m, m);
@@ -247,7 +322,8 @@ mod tests {
         }
         let b: Vec<f64> = (0..n).map(|_| rnd()).collect();
         let (mut s1, mut x1) = (s.clone(), b.clone());
-        cholesky_solve_small(&mut s1, &mut x1, n).unwrap();
+        let dense = LowerPattern::new(n, |_, _| true);
+        cholesky_solve_small(&mut s1, &mut x1, n, &dense).unwrap();
         let mut s2 = s.clone();
         let mut x2 = b.clone();
         let req = llt::factor::cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default());
