@@ -186,9 +186,9 @@ def test_adaptive_methods_survive_trial_steps_deep_into_contact(integrator):
 def test_progress_callback_sees_the_simulated_time():
     m = models.nine_bar("lubricated")
     seen = []
-    raw = m.compile().simulate(m.run_settings(0.4, dt_out=1e-3), seen.append)
+    raw = m.compile().simulate(m.run_settings(1.2, dt_out=1e-3), seen.append)  # ~0.5 s of work
     assert raw["error"] is None
-    assert seen and all(0.0 < t <= 0.4 for t in seen) and seen == sorted(seen)
+    assert seen and all(0.0 < t <= 1.2 for t in seen) and seen == sorted(seen)
 
 
 def test_an_exception_in_the_progress_callback_interrupts_and_keeps_the_partial_result():
@@ -197,9 +197,9 @@ def test_an_exception_in_the_progress_callback_interrupts_and_keeps_the_partial_
     def stop(t):
         raise KeyboardInterrupt
 
-    raw = m.compile().simulate(m.run_settings(0.4, dt_out=1e-3), stop)
+    raw = m.compile().simulate(m.run_settings(1.2, dt_out=1e-3), stop)
     assert isinstance(raw["error"], clearsim.InterruptedRun)
-    assert 0 < len(raw["t"]) < 401
+    assert 0 < len(raw["t"]) < 1201
 
 
 def single_impact_restitution(k, mass, g, v_in, ce, dt=2e-8):
