@@ -397,7 +397,8 @@ def _reliability_axes(ax: Axes, curves: Mapping[str, Any], quantity: str, annota
     lo = min(rmin, 1.0)
     pad = max(0.2 * (1.0 - lo), 0.002)
     ax.set_ylim(lo - pad, 1.0 + 0.25 * pad)
-    ax.yaxis.set_major_formatter(mpl.ticker.FormatStrFormatter("%.3f" if 1.0 - lo < 0.05 else "%.2f"))
+    # Enough decimals that neighbouring tick labels differ (ticks at 0.925 must not read 0.93).
+    ax.yaxis.set_major_formatter(mpl.ticker.FormatStrFormatter("%.3f"))
     ax.set_xlabel("Crank angle [deg]")
     ax.set_ylabel(f"{quantity.capitalize()} reliability R [-]" if quantity else "Reliability R [-]")
     return items
@@ -445,7 +446,9 @@ def plot_reliability_panels(
         first = next(iter(curves_by_quantity.values()))
         styles = series_style(first)
         handles = [Line2D([], [], color=s["color"], linestyle=s["linestyle"], marker=s["marker"]) for s in styles.values()]
-        fig.legend(handles, list(styles), loc="outside upper center" if _outside_ok() else "upper center", ncol=min(len(handles), 4))
+        # With a title on top, the shared legend goes below the panels so the two never overlap.
+        where = "lower" if title else "upper"
+        fig.legend(handles, list(styles), loc=f"outside {where} center" if _outside_ok() else f"{where} center", ncol=min(len(handles), 4))
         if title:
             fig.suptitle(title)
     return fig
