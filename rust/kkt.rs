@@ -70,25 +70,6 @@ impl LowerPattern {
     }
 }
 
-/// Σ a_i b_i with four independent partial sums (a single running sum waits on the
-/// floating-point add latency at every term).
-#[inline]
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let (mut s0, mut s1, mut s2, mut s3) = (0.0, 0.0, 0.0, 0.0);
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let (ra, rb) = (ca.remainder(), cb.remainder());
-    for (x, y) in ca.zip(cb) {
-        s0 += x[0] * y[0];
-        s1 += x[1] * y[1];
-        s2 += x[2] * y[2];
-        s3 += x[3] * y[3];
-    }
-    for (x, y) in ra.iter().zip(rb) {
-        s0 += x * y;
-    }
-    (s0 + s1) + (s2 + s3)
-}
-
 /// In-place Cholesky LLᵀ of the lower triangle of the column-major n×n matrix `s`
 /// (left-looking, column by column, visiting only the structural non-zeros of `pattern`), then
 /// `S x = rhs` by forward and backward substitution.
@@ -118,18 +99,21 @@ fn cholesky_solve_small(s: &mut [f64], rhs: &mut [f64], n: usize, pattern: &Lowe
             *v *= inv;
         }
     }
-    // L y = b (L column-major: subtract each solved unknown from the rest of its column).
-    for j in 0..n {
-        let yj = rhs[j] / s[j + j * n];
-        rhs[j] = yj;
-        for i in j + 1..n {
-            rhs[i] -= s[i + j * n] * yj;
+    // L y = b, row by row over the structural non-zeros of each row of L.
+    for i in 0..n {
+        let mut v = rhs[i];
+        for &k in pattern.row(i) {
+            v -= s[i + k as usize * n] * rhs[k as usize];
         }
+        rhs[i] = v / s[i + i * n];
     }
-    // Lᵀ x = y (row j of Lᵀ is column j of L).
-    for j in (0..n).rev() {
-        let v = rhs[j] - dot(&s[j * n + j + 1..j * n + n], &rhs[j + 1..n]);
-        rhs[j] = v / s[j + j * n];
+    // Lᵀ x = y: once x_i is known, remove its share from the unknowns of row i's columns.
+    for i in (0..n).rev() {
+        let xi = rhs[i] / s[i + i * n];
+        rhs[i] = xi;
+        for &k in pattern.row(i) {
+            rhs[k as usize] -= s[i + k as usize * n] * xi;
+        }
     }
     Ok(())
 }
