@@ -217,6 +217,26 @@ pub(super) fn fresh_rhs<S: OdeSystem>(sys: &mut S, stats: &mut Stats, t: f64, y:
     }
 }
 
+/// The first stage of the next step in `k[..n]`: `f(t, y)` afresh when the system changed its
+/// memory at the step's end, else the step's last stage `k[fsal]` (= f(t, y), FSAL).
+pub(super) fn first_stage<S: OdeSystem>(
+    sys: &mut S,
+    stats: &mut Stats,
+    refresh: bool,
+    t: f64,
+    y: &[f64],
+    k: &mut [f64],
+    fsal: usize,
+) -> Result<(), Error> {
+    let n = y.len();
+    if refresh {
+        fresh_rhs(sys, stats, t, y, &mut k[..n])
+    } else {
+        k.copy_within(fsal * n..(fsal + 1) * n, 0);
+        Ok(())
+    }
+}
+
 /// Everything a driver does once a step `[t, t1]` of size `h` is accepted, with its dense
 /// output filled: count it, let the system update its memory, deliver the outputs inside the
 /// step, and move `y1` into `y`. Returns whether the system asked for `f(t1, y1)` afresh.
@@ -450,12 +470,7 @@ fn drive_adaptive<S: OdeSystem>(
                 if last {
                     return Ok(());
                 }
-                if refresh {
-                    // The system changed its memory: no FSAL reuse.
-                    fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
-                } else {
-                    k.copy_within(fsal * n..(fsal + 1) * n, 0);
-                }
+                first_stage(sys, stats, refresh, t, &y, &mut k, fsal)?;
                 h = h_next;
             }
         }
@@ -476,8 +491,8 @@ fn drive_rk4<S: OdeSystem>(
     stats: &mut Stats,
 ) -> Result<(), Error> {
     let n = y0.len();
-    let mut k = vec![0.0; 4 * n];
-    let mut f1 = vec![0.0; n];
+    // Stages 0–3, and f(t1, y1) in slot 4 (the next step's first stage).
+    let mut k = vec![0.0; 5 * n];
     let mut y = y0.to_vec();
     let mut y1 = vec![0.0; n];
     let mut ytmp = vec![0.0; n];
@@ -508,22 +523,17 @@ fn drive_rk4<S: OdeSystem>(
         let h = t1 - t;
         stages(sys, &rk4::C, &rk4::A, 1..4, t, t1, h, &y, &mut k, &mut ytmp, stats)?;
         advance(&y, h, &rk4::B, &k, &mut y1);
-        sys.rhs(t1, &y1, &mut f1)?;
-        stats.rhs_evals += 1;
-        if !(all_finite(&y1) && all_finite(&f1)) {
+        if !all_finite(&y1) {
             return Err(non_finite(t));
         }
-        dense.fill_hermite(t, t1, &y, &y1, &k[..n], &f1);
+        fresh_rhs(sys, stats, t1, &y1, &mut k[4 * n..5 * n])?;
+        dense.fill_hermite(t, t1, &y, &y1, &k[..n], &k[4 * n..5 * n]);
         let refresh = accept_step(sys, stats, h, t, t1, &mut y, &mut y1, &dense, t_out, &mut next_out, &mut buf)?;
         t = t1;
         if last {
             return Ok(());
         }
-        if refresh {
-            fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
-        } else {
-            k[..n].copy_from_slice(&f1);
-        }
+        first_stage(sys, stats, refresh, t, &y, &mut k, 4)?;
     }
 }
 
@@ -1013,19 +1023,11 @@ mod tests {
     fn callback_errors_propagate_unchanged() {
         let grid: Vec<f64> = (0..=10).map(|i| i as f64 * 0.1).collect();
         for method in [Method::Rk4 { step: 0.05 }, Method::Dopri5, Method::Dop853] {
+            let run = |sys: &mut Sys| integrate(sys, method, 0.0, &forced_exact(0.0), 1.0, &grid, &Settings::default()).unwrap_err();
             // output
             let mut sys = Sys::new(3, forced);
             sys.fail_output_at = Some(0.45);
-            let (e, st) = integrate(
-                &mut sys,
-                method,
-                0.0,
-                &forced_exact(0.0),
-                1.0,
-                &grid,
-                &Settings::default(),
-            )
-            .unwrap_err();
+            let (e, st) = run(&mut sys);
             assert!(
                 matches!(e, Error::Interrupted { t } if (t - 0.5).abs() < 1e-15),
                 "{e:?}"
@@ -1035,16 +1037,7 @@ mod tests {
             // step_accepted
             let mut sys = Sys::new(3, forced);
             sys.fail_accept_call = Some(3);
-            let (e, st) = integrate(
-                &mut sys,
-                method,
-                0.0,
-                &forced_exact(0.0),
-                1.0,
-                &grid,
-                &Settings::default(),
-            )
-            .unwrap_err();
+            let (e, st) = run(&mut sys);
             assert!(
                 matches!(&e, Error::InvalidInput { field, .. } if field == "probe"),
                 "{e:?}"

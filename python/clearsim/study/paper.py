@@ -317,6 +317,21 @@ def _fmt(x: Optional[float], spec: str = ".4g") -> str:
     return format(x, spec)
 
 
+def _lower_reliability(trend: Trend, base: Analysis, harsher: Analysis, q: str, claim: str) -> None:
+    """Add the check "the harsher case's minimum reliability of ``q`` is below the base case's"."""
+    rb, rh = _min_R(base, q), _min_R(harsher, q)
+    ok = None if not (np.isfinite(rb) and np.isfinite(rh)) else bool(rh < rb)
+    pb, ph = PV.MINIMA[base.case.key][q][2], PV.MINIMA[harsher.case.key][q][2]
+    trend.checks.append(
+        Check(
+            f"{base.case.kind}, {q}: {claim}",
+            f"{_r_beta(harsher.pooled[q])} vs {_r_beta(base.pooled[q])}",
+            f"{ph:.4f} vs {pb:.4f}",
+            _status(ok),
+        )
+    )
+
+
 def _trends(an: Dict[str, Analysis], cycles: int) -> List[Trend]:
     t1 = Trend("1", "Lubricated acceleration errors are below the dry ones (every dry/lubricated pair)")
     for speed, c in (("5", "0.3"), ("5", "0.5"), ("5", "0.6"), ("8", "0.6")):
@@ -335,35 +350,12 @@ def _trends(an: Dict[str, Analysis], cycles: int) -> List[Trend]:
             )
         )
     t2 = Trend("2", "Larger clearance → lower minimum reliability (0.5 vs 0.3 mm at −5π, per quantity)")
-    for kind in ("dry", "lub"):
-        for q in QUANTITIES:
-            small, large = an[f"{kind}-c0.3-5pi"], an[f"{kind}-c0.5-5pi"]
-            rs, rl = _min_R(small, q), _min_R(large, q)
-            ok = None if not (np.isfinite(rs) and np.isfinite(rl)) else bool(rl < rs)
-            ps, pl = PV.MINIMA[small.case.key][q][2], PV.MINIMA[large.case.key][q][2]
-            t2.checks.append(
-                Check(
-                    f"{small.case.kind}, {q}: min R at 0.5 mm < at 0.3 mm",
-                    f"{_r_beta(large.pooled[q])} vs {_r_beta(small.pooled[q])}",
-                    f"{pl:.4f} vs {ps:.4f}",
-                    _status(ok),
-                )
-            )
     t3 = Trend("3", "Faster drive → lower velocity and acceleration reliability (−8π vs −5π at 0.6 mm)")
     for kind in ("dry", "lub"):
+        for q in QUANTITIES:
+            _lower_reliability(t2, an[f"{kind}-c0.3-5pi"], an[f"{kind}-c0.5-5pi"], q, "min R at 0.5 mm < at 0.3 mm")
         for q in ("velocity", "acceleration"):
-            slow, fast = an[f"{kind}-c0.6-5pi"], an[f"{kind}-c0.6-8pi"]
-            rs, rf = _min_R(slow, q), _min_R(fast, q)
-            ok = None if not (np.isfinite(rs) and np.isfinite(rf)) else bool(rf < rs)
-            ps, pf = PV.MINIMA[slow.case.key][q][2], PV.MINIMA[fast.case.key][q][2]
-            t3.checks.append(
-                Check(
-                    f"{slow.case.kind}, {q}: min R at 8π < at 5π",
-                    f"{_r_beta(fast.pooled[q])} vs {_r_beta(slow.pooled[q])}",
-                    f"{pf:.4f} vs {ps:.4f}",
-                    _status(ok),
-                )
-            )
+            _lower_reliability(t3, an[f"{kind}-c0.6-5pi"], an[f"{kind}-c0.6-8pi"], q, "min R at 8π < at 5π")
     later = f"cycles 2–{cycles}" if cycles >= 3 else "cycles 2, 3, … (needs 3 or more cycles)"
     t4a = Trend("4a", f"Displacement reliability minima recur at the same crank angle each cycle (all {cycles} cycle(s), start-up cycle included, as in Fig. 11a)")
     t4b = Trend("4b", f"Displacement reliability minima recur at the same crank angle each cycle ({later}, after the start-up cycle)")
