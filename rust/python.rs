@@ -300,8 +300,9 @@ fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
         "rk45" | "dopri5" => Method::Dopri5,
         "dop853" => Method::Dop853,
         "rodas4" => Method::Rodas4,
+        "radau" | "radau5" => Method::Radau5,
         "rk4" => Method::Rk4 { step: r.f64("step")? },
-        other => return Err(input_error(py, "integrator", other, "must be 'rk45', 'dop853', 'rk4' or 'rodas4'")),
+        other => return Err(input_error(py, "integrator", other, "must be 'rk45', 'dop853', 'rk4', 'radau' or 'rodas4'")),
     };
     let base = Settings::default();
     let ode = Settings {
@@ -380,6 +381,7 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
     s.set_item("steps", out.stats.steps_accepted)?;
     s.set_item("rejected_steps", out.stats.steps_rejected)?;
     s.set_item("rhs_evaluations", out.stats.rhs_evals)?;
+    s.set_item("jacobians", out.stats.jacobians)?;
     s.set_item("min_step", out.stats.h_min_used)?;
     s.set_item("max_step", out.stats.h_max_used)?;
     s.set_item("t_reached", out.stats.t_reached)?;

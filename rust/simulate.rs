@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use crate::assembly::assemble;
-use crate::clearance::{ImpactMemory, JointKinematics};
+use crate::clearance::{ClearanceJoint, ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::error::{Error, Result};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
@@ -99,6 +99,12 @@ pub struct MechanismSystem<'a> {
     stop: Option<StopCheck<'a>>,
     accepted: usize,
     scratch: Vec<f64>,
+    /// Columns `S e_k` of the constrained mobility (m × m, column-major; only the columns of
+    /// clearance-joint bodies are filled) and which are current.
+    mobility: Vec<f64>,
+    mobility_done: Vec<bool>,
+    g_base: Vec<f64>,
+    g_probe: Vec<f64>,
     /// Last accepted state (for the diagnosis of a failure).
     pub last_t: f64,
     pub last_y: Vec<f64>,
@@ -114,6 +120,10 @@ impl<'a> MechanismSystem<'a> {
             stop,
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
+            mobility: vec![0.0; 9 * model.n_bodies() * model.n_bodies()],
+            mobility_done: vec![false; 3 * model.n_bodies()],
+            g_base: vec![0.0; 3 * model.n_bodies()],
+            g_probe: vec![0.0; 3 * model.n_bodies()],
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
         }
@@ -239,6 +249,63 @@ impl OdeSystem for MechanismSystem<'_> {
         Ok(changed)
     }
 
+    /// The stiff part of `∂q̈/∂(q, q̇)` for the Rosenbrock-W method: the clearance-joint forces
+    /// `g_j` differenced in the 6 position and velocity components of each of their two bodies
+    /// (forces, kinematics and moment arms recomputed, impact memory held), mapped to
+    /// accelerations by the constrained mobility `S` of the current pose:
+    /// `∂q̈/∂x ≈ S ∂g/∂x`. Left out, as not stiff: the pose dependence of `S`, of `γ` and of the
+    /// Baumgarte terms (eigenvalues of order α, β).
+    fn acceleration_jacobian(&mut self, t: f64, y: &[f64], a_q: &mut [f64], a_v: &mut [f64]) -> Result<bool> {
+        let model = self.model;
+        let m = 3 * model.n_bodies();
+        a_q.fill(0.0);
+        a_v.fill(0.0);
+        if model.clearance.is_empty() {
+            return Ok(true);
+        }
+        self.ws.eval_constraints(model, t, &y[..m], &y[m..2 * m]);
+        self.mobility_done.fill(false);
+        for (j, joint) in model.clearance.iter().enumerate() {
+            let bodies = [joint.bearing, joint.journal];
+            for &b in bodies.iter().flatten() {
+                for k in 3 * b as usize..3 * b as usize + 3 {
+                    if !self.mobility_done[k] {
+                        self.ws.unit_force_response(t, k, &mut self.mobility[k * m..(k + 1) * m])?;
+                        self.mobility_done[k] = true;
+                    }
+                }
+            }
+            joint_generalised_force(joint, &self.ws.kin, &self.memory[j], &mut self.g_base);
+            for &b in bodies.iter().flatten() {
+                let b = b as usize;
+                let saved = self.ws.kin[b];
+                let mut x = [saved.x, saved.y, saved.th, saved.vx, saved.vy, saved.w];
+                for comp in 0..6 {
+                    let delta = f64::EPSILON.sqrt() * x[comp].abs().max(1.0);
+                    let keep = x[comp];
+                    x[comp] += delta;
+                    self.ws.kin[b] = BodyKin::new(&x[..3], &x[3..]);
+                    x[comp] = keep;
+                    joint_generalised_force(joint, &self.ws.kin, &self.memory[j], &mut self.g_probe);
+                    self.ws.kin[b] = saved;
+                    let target = if comp < 3 { &mut *a_q } else { &mut *a_v };
+                    let col = &mut target[(3 * b + comp % 3) * m..(3 * b + comp % 3 + 1) * m];
+                    for &ob in bodies.iter().flatten() {
+                        for o in 3 * ob as usize..3 * ob as usize + 3 {
+                            let d = (self.g_probe[o] - self.g_base[o]) / delta;
+                            if d != 0.0 {
+                                for (c, s) in col.iter_mut().zip(&self.mobility[o * m..(o + 1) * m]) {
+                                    *c += d * s;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(true)
+    }
+
     fn output(&mut self, t: f64, y: &[f64]) -> Result<()> {
         if self.recording.needs_evaluation() {
             self.ws.evaluate(self.model, &self.memory, t, y)?;
@@ -246,6 +313,17 @@ impl OdeSystem for MechanismSystem<'_> {
         self.recording.push(t, y, &self.ws);
         Ok(())
     }
+}
+
+/// The generalised forces of one clearance joint on its two bodies, written to their entries
+/// of `g` (the other entries are left alone).
+fn joint_generalised_force(joint: &ClearanceJoint, kin: &[BodyKin], memory: &ImpactMemory, g: &mut [f64]) {
+    for &b in [joint.bearing, joint.journal].iter().flatten() {
+        g[3 * b as usize..3 * b as usize + 3].fill(0.0);
+    }
+    let k = joint.kinematics(kin);
+    let f = joint.force(&k, memory);
+    joint.apply(kin, &k, &f, g);
 }
 
 /// Run a compiled model. Bad settings are an `Err`; a run that fails part-way is an `Ok` whose

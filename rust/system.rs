@@ -24,6 +24,10 @@ pub struct Workspace {
     pub joint_kin: Vec<JointKinematics>,
     pub joint_force: Vec<JointForce>,
     kkt: KktSolver,
+    /// Scratch of [`Workspace::unit_force_response`]: a unit force, zero `c`, multipliers.
+    unit: Vec<f64>,
+    zero_c: Vec<f64>,
+    unit_lambda: Vec<f64>,
 }
 
 impl Workspace {
@@ -50,6 +54,9 @@ impl Workspace {
             joint_kin: vec![JointKinematics::default(); model.clearance.len()],
             joint_force: vec![JointForce::default(); model.clearance.len()],
             kkt: KktSolver::new(vec![1.0; 3 * nb], &[]),
+            unit: vec![0.0; 3 * nb],
+            zero_c: vec![0.0; rows],
+            unit_lambda: vec![0.0; rows],
         };
         // The Jacobian's sparsity (which bodies each row touches) is fixed: take it from any pose.
         let n = 3 * nb;
@@ -79,6 +86,17 @@ impl Workspace {
     pub fn solve_kkt(&mut self, t: f64) -> Result<()> {
         self.kkt
             .solve(&self.jac, &self.force, &self.c, &mut self.qdd, &mut self.lambda)
+            .map_err(|index| Error::SingularJacobian { t, index })
+    }
+
+    /// `out = S e_k`: the constrained acceleration response to a unit generalised force on
+    /// coordinate `k` at the pose of the last [`Workspace::eval_constraints`], with
+    /// `S = M⁻¹ − M⁻¹Φqᵀ(Φq M⁻¹ Φqᵀ)⁻¹Φq M⁻¹` (the KKT solve with `g = e_k`, `c = 0`).
+    pub fn unit_force_response(&mut self, t: f64, k: usize, out: &mut [f64]) -> Result<()> {
+        self.unit.fill(0.0);
+        self.unit[k] = 1.0;
+        self.kkt
+            .solve(&self.jac, &self.unit, &self.zero_c, out, &mut self.unit_lambda)
             .map_err(|index| Error::SingularJacobian { t, index })
     }
 

@@ -100,6 +100,7 @@ fn integration_steps_allocate_nothing() {
             // (DOP853 fails with NonFinite on the dry nine-bar at t ≈ 0.028 s: stay before it.)
             (Method::Dop853, if name.starts_with("nine") { 0.03 } else { 0.2 } * cycle),
             (Method::Rodas4, 0.05 * cycle),
+            (Method::Radau5, 0.1 * cycle),
         ] {
             // Warm-up: one-time process-wide initialisations (e.g. faer's CPU-feature cache)
             // are not per-step allocations.

@@ -21,7 +21,7 @@ from .result import Result
 
 GROUND = "ground"
 Point = Sequence[float]
-INTEGRATORS = ("rk45", "rk4", "dop853", "rodas4")
+INTEGRATORS = ("rk45", "rk4", "dop853", "radau", "rodas4")
 OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation")
 DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
 #: Most outputs a dt_out grid may ask for (each holds every stored channel).
@@ -455,11 +455,12 @@ class Mechanism:
         -----------------
         integrator:
             ``"rk45"`` (default, Dormand–Prince 5(4), adaptive), ``"dop853"`` (8th order, for
-            tight tolerances), ``"rk4"`` (classic, fixed ``step`` [s]) or ``"rodas4"``
-            (L-stable Rosenbrock 4(3) with a finite-difference Jacobian, for stiff phases: a
-            film near ε → 1 at low viscosity or tiny clearance, very stiff contacts; each step
-            costs about ``state_dim + 7`` right-hand sides, so use it only when the explicit
-            methods are held to tiny steps by stability rather than accuracy).
+            tight tolerances), ``"radau"`` (RADAU5: implicit Radau IIA of order 5, L-stable,
+            with Newton matrices built from the clearance joints' force derivatives — the
+            method for lubricated joints, whose film makes the problem stiff; 4–10× faster than
+            RK45 at the same error there, slower on dry impacts), ``"rodas4"`` (L-stable
+            Rosenbrock 4(3) with a finite-difference Jacobian, ``state_dim + 7`` right-hand
+            sides per step) or ``"rk4"`` (classic, fixed ``step`` [s]).
         rtol, atol:
             Tolerances of the adaptive methods (default 1e-6, 1e-9).
         dt_out / t_out:

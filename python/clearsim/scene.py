@@ -62,7 +62,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     [simulation]
     t_end = 0.4                      # s, or: cycles = 3 (× period [s], default 2π/|ω| of
                                      #   the first constant-speed driver; period = ... to set it)
-    integrator = "rk45"              # rk45 | dop853 | rk4 (rk4 needs step [s])
+    integrator = "rk45"              # rk45 | dop853 | radau | rodas4 | rk4 (rk4 needs step [s])
     rtol = 1e-6
     atol = 1e-9
     dt_out = 1e-4                    # s, output grid (default (t_end − t0)/1000)

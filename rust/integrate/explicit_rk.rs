@@ -28,6 +28,7 @@ pub(crate) fn run<S: OdeSystem>(
         Method::Rk4 { step } => drive_rk4(sys, step, t0, y0, t_end, t_out, settings, &mut stats),
         Method::Dopri5 | Method::Dop853 => drive_adaptive(sys, method, t0, y0, t_end, t_out, settings, &mut stats),
         Method::Rodas4 => super::stiff::drive_rodas4(sys, t0, y0, t_end, t_out, settings, &mut stats),
+        Method::Radau5 => super::radau::drive_radau5(sys, t0, y0, t_end, t_out, settings, &mut stats),
     });
     match res {
         Ok(()) => Ok(stats),
@@ -76,7 +77,7 @@ fn validate(
                 return Err(Error::invalid("step", step, "must be finite and > 0"));
             }
         }
-        Method::Dopri5 | Method::Dop853 | Method::Rodas4 => {
+        Method::Dopri5 | Method::Dop853 | Method::Rodas4 | Method::Radau5 => {
             if !(s.rtol.is_finite() && s.rtol > 0.0) {
                 return Err(Error::invalid("rtol", s.rtol, "must be finite and > 0"));
             }

@@ -1,18 +1,17 @@
-//! Time integration: explicit Runge–Kutta methods with step control and dense output.
+//! Time integration: explicit Runge–Kutta methods, RODAS4 and RADAU5, with step control and
+//! dense output.
 //!
 //! One concept per file: `tableau.rs` (Butcher tableaus with their sources), `explicit_rk.rs`
 //! (the stepper), `controller.rs` (PI step-size control, initial step), `dense.rs` (continuous
-//! extensions). The driver [`integrate`] samples the solution on a user grid through the dense
-//! output, so output times never shorten a step.
-//!
-//! THE INTERFACE BELOW IS FIXED (the model code depends on it); the bodies are filled in by the
-//! integrator work.
+//! extensions), `stiff.rs` (RODAS4), `radau.rs` (RADAU5). The driver [`integrate`] samples the
+//! solution on a user grid through the dense output, so output times never shorten a step.
 
 use crate::error::Error;
 
 pub mod controller;
 pub mod dense;
 mod explicit_rk;
+mod radau;
 mod stiff;
 pub mod tableau;
 
@@ -39,6 +38,14 @@ pub trait OdeSystem {
     }
     /// Called at every requested output time with the (interpolated) state.
     fn output(&mut self, t: f64, y: &[f64]) -> Result<(), Error>;
+    /// For a second-order system, `y = (q, v)` and `f = (v, a(t, q, v))` with `q`, `v` of length
+    /// `m = dim/2`: write an approximation of `∂a/∂q` and `∂a/∂v` (each `m × m`, column-major)
+    /// and return `Ok(true)`. Used for the Newton matrices of RADAU5, whose simplified Newton
+    /// iteration converges with any good approximation of the stiff part. The default,
+    /// `Ok(false)`, makes it difference the whole `f` instead.
+    fn acceleration_jacobian(&mut self, _t: f64, _y: &[f64], _a_q: &mut [f64], _a_v: &mut [f64]) -> Result<bool, Error> {
+        Ok(false)
+    }
 }
 
 /// Continuous extension of one accepted step.
@@ -61,6 +68,9 @@ pub enum Method {
     /// RODAS4: L-stable, stiffly accurate Rosenbrock 4(3) with 3rd-order dense output and a
     /// finite-difference Jacobian (Hairer–Wanner's RODAS), for stiff phases (`stiff.rs`).
     Rodas4,
+    /// RADAU5: 3-stage Radau IIA of order 5 (L-stable, stiffly accurate) with simplified Newton
+    /// iterations and the collocation polynomial as dense output (`radau.rs`).
+    Radau5,
 }
 
 /// Tolerances and limits for adaptive methods (ignored by RK4 except `max_steps`).
@@ -93,6 +103,8 @@ pub struct Stats {
     pub steps_accepted: usize,
     pub steps_rejected: usize,
     pub rhs_evals: usize,
+    /// Jacobian (or W-matrix) evaluations of the stiff methods.
+    pub jacobians: usize,
     /// Smallest accepted step [s] (`f64::INFINITY` before the first).
     pub h_min_used: f64,
     /// Largest accepted step [s].

@@ -1,0 +1,816 @@
+//! RADAU5: the 3-stage Radau IIA collocation method of order 5, L-stable and stiffly accurate,
+//! with simplified Newton iterations, an embedded error estimate filtered through the iteration
+//! matrix, Gustafsson's predictive step control and the collocation polynomial as dense output
+//! (Hairer & Wanner, *Solving ODEs II*, §IV.8; the algorithm of their code `RADAU5`).
+//!
+//! Why a fully implicit method for the mechanism: the stiff forces of a clearance joint are
+//! strongly nonlinear over one step (film damping ∝ (1 − ε²)^(−3/2), contact ∝ δ^1.5 with a
+//! damping set by the impact speed), and a linearly implicit (Rosenbrock) step linearises them
+//! once per step; the Newton iteration here solves the stage equations themselves, so the step
+//! is limited by accuracy, not by how far the linearisation holds.
+//!
+//! The Newton matrices are `σI − W` for the eigenvalues `σ` of `(hA)⁻¹` (one real, one complex
+//! pair: a real and a complex system per iteration, Hairer–Wanner IV.8.16–19). `W` comes from the
+//! system's second-order hook [`OdeSystem::acceleration_jacobian`] when it has one — for a
+//! mechanism, the clearance joints' force derivatives mapped through the constrained mobility,
+//! a few KKT solves instead of `n` evaluations of `f`; the simplified Newton iteration converges
+//! with an approximate `W` and the converged stages do not depend on it — and then, with
+//! `W = [[0, I], [W_q, W_v]]`, each system shrinks to half size:
+//! `x_q = (r_q + x_v)/σ`, `(σI − W_v − W_q/σ) x_v = r_v + W_q r_q/σ`.
+//! Otherwise `W` is a forward-difference Jacobian of the whole `f`.
+//! Complex systems are solved in real form `[[Re, −Im], [Im, Re]]`.
+//!
+//! Tolerances are used as given (no internal transformation as in Hairer's code; SciPy's
+//! `Radau` does the same).
+
+use faer::Mat;
+
+use super::controller::initial_step;
+use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite};
+use super::stiff::Lu;
+use super::{DenseOutput, OdeSystem, Settings, Stats};
+use crate::error::Error;
+
+/// The method's constants (Hairer's `RADCOR` / `ESTRAD`): nodes, the eigenvalues of `A⁻¹`
+/// (`u1` real, `α ± iβ`), the transformation `T` with `T⁻¹ A⁻¹ T = [[u1, 0, 0], [0, α, −β], [0, β, α]]`,
+/// and the error-estimate weights `d_i`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Radau5 {
+    pub c: [f64; 3],
+    pub u1: f64,
+    pub alpha: f64,
+    pub beta: f64,
+    pub t: [[f64; 3]; 3],
+    pub ti: [[f64; 3]; 3],
+    pub d: [f64; 3],
+}
+
+#[allow(clippy::excessive_precision)]
+impl Radau5 {
+    pub(crate) fn new() -> Self {
+        let sq6 = 6f64.sqrt();
+        let (c81, c9) = (81f64.cbrt(), 9f64.cbrt());
+        let u1 = 30.0 / (6.0 + c81 - c9);
+        let (a, b) = ((12.0 - c81 + c9) / 60.0, (c81 + c9) * 3f64.sqrt() / 60.0);
+        let cno = a * a + b * b;
+        Radau5 {
+            c: [(4.0 - sq6) / 10.0, (4.0 + sq6) / 10.0, 1.0],
+            u1,
+            alpha: a / cno,
+            beta: b / cno,
+            t: [
+                [9.1232394870892942792e-02, -0.14125529502095420843, -3.0029194105147424492e-02],
+                [0.24171793270710701896, 0.20412935229379993199, 0.38294211275726193779],
+                [0.96604818261509293619, 1.0, 0.0],
+            ],
+            ti: [
+                [4.3255798900631553510, 0.33919925181580986954, 0.54177053993587487119],
+                [-4.1787185915519047273, -0.32768282076106238708, 0.47662355450055045196],
+                [-0.50287263494578687595, 2.5719269498556054292, -0.59603920482822492497],
+            ],
+            d: [-(13.0 + 7.0 * sq6) / 3.0, (-13.0 + 7.0 * sq6) / 3.0, -1.0 / 3.0],
+        }
+    }
+
+    /// The Radau IIA coefficient matrix (Hairer–Wanner IV.5, Table 5.6).
+    #[cfg(test)]
+    pub(crate) fn a() -> [[f64; 3]; 3] {
+        let s = 6f64.sqrt();
+        [
+            [(88.0 - 7.0 * s) / 360.0, (296.0 - 169.0 * s) / 1800.0, (-2.0 + 3.0 * s) / 225.0],
+            [(296.0 + 169.0 * s) / 1800.0, (88.0 + 7.0 * s) / 360.0, (-2.0 - 3.0 * s) / 225.0],
+            [(16.0 - s) / 36.0, (16.0 + s) / 36.0, 1.0 / 9.0],
+        ]
+    }
+}
+
+/// The collocation polynomial of the last accepted step in Newton form in `s = (t − t1)/h`:
+/// `y = c0 + s (c1 + (s − c2 + 1)(c2' + (s − c1 + 1) c3))` through `y0`, the stages and `y1`.
+struct RadauDense {
+    t0: f64,
+    t1: f64,
+    c1m1: f64,
+    c2m1: f64,
+    cont: Vec<f64>,
+}
+
+impl DenseOutput for RadauDense {
+    fn interval(&self) -> (f64, f64) {
+        (self.t0, self.t1)
+    }
+    fn eval(&self, t: f64, out: &mut [f64]) {
+        let n = out.len();
+        let h = self.t1 - self.t0;
+        let s = if h != 0.0 { (t - self.t1) / h } else { 0.0 };
+        let c = &self.cont;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = c[i] + s * (c[n + i] + (s - self.c2m1) * (c[2 * n + i] + (s - self.c1m1) * c[3 * n + i]));
+        }
+    }
+}
+
+/// The two Newton matrices `σ₁I − W` (real `σ₁ = u1/h`) and `σ₂I − W` (complex
+/// `σ₂ = (α + iβ)/h`), in full or structured (half-size) form.
+struct NewtonSystems {
+    /// `m = n/2` for a second-order system with the structured hook, else `None`.
+    half: Option<usize>,
+    jac: Mat<f64>,
+    w_q: Vec<f64>,
+    w_v: Vec<f64>,
+    real: Lu,
+    complex: Lu,
+    sigma: f64,
+    /// `σ₂ = a + ib` and `1/σ₂ = p + iq`.
+    a: f64,
+    b: f64,
+    p: f64,
+    q: f64,
+    /// Scratch: `k` and `2k` long (`k` = size of the real system).
+    tmp: Vec<f64>,
+    tmp2: Vec<f64>,
+    gq: Vec<f64>,
+    probe: Vec<f64>,
+    df: Vec<f64>,
+}
+
+impl NewtonSystems {
+    fn new<S: OdeSystem>(sys: &mut S, t: f64, y: &[f64]) -> Result<Self, Error> {
+        let n = y.len();
+        let m = n / 2;
+        let mut w_q = vec![0.0; m * m];
+        let mut w_v = vec![0.0; m * m];
+        let structured = n.is_multiple_of(2) && n > 0 && sys.acceleration_jacobian(t, y, &mut w_q, &mut w_v)?;
+        let k = if structured { m } else { n };
+        Ok(NewtonSystems {
+            half: structured.then_some(m),
+            jac: if structured { Mat::zeros(0, 0) } else { Mat::zeros(n, n) },
+            w_q,
+            w_v,
+            real: Lu::new(k),
+            complex: Lu::new(2 * k),
+            sigma: 0.0,
+            a: 0.0,
+            b: 0.0,
+            p: 0.0,
+            q: 0.0,
+            tmp: vec![0.0; k],
+            tmp2: vec![0.0; 2 * k],
+            gq: vec![0.0; 2 * m],
+            probe: if structured { Vec::new() } else { vec![0.0; n] },
+            df: if structured { Vec::new() } else { vec![0.0; n] },
+        })
+    }
+
+    /// Recompute `W` at `(t, y)`; `f0 = f(t, y)`.
+    fn update<S: OdeSystem>(&mut self, sys: &mut S, stats: &mut Stats, t: f64, y: &[f64], f0: &[f64]) -> Result<(), Error> {
+        stats.jacobians += 1;
+        if self.half.is_some() {
+            sys.acceleration_jacobian(t, y, &mut self.w_q, &mut self.w_v)?;
+            return Ok(());
+        }
+        let n = y.len();
+        self.probe.copy_from_slice(y);
+        for j in 0..n {
+            let delta = (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt();
+            self.probe[j] = y[j] + delta;
+            sys.rhs(t, &self.probe, &mut self.df)?;
+            self.probe[j] = y[j];
+            for i in 0..n {
+                self.jac[(i, j)] = (self.df[i] - f0[i]) / delta;
+            }
+        }
+        stats.rhs_evals += n;
+        Ok(())
+    }
+
+    /// Factorise both systems for `σ₁ = sigma` and `σ₂ = a + ib`.
+    fn factor(&mut self, sigma: f64, a: f64, b: f64) {
+        let den = a * a + b * b;
+        (self.sigma, self.a, self.b, self.p, self.q) = (sigma, a, b, a / den, -b / den);
+        let (p, q) = (self.p, self.q);
+        match self.half {
+            None => {
+                let jac = &self.jac;
+                let n = jac.nrows();
+                self.real.factor(jac, sigma);
+                self.complex.factor_with(|e| {
+                    for j in 0..n {
+                        for i in 0..n {
+                            let v = -jac[(i, j)];
+                            e[(i, j)] = v;
+                            e[(i + n, j + n)] = v;
+                            e[(i + n, j)] = 0.0;
+                            e[(i, j + n)] = 0.0;
+                        }
+                        e[(j, j)] += a;
+                        e[(j + n, j + n)] += a;
+                        e[(j, j + n)] = -b;
+                        e[(j + n, j)] = b;
+                    }
+                });
+            }
+            Some(m) => {
+                let (w_q, w_v) = (&self.w_q, &self.w_v);
+                // Real: σ I − W_v − W_q/σ.
+                self.real.factor_with(|e| {
+                    for j in 0..m {
+                        for i in 0..m {
+                            e[(i, j)] = -w_v[i + j * m] - w_q[i + j * m] / sigma;
+                        }
+                        e[(j, j)] += sigma;
+                    }
+                });
+                // Complex: M = (a I − W_v − p W_q) + i (b I − q W_q), real form.
+                self.complex.factor_with(|e| {
+                    for j in 0..m {
+                        for i in 0..m {
+                            let re = -w_v[i + j * m] - p * w_q[i + j * m];
+                            let im = -q * w_q[i + j * m];
+                            e[(i, j)] = re;
+                            e[(i + m, j + m)] = re;
+                            e[(i + m, j)] = im;
+                            e[(i, j + m)] = -im;
+                        }
+                        e[(j, j)] += a;
+                        e[(j + m, j + m)] += a;
+                        e[(j + m, j)] += b;
+                        e[(j, j + m)] -= b;
+                    }
+                });
+            }
+        }
+    }
+
+    /// `x ← (σ₁ I − W)⁻¹ x`.
+    fn solve_real(&mut self, x: &mut [f64]) {
+        let Some(m) = self.half else {
+            self.real.solve(x);
+            return;
+        };
+        // x_v = (σI − W_v − W_q/σ)⁻¹ (r_v + W_q r_q/σ), x_q = (r_q + x_v)/σ.
+        let s = self.sigma;
+        let (xq, xv) = x.split_at_mut(m);
+        self.tmp.copy_from_slice(xv);
+        for (j, &r) in xq.iter().enumerate() {
+            if r != 0.0 {
+                let r = r / s;
+                for (t, w) in self.tmp.iter_mut().zip(&self.w_q[j * m..(j + 1) * m]) {
+                    *t += r * w;
+                }
+            }
+        }
+        self.real.solve(&mut self.tmp);
+        xv.copy_from_slice(&self.tmp);
+        for (q, v) in xq.iter_mut().zip(xv.iter()) {
+            *q = (*q + v) / s;
+        }
+    }
+
+    /// `(xr + i xi) ← (σ₂ I − W)⁻¹ (xr + i xi)`.
+    fn solve_complex(&mut self, xr: &mut [f64], xi: &mut [f64]) {
+        let Some(m) = self.half else {
+            let n = xr.len();
+            self.tmp2[..n].copy_from_slice(xr);
+            self.tmp2[n..].copy_from_slice(xi);
+            self.complex.solve(&mut self.tmp2);
+            xr.copy_from_slice(&self.tmp2[..n]);
+            xi.copy_from_slice(&self.tmp2[n..]);
+            return;
+        };
+        let (p, q) = (self.p, self.q);
+        let (rq, rv) = xr.split_at_mut(m);
+        let (iq, iv) = xi.split_at_mut(m);
+        // g = W_q r_q (complex).
+        let (gr, gi) = self.gq.split_at_mut(m);
+        gr.fill(0.0);
+        gi.fill(0.0);
+        for j in 0..m {
+            let col = &self.w_q[j * m..(j + 1) * m];
+            let (a, b) = (rq[j], iq[j]);
+            if a != 0.0 || b != 0.0 {
+                for i in 0..m {
+                    gr[i] += col[i] * a;
+                    gi[i] += col[i] * b;
+                }
+            }
+        }
+        // x_v = M⁻¹ (r_v + (p + iq) g).
+        for i in 0..m {
+            self.tmp2[i] = rv[i] + p * gr[i] - q * gi[i];
+            self.tmp2[m + i] = iv[i] + q * gr[i] + p * gi[i];
+        }
+        self.complex.solve(&mut self.tmp2);
+        rv.copy_from_slice(&self.tmp2[..m]);
+        iv.copy_from_slice(&self.tmp2[m..]);
+        // x_q = (p + iq)(r_q + x_v).
+        for i in 0..m {
+            let (a, b) = (rq[i] + rv[i], iq[i] + iv[i]);
+            rq[i] = p * a - q * b;
+            iq[i] = q * a + p * b;
+        }
+    }
+}
+
+/// Most Newton iterations per step (Hairer's `NIT`).
+const NIT: usize = 7;
+/// Consecutive failed trial steps (non-finite stages, divergent Newton) before the run stops.
+const MAX_TRIAL_FAILURES: usize = 30;
+
+/// The RADAU5 driver, with the contract of the other drivers. `W` is recomputed after every
+/// accepted step (cheap with the structured hook) and kept on rejections.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn drive_radau5<S: OdeSystem>(
+    sys: &mut S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    t_out: &[f64],
+    st: &Settings,
+    stats: &mut Stats,
+) -> Result<(), Error> {
+    let k = Radau5::new();
+    let (c1, c2) = (k.c[0], k.c[1]);
+    let (c1m1, c2m1, c1mc2) = (c1 - 1.0, c2 - 1.0, c1 - c2);
+    let n = y0.len();
+    let mut y = y0.to_vec();
+    let mut ynew = vec![0.0; n];
+    let mut f0 = vec![0.0; n];
+    let mut z = vec![0.0; 3 * n]; // stage increments Z_i = Y_i − y
+    let mut w = vec![0.0; 3 * n]; // T⁻¹ Z
+    let mut fz = vec![0.0; 3 * n]; // f at the stages, then the Newton corrections
+    let mut ytmp = vec![0.0; n];
+    let mut scal = vec![0.0; n];
+    let mut errv = vec![0.0; n];
+    let mut e_comb = vec![0.0; n];
+    let mut buf = vec![0.0; n];
+    let mut dense = RadauDense { t0, t1: t0, c1m1, c2m1, cont: vec![0.0; 4 * n] };
+
+    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
+    if t_end == t0 {
+        return Ok(());
+    }
+    let mut t = t0;
+    fresh_rhs(sys, stats, t, &y, &mut f0)?;
+    let mut newton = NewtonSystems::new(sys, t, &y)?;
+    let mut h = match st.h0 {
+        Some(h0) => h0,
+        None => {
+            let h = initial_step(sys, t, &y, &f0, 5, st.h_max.min(t_end - t0), st.rtol, st.atol, &mut ynew, &mut ytmp)?;
+            stats.rhs_evals += 1;
+            h.max(st.h_min)
+        }
+    };
+    let fnewt = (10.0 * f64::EPSILON / st.rtol).max(0.03f64.min(st.rtol.sqrt()));
+    let safe = 0.9;
+    let (fac_grow, fac_shrink) = (1.0 / 8.0, 5.0); // h_new/h ∈ [1/5, 8]
+    let cfac = safe * (1 + 2 * NIT) as f64;
+    let (mut h_acc, mut err_acc) = (h, 1.0f64);
+    let mut h_old = h; // the last accepted step (for extrapolating the stages)
+    let mut first = true;
+    let mut reject = false;
+    let mut need_w = true;
+    let mut faccon = 1.0f64;
+    let mut trial_failures = 0usize;
+    let mut last_trial_error = non_finite(t);
+
+    'steps: loop {
+        h = h.min(st.h_max);
+        let floor = st.h_min.max(1e-14 * t.abs());
+        if !(h > 0.0 && h >= floor) {
+            if trial_failures > 0 {
+                return Err(last_trial_error);
+            }
+            return Err(Error::StepSizeUnderflow { t, h, detail: String::new() });
+        }
+        if stats.steps_accepted + stats.steps_rejected >= st.max_steps {
+            return Err(Error::TooManySteps { t, max_steps: st.max_steps });
+        }
+        let (hs, t1, last) = if t + 1.01 * h < t_end {
+            (h, t + h, false)
+        } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
+            (t_end - t, t_end, true)
+        } else {
+            let half = 0.5 * (t_end - t);
+            (half, t + half, false)
+        };
+        if need_w {
+            newton.update(sys, stats, t, &y, &f0)?;
+            need_w = false;
+        }
+        let (fac1, alphn, betan) = (k.u1 / hs, k.alpha / hs, k.beta / hs);
+        newton.factor(fac1, alphn, betan);
+
+        // Starting values: zero on the first step, else the last collocation polynomial.
+        if first {
+            z.fill(0.0);
+            w.fill(0.0);
+        } else {
+            let c3q = hs / h_old;
+            let cq = [c1 * c3q, c2 * c3q, c3q];
+            let cont = &dense.cont;
+            for i in 0..n {
+                let (a1, a2, a3) = (cont[n + i], cont[2 * n + i], cont[3 * n + i]);
+                for (s, &x) in cq.iter().enumerate() {
+                    z[s * n + i] = x * (a1 + (x - c2m1) * (a2 + (x - c1m1) * a3));
+                }
+            }
+            transform(&k.ti, &z, &mut w, n);
+        }
+        for i in 0..n {
+            scal[i] = st.atol + st.rtol * y[i].abs();
+        }
+
+        // Simplified Newton iteration (Hairer–Wanner IV.8.19).
+        faccon = faccon.max(f64::EPSILON).powf(0.8);
+        let (mut dyno_old, mut thq_old) = (1.0f64, 1.0f64);
+        let mut newt = 0usize;
+        let mut failure: Option<f64> = None; // step factor on failure
+        loop {
+            if newt >= NIT {
+                failure = Some(0.5);
+                break;
+            }
+            let mut eval = || -> Result<(), Error> {
+                for s in 0..3 {
+                    for i in 0..n {
+                        ytmp[i] = y[i] + z[s * n + i];
+                    }
+                    let ts = if s == 2 { t1 } else { t + k.c[s] * hs };
+                    sys.rhs(ts, &ytmp, &mut fz[s * n..(s + 1) * n])?;
+                    stats.rhs_evals += 1;
+                }
+                Ok(())
+            };
+            match eval() {
+                Ok(()) if all_finite(&fz) => {}
+                Ok(()) => {
+                    last_trial_error = non_finite(t);
+                    failure = Some(0.25);
+                    break;
+                }
+                Err(e @ (Error::NonFinite { .. } | Error::SingularJacobian { .. })) => {
+                    last_trial_error = e;
+                    failure = Some(0.25);
+                    break;
+                }
+                Err(e) => return Err(e),
+            }
+            // Right-hand sides in transformed variables, then the two solves.
+            let mut dyno = 0.0;
+            {
+                let (r1, rest) = fz.split_at_mut(n);
+                let (r2, r3) = rest.split_at_mut(n);
+                for i in 0..n {
+                    let (f1, f2, f3) = (r1[i], r2[i], r3[i]);
+                    let a1 = k.ti[0][0] * f1 + k.ti[0][1] * f2 + k.ti[0][2] * f3;
+                    let a2 = k.ti[1][0] * f1 + k.ti[1][1] * f2 + k.ti[1][2] * f3;
+                    let a3 = k.ti[2][0] * f1 + k.ti[2][1] * f2 + k.ti[2][2] * f3;
+                    let (w1, w2, w3) = (w[i], w[n + i], w[2 * n + i]);
+                    r1[i] = a1 - fac1 * w1;
+                    r2[i] = a2 - alphn * w2 + betan * w3;
+                    r3[i] = a3 - alphn * w3 - betan * w2;
+                }
+                newton.solve_real(r1);
+                newton.solve_complex(r2, r3);
+                for i in 0..n {
+                    let s = scal[i];
+                    dyno += (r1[i] / s).powi(2) + (r2[i] / s).powi(2) + (r3[i] / s).powi(2);
+                }
+            }
+            let dyno = (dyno / (3 * n).max(1) as f64).sqrt();
+            if !dyno.is_finite() {
+                last_trial_error = non_finite(t);
+                failure = Some(0.25);
+                break;
+            }
+            if newt >= 1 {
+                let thq = dyno / dyno_old;
+                let theta = if newt == 1 { thq } else { (thq * thq_old).sqrt() };
+                thq_old = thq;
+                if theta < 0.99 {
+                    faccon = theta / (1.0 - theta);
+                    let dyth = faccon * dyno * theta.powi((NIT - 1 - newt) as i32) / fnewt;
+                    if dyth >= 1.0 {
+                        // Convergence predicted too slow: a smaller step.
+                        let qnewt = dyth.clamp(1e-4, 20.0);
+                        failure = Some(0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64)));
+                        break;
+                    }
+                } else {
+                    failure = Some(0.5);
+                    break;
+                }
+            }
+            dyno_old = dyno.max(f64::EPSILON);
+            for (wi, d) in w.iter_mut().zip(&fz) {
+                *wi += d;
+            }
+            transform(&k.t, &w, &mut z, n);
+            newt += 1;
+            if faccon * dyno <= fnewt {
+                break;
+            }
+        }
+        if let Some(fac) = failure {
+            trial_failures += 1;
+            if trial_failures > MAX_TRIAL_FAILURES {
+                return Err(last_trial_error);
+            }
+            stats.steps_rejected += 1;
+            reject = true;
+            h = hs * fac;
+            continue 'steps;
+        }
+        trial_failures = 0;
+
+        // Error estimate (Hairer's ESTRAD): (σ₁I − W)⁻¹ (f0 + Σ d_i z_i / h), and once more
+        // through f on the first or a rejected step when it is large.
+        for i in 0..n {
+            e_comb[i] = (k.d[0] * z[i] + k.d[1] * z[n + i] + k.d[2] * z[2 * n + i]) / hs;
+            errv[i] = f0[i] + e_comb[i];
+        }
+        newton.solve_real(&mut errv);
+        let mut err = rms(&errv, &scal);
+        if err >= 1.0 && (first || reject) {
+            for i in 0..n {
+                ytmp[i] = y[i] + errv[i];
+            }
+            if sys.rhs(t, &ytmp, &mut buf).is_ok() && all_finite(&buf) {
+                stats.rhs_evals += 1;
+                for i in 0..n {
+                    errv[i] = buf[i] + e_comb[i];
+                }
+                newton.solve_real(&mut errv);
+                err = rms(&errv, &scal);
+            }
+        }
+        if !err.is_finite() {
+            stats.steps_rejected += 1;
+            reject = true;
+            h = 0.25 * hs;
+            continue;
+        }
+        let fac = safe.min(cfac / (newt + 2 * NIT) as f64);
+        let mut quot = (err.powf(0.25) / fac).clamp(fac_grow, fac_shrink);
+        if err < 1.0 {
+            if !first {
+                let facgus = ((h_acc / hs) * (err * err / err_acc).powf(0.25) / safe).clamp(fac_grow, fac_shrink);
+                quot = quot.max(facgus);
+            }
+            h_acc = hs;
+            err_acc = err.max(1e-2);
+            first = false;
+            // y1 = y + Z3 (stiffly accurate); dense output through the stages.
+            for i in 0..n {
+                let (z1, z2, z3) = (z[i], z[n + i], z[2 * n + i]);
+                ynew[i] = y[i] + z3;
+                let cont = &mut dense.cont;
+                cont[i] = ynew[i];
+                cont[n + i] = (z2 - z3) / c2m1;
+                let ak = (z1 - z2) / c1mc2;
+                let acont3 = (ak - z1 / c1) / c2;
+                cont[2 * n + i] = (ak - cont[n + i]) / c1m1;
+                cont[3 * n + i] = cont[2 * n + i] - acont3;
+            }
+            dense.t0 = t;
+            dense.t1 = t1;
+            h_old = hs;
+            if !all_finite(&ynew) {
+                return Err(non_finite(t));
+            }
+            accept_step(sys, stats, hs, t, t1, &mut y, &mut ynew, &dense, t_out, &mut next_out, &mut buf)?;
+            t = t1;
+            if last {
+                return Ok(());
+            }
+            fresh_rhs(sys, stats, t, &y, &mut f0)?;
+            need_w = true;
+            let mut h_new = hs / quot;
+            if reject {
+                h_new = h_new.min(hs);
+            }
+            reject = false;
+            h = h_new;
+        } else {
+            stats.steps_rejected += 1;
+            reject = true;
+            h = if first { 0.1 * hs } else { hs / quot };
+        }
+    }
+}
+
+/// `out_s = Σ_j m_sj in_j` over the three stage blocks of length `n`.
+fn transform(m: &[[f64; 3]; 3], input: &[f64], out: &mut [f64], n: usize) {
+    for i in 0..n {
+        let (a, b, c) = (input[i], input[n + i], input[2 * n + i]);
+        for s in 0..3 {
+            out[s * n + i] = m[s][0] * a + m[s][1] * b + m[s][2] * c;
+        }
+    }
+}
+
+/// RMS of `v / scal`.
+fn rms(v: &[f64], scal: &[f64]) -> f64 {
+    let s: f64 = v.iter().zip(scal).map(|(a, b)| (a / b) * (a / b)).sum();
+    (s / v.len().max(1) as f64).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrate::{integrate, Method};
+
+    fn mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+        let mut c = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                c[i][j] = (0..3).map(|k| a[i][k] * b[k][j]).sum();
+            }
+        }
+        c
+    }
+
+    /// `T⁻¹` is the inverse of `T`, and `T⁻¹ A⁻¹ T` is the block diagonal of the eigenvalues;
+    /// the nodes are the rows sums of `A` and the zeros of the Radau polynomial.
+    #[test]
+    fn constants_are_consistent() {
+        let k = Radau5::new();
+        let a = Radau5::a();
+        let id = mul(&k.ti, &k.t);
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((id[i][j] - if i == j { 1.0 } else { 0.0 }).abs() < 1e-14, "{id:?}");
+            }
+            assert!((a[i].iter().sum::<f64>() - k.c[i]).abs() < 1e-15);
+        }
+        // T⁻¹ A⁻¹ T = D  ⇔  A T D = T.
+        let d = [[k.u1, 0.0, 0.0], [0.0, k.alpha, -k.beta], [0.0, k.beta, k.alpha]];
+        let atd = mul(&mul(&a, &k.t), &d);
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((atd[i][j] - k.t[i][j]).abs() < 1e-13, "{atd:?} vs {:?}", k.t);
+            }
+        }
+        // Radau IIA nodes: zeros of d²/dx² (x²(x − 1)³), i.e. 10x² − 8x + 1 = 0 besides x = 1.
+        for c in &k.c[..2] {
+            assert!((10.0 * c * c - 8.0 * c + 1.0).abs() < 1e-14);
+        }
+    }
+
+    struct Sys {
+        f: fn(f64, &[f64], &mut [f64]),
+        outputs: Vec<(f64, Vec<f64>)>,
+        w_scale: Option<f64>,
+        jac: Option<fn(&[f64]) -> [[f64; 2]; 2]>,
+    }
+
+    impl OdeSystem for Sys {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+            (self.f)(t, y, dy);
+            Ok(())
+        }
+        fn acceleration_jacobian(&mut self, _t: f64, y: &[f64], a_q: &mut [f64], a_v: &mut [f64]) -> Result<bool, Error> {
+            let (Some(k), Some(jac)) = (self.w_scale, self.jac) else { return Ok(false) };
+            let j = jac(y);
+            a_q[0] = k * j[1][0];
+            a_v[0] = k * j[1][1];
+            Ok(true)
+        }
+        fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], d: &dyn DenseOutput) -> Result<bool, Error> {
+            let mut b = [0.0; 2];
+            d.eval(t0, &mut b);
+            assert!(b.iter().zip(y0).all(|(a, c)| (a - c).abs() <= 1e-12 * (1.0 + c.abs())), "{b:?} vs {y0:?}");
+            d.eval(t1, &mut b);
+            assert!(b.iter().zip(y1).all(|(a, c)| (a - c).abs() <= 1e-14 * (1.0 + c.abs())));
+            Ok(false)
+        }
+        fn output(&mut self, t: f64, y: &[f64]) -> Result<(), Error> {
+            self.outputs.push((t, y.to_vec()));
+            Ok(())
+        }
+    }
+
+    fn vdp(mu: f64, y: &[f64], dy: &mut [f64]) {
+        dy[0] = y[1];
+        dy[1] = mu * (1.0 - y[0] * y[0]) * y[1] - y[0];
+    }
+    fn vdp1(_t: f64, y: &[f64], dy: &mut [f64]) {
+        vdp(1.0, y, dy)
+    }
+    fn vdp1_jac(y: &[f64]) -> [[f64; 2]; 2] {
+        [[0.0, 1.0], [-2.0 * y[0] * y[1] - 1.0, 1.0 - y[0] * y[0]]]
+    }
+    fn vdp1000(_t: f64, y: &[f64], dy: &mut [f64]) {
+        vdp(1000.0, y, dy)
+    }
+    fn vdp1000_jac(y: &[f64]) -> [[f64; 2]; 2] {
+        [[0.0, 1.0], [-2000.0 * y[0] * y[1] - 1.0, 1000.0 * (1.0 - y[0] * y[0])]]
+    }
+    /// y'' = −y with y(0) = 1: exact cos t (for the dense output).
+    fn oscillator(_t: f64, y: &[f64], dy: &mut [f64]) {
+        dy[0] = y[1];
+        dy[1] = -y[0];
+    }
+
+    fn reference(f: fn(f64, &[f64], &mut [f64]), y0: &[f64], t_end: f64) -> Vec<f64> {
+        let s = Settings { rtol: 1e-12, atol: 1e-12, ..Settings::default() };
+        let mut sys = Sys { f, outputs: vec![], w_scale: None, jac: None };
+        integrate(&mut sys, Method::Dop853, 0.0, y0, t_end, &[t_end], &s).unwrap();
+        sys.outputs[0].1.clone()
+    }
+
+    /// A forced, damped oscillator (linear, non-autonomous): q̈ = −q − 0.1 q̇ + cos 2t.
+    fn forced(t: f64, y: &[f64], dy: &mut [f64]) {
+        dy[0] = y[1];
+        dy[1] = -y[0] - 0.1 * y[1] + (2.0 * t).cos();
+    }
+    fn forced_jac(_y: &[f64]) -> [[f64; 2]; 2] {
+        [[0.0, 1.0], [-1.0, -0.1]]
+    }
+
+    /// Fixed steps: order 5 at the step ends. The problem is linear, so with the exact Newton
+    /// matrix one iteration solves the stage equations whatever the (huge, rejection-free)
+    /// tolerances; the finite-difference fallback needs a second.
+    #[test]
+    fn order_five_with_fixed_steps() {
+        let ex = reference(forced, &[1.0, 0.0], 4.0);
+        for (w, jac) in [(Some(1.0), Some(forced_jac as fn(&[f64]) -> [[f64; 2]; 2])), (None, None)] {
+            let errs: Vec<f64> = [10, 20, 40]
+                .iter()
+                .map(|&steps| {
+                    let h = 4.0 / steps as f64;
+                    let s = Settings { rtol: 1e-3, atol: 1e6, h0: Some(h), h_max: h, ..Settings::default() };
+                    let mut sys = Sys { f: forced, outputs: vec![], w_scale: w, jac };
+                    let st = integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 0.0], 4.0, &[4.0], &s).unwrap();
+                    assert_eq!(st.steps_accepted, steps);
+                    let y = &sys.outputs[0].1;
+                    ((y[0] - ex[0]).powi(2) + (y[1] - ex[1]).powi(2)).sqrt()
+                })
+                .collect();
+            for p in errs.windows(2).map(|e| (e[0] / e[1]).log2()) {
+                assert!((4.6..5.6).contains(&p), "W = {w:?}: observed order {p} from {errs:?}");
+            }
+        }
+    }
+
+    /// The converged stages do not depend on the Newton matrix: an exact, a halved and a
+    /// differenced W give the reference solution of a nonlinear problem to the tolerance.
+    #[test]
+    fn any_newton_matrix_converges_to_the_solution() {
+        let ex = reference(vdp1, &[2.0, 0.0], 3.0);
+        for w in [Some(1.0), Some(0.5), None] {
+            let s = Settings { rtol: 1e-9, atol: 1e-9, ..Settings::default() };
+            let mut sys = Sys { f: vdp1, outputs: vec![], w_scale: w, jac: Some(vdp1_jac) };
+            integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], 3.0, &[3.0], &s).unwrap();
+            let y = &sys.outputs[0].1;
+            assert!((y[0] - ex[0]).abs() < 1e-7 && (y[1] - ex[1]).abs() < 1e-7, "W = {w:?}: {y:?} vs {ex:?}");
+        }
+    }
+
+    #[test]
+    fn van_der_pol_mu_1000_is_solved_with_few_steps() {
+        let t_end = 1500.0;
+        let yd = reference(vdp1000, &[2.0, 0.0], t_end);
+        let s = Settings { rtol: 1e-7, atol: 1e-7, ..Settings::default() };
+        for (w, jac) in [(Some(1.0), Some(vdp1000_jac as fn(&[f64]) -> [[f64; 2]; 2])), (None, None)] {
+            let mut sys = Sys { f: vdp1000, outputs: vec![], w_scale: w, jac };
+            let st = integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], t_end, &[t_end], &s).unwrap();
+            let yr = &sys.outputs[0].1;
+            assert!((yr[0] - yd[0]).abs() < 1e-4 * yd[0].abs().max(1.0), "{yr:?} vs {yd:?}");
+            // Hairer–Wanner report a few hundred steps for this problem; an explicit method
+            // needs ~1e6.
+            assert!(st.steps_accepted < 3000, "{st:?}");
+        }
+    }
+
+    #[test]
+    fn dense_output_is_accurate_between_steps() {
+        let s = Settings { rtol: 1e-8, atol: 1e-10, ..Settings::default() };
+        let mut sys = Sys { f: oscillator, outputs: vec![], w_scale: None, jac: None };
+        let ts: Vec<f64> = (0..=200).map(|k| 0.05 * k as f64).collect();
+        integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 0.0], 10.0, &ts, &s).unwrap();
+        assert_eq!(sys.outputs.len(), ts.len());
+        let worst = sys.outputs.iter().map(|(t, y)| (y[0] - t.cos()).abs().max((y[1] + t.sin()).abs())).fold(0.0, f64::max);
+        assert!(worst < 1e-6, "worst dense error {worst}");
+    }
+
+    fn blow_up(_t: f64, y: &[f64], dy: &mut [f64]) {
+        dy[0] = y[1];
+        dy[1] = y[0] * y[0] * y[0];
+    }
+
+    #[test]
+    fn errors_follow_the_contract() {
+        let mut sys = Sys { f: blow_up, outputs: vec![], w_scale: None, jac: None };
+        let (e, _) = integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 1.0], 10.0, &[], &Settings::default()).unwrap_err();
+        assert!(matches!(e, Error::StepSizeUnderflow { .. } | Error::NonFinite { .. }), "{e:?}");
+        let mut sys = Sys { f: vdp1, outputs: vec![], w_scale: None, jac: None };
+        let s = Settings { max_steps: 5, ..Settings::default() };
+        let (e, st) = integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], 100.0, &[], &s).unwrap_err();
+        assert!(matches!(e, Error::TooManySteps { max_steps: 5, .. }), "{e:?}");
+        assert_eq!(st.steps_accepted + st.steps_rejected, 5);
+    }
+}
