@@ -1,5 +1,5 @@
 //! `cargo bench --bench rhs`: one right-hand side, RK45 steps and one full cycle of the nine-bar
-//! and the slider-crank (ideal, 2 dry, 2 lubricated joints; the models are the Python ones,
+//! and the slider-crank, and for the lubricated ones a RADAU5 cycle and one Newton matrix (ideal, 2 dry, 2 lubricated joints; the models are the Python ones,
 //! loaded from `tests/data/*.json`).
 //!
 //! The state of the RHS and step benches is taken a tenth of a cycle into a run, so that the
@@ -13,7 +13,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use clearsim::clearance::ImpactMemory;
-use clearsim::integrate::{integrate, Method, Settings};
+use clearsim::integrate::{integrate, Method, OdeSystem, Settings};
 use clearsim::record::Channels;
 use clearsim::simulate::{simulate, MechanismSystem, RunSettings};
 use clearsim::system::Workspace;
@@ -106,5 +106,45 @@ fn bench_cycle(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_rhs, bench_steps, bench_cycle);
+/// The lubricated models, whose film makes RADAU5 the method of choice: one cycle at rtol 1e-6
+/// (as `bench_cycle`), and one structured Newton matrix (`acceleration_jacobian`: the clearance
+/// joints' force derivatives and the mobility columns of their bodies).
+fn bench_radau(c: &mut Criterion) {
+    let lubricated = ["nine_bar_lubricated", "nine_bar_lubricated_mu004", "slider_crank_lubricated"];
+    let mut g = c.benchmark_group("cycle_radau");
+    g.sample_size(10).measurement_time(Duration::from_secs(5));
+    for name in lubricated {
+        let model = common::model(name);
+        let t_end = cycle(name);
+        let rs = RunSettings {
+            method: Method::Radau5,
+            ode: Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() },
+            t0: 0.0,
+            t_end,
+            t_out: RunSettings::grid(0.0, t_end, t_end / 1000.0),
+            channels: Channels::default(),
+        };
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let out = simulate(&model, &rs, None).unwrap();
+                assert!(out.error.is_none());
+                out.stats
+            })
+        });
+    }
+    g.finish();
+    let mut g = c.benchmark_group("newton_matrix");
+    for name in lubricated {
+        let model = common::model(name);
+        let (t, y, memory, _) = mid_state(&model, name);
+        let mut sys = MechanismSystem::new(&model, Channels::default(), 0, None);
+        sys.memory = memory;
+        let m = y.len() / 2;
+        let (mut w_q, mut w_v) = (vec![0.0; m * m], vec![0.0; m * m]);
+        g.bench_function(name, |b| b.iter(|| sys.acceleration_jacobian(black_box(t), black_box(&y), &mut w_q, &mut w_v).unwrap()));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench_rhs, bench_steps, bench_cycle, bench_radau);
 criterion_main!(benches);

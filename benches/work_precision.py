@@ -2,7 +2,7 @@
 
 For the nine-bar (dry, lubricated μ = 0.4 Pa s and the stiff hard case μ = 0.04 Pa s; 0.5 mm;
 one cycle) and the slider-crank (dry, lubricated; one cycle), against a DOP853 reference at
-rtol 1e-12: clearsim's RK4 at several steps, RK45, DOP853 and RODAS4 at several tolerances, and
+rtol 1e-12: clearsim's RK4 at several steps, RK45, DOP853, RADAU5 and RODAS4 at several tolerances, and
 SciPy's RK45, DOP853 and Radau driving ``m.rhs``. Writes ``docs/work_precision.csv`` and
 ``docs/work_precision.png`` (plus one PNG per case from ``clearsim.plots.plot_work_precision``).
 
@@ -43,6 +43,7 @@ TOLS = {
     "rk45": [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
     "dop853": [1e-4, 1e-6, 1e-8, 1e-10],
     "rodas4": [1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
+    "radau": [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
     "scipy_RK45": [1e-3, 1e-4, 1e-6, 1e-8],
     "scipy_DOP853": [1e-4, 1e-6, 1e-8],
     "scipy_Radau": [1e-3, 1e-4, 1e-5],
@@ -97,10 +98,10 @@ def run_case(case, quick, budget, rows):
 
     for h in rk4_steps[: 2 if quick else None]:
         own("rk4", h, step=h)
-    for integ in ("rk45", "dop853", "rodas4"):
+    for integ in ("rk45", "dop853", "radau", "rodas4"):
         for tol in TOLS[integ][: 3 if quick else None]:
             kw = dict(rtol=tol, atol=tol * 1e-3)
-            if integ == "rodas4":
+            if integ in ("rodas4", "radau"):
                 kw["max_steps"] = 60_000
             own(integ, tol, **kw)
 
@@ -144,6 +145,21 @@ def speedups(rows):
     return out
 
 
+def equal_error_speedups(rows, method, baseline):
+    """For each run of ``method``: wall time of the fastest ``baseline`` run whose displacement and
+    acceleration errors are both at most this run's, divided by this run's time (None when no
+    baseline run is that accurate)."""
+    out = []
+    ok = lambda r: math.isfinite(r["err_displacement"]) and math.isfinite(r["err_acceleration"])
+    for r in rows:
+        if r["method"] != method or not ok(r):
+            continue
+        times = [s["wall_time"] for s in rows if s["case"] == r["case"] and s["method"] == baseline and ok(s)
+                 and s["err_displacement"] <= r["err_displacement"] and s["err_acceleration"] <= r["err_acceleration"]]
+        out.append((r["case"], r["param"], min(times) / r["wall_time"] if times else None, r["err_displacement"], r["err_acceleration"]))
+    return out
+
+
 def plot(rows, cases):
     import matplotlib
 
@@ -151,8 +167,8 @@ def plot(rows, cases):
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(2, len(cases), figsize=(4.2 * len(cases), 7.5), squeeze=False)
-    methods = ["rk4", "rk45", "dop853", "rodas4", "scipy_RK45", "scipy_DOP853", "scipy_Radau"]
-    markers = dict(zip(methods, "osD^vPX"))
+    methods = ["rk4", "rk45", "dop853", "radau", "rodas4", "scipy_RK45", "scipy_DOP853", "scipy_Radau"]
+    markers = dict(zip(methods, "osD*^vPX"))
     for j, case in enumerate(cases):
         for i, (key, unit) in enumerate([("err_displacement", "m"), ("err_acceleration", "m/s²")]):
             ax = axes[i, j]
@@ -199,6 +215,11 @@ def main():
     print("\nclearsim RK45 vs SciPy RK45 on m.rhs (same rtol):")
     for case, tol, ratio, e1, e2 in speedups(rows):
         print(f"  {case:28s} rtol {tol:.0e}: {ratio:7.1f}x faster  (errors {e1:.2e} vs {e2:.2e} m)")
+    for method, baseline in [("radau", "rk45"), ("radau", "scipy_Radau"), ("radau", "scipy_RK45"), ("rk45", "scipy_RK45")]:
+        print(f"\n{method} vs {baseline} at equal or better error (displacement and acceleration):")
+        for case, tol, ratio, e1, e2 in equal_error_speedups(rows, method, baseline):
+            txt = f"{ratio:7.1f}x faster" if ratio else f"no {baseline} run that accurate"
+            print(f"  {case:28s} rtol {tol:.0e}: {txt}  (errors {e1:.2e} m, {e2:.2e} m/s²)")
     plot(rows, cases)
     print("wrote", DOCS / "work_precision.csv", DOCS / "work_precision.png")
 
