@@ -6,7 +6,7 @@ rtol 1e-12: clearsim's RK4 at several steps, RK45, DOP853, RADAU5 and RODAS4 at 
 SciPy's RK45, DOP853 and Radau driving ``m.rhs``. Writes ``docs/work_precision.csv`` and
 ``docs/work_precision.png`` (plus one PNG per case from ``clearsim.plots.plot_work_precision``).
 
-Usage: ``python benches/work_precision.py [--quick] [--cases nine_bar_lubricated,...]``
+Usage: ``python benches/work_precision.py [--quick] [--cases nine_bar_lubricated,...] [--replot]``
 (a few minutes; not part of CI). SciPy runs are stopped after ``--budget`` seconds each.
 
 Note: ``m.rhs`` has no impact memory (δ̇⁽⁻⁾ is the current approach speed), so on the dry models
@@ -180,8 +180,13 @@ def plot(rows, cases):
             ax.set_xlabel("wall time [s]")
             ax.set_ylabel(f"max |error| [{unit}]")
             ax.grid(True, which="both", alpha=0.3)
-    axes[0, 0].legend(fontsize=7)
-    fig.tight_layout()
+    handles = {}
+    for ax in axes.flat:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(lab, h)
+    labels = [m for m in methods if m in handles]
+    fig.legend([handles[m] for m in labels], labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
     fig.savefig(DOCS / "work_precision.png", dpi=110)
     try:
         from clearsim.plots import plot_work_precision
@@ -199,8 +204,15 @@ def main():
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--budget", type=float, default=60.0)
+    ap.add_argument("--replot", action="store_true", help="only redraw the figures from docs/work_precision.csv")
     a = ap.parse_args()
     cases = a.cases.split(",")
+    if a.replot:
+        with open(DOCS / "work_precision.csv") as fh:
+            rows = [dict(r, wall_time=float(r["wall_time"]), param=float(r["param"]), err_displacement=float(r["err_displacement"]),
+                         err_acceleration=float(r["err_acceleration"])) for r in csv.DictReader(fh)]
+        plot(rows, [c for c in cases if any(r["case"] == c for r in rows)])
+        return
     rows = []
     DOCS.mkdir(exist_ok=True)
     for case in cases:
