@@ -21,7 +21,7 @@ from .result import Result
 
 GROUND = "ground"
 Point = Sequence[float]
-INTEGRATORS = ("rk45", "rk4", "dop853", "radau", "rodas4")
+INTEGRATORS = ("auto", "rk45", "rk4", "dop853", "radau", "rodas4")
 OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation")
 DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
 #: Most outputs a dt_out grid may ask for (each holds every stored channel).
@@ -372,11 +372,18 @@ class Mechanism:
         return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
 
     # ------------------------------------------------------------------ running
+    @property
+    def default_integrator(self) -> str:
+        """What ``integrator="auto"`` picks: ``"radau"`` when a clearance joint is lubricated (the
+        film makes the problem stiff), else ``"rk45"``."""
+        lubricated = any(cj["model"].get("kind") == "lubricated" for cj in self._clearance)
+        return "radau" if lubricated else "rk45"
+
     def run_settings(
         self,
         t_end: float,
         *,
-        integrator: str = "rk45",
+        integrator: str = "auto",
         rtol: float = 1e-6,
         atol: float = 1e-9,
         step: Optional[float] = None,
@@ -397,6 +404,8 @@ class Mechanism:
             raise InputError(
                 f"invalid integrator = {integrator!r}: must be one of {', '.join(INTEGRATORS)}", field="integrator", value=integrator
             )
+        if integrator == "auto":
+            integrator = self.default_integrator
         rtol = check_positive("rtol", rtol)
         atol = check_positive("atol", atol)
         if rtol >= 1.0:
@@ -454,7 +463,9 @@ class Mechanism:
         Keyword arguments
         -----------------
         integrator:
-            ``"rk45"`` (default, Dormand–Prince 5(4), adaptive), ``"dop853"`` (8th order, for
+            ``"auto"`` (default: ``"radau"`` when a clearance joint is lubricated, else
+            ``"rk45"``; see :attr:`default_integrator`), ``"rk45"`` (Dormand–Prince 5(4),
+            adaptive), ``"dop853"`` (8th order, for
             tight tolerances), ``"radau"`` (RADAU5: implicit Radau IIA of order 5, L-stable,
             with Newton matrices built from the clearance joints' force derivatives — the
             method for lubricated joints, whose film makes the problem stiff; 4–10× faster than
@@ -481,7 +492,7 @@ class Mechanism:
         settings = self.run_settings(t_end, **kwargs)
         compiled = self.compile()
         if not progress:
-            return self._finish(compiled.simulate(settings))
+            return self._finish(compiled.simulate(settings), settings)
         from tqdm.auto import tqdm
 
         t0 = settings["t0"]
@@ -493,7 +504,7 @@ class Mechanism:
                 bar.refresh()
 
             raw = compiled.simulate(settings, advance)
-        return self._finish(raw)
+        return self._finish(raw, settings)
 
     def simulate_with_ideal(self, t_end: float, **kwargs: Any) -> Tuple[Result, Result]:
         """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
@@ -501,14 +512,18 @@ class Mechanism:
         ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (spec §5)."""
         settings = self.run_settings(t_end, **kwargs)
         ideal = self.idealized()
-        raws = _core.run_batch([self.description(), ideal.description()], settings, 0)
+        # ``integrator="auto"`` resolves per mechanism: the ideal one has no film.
+        ideal_settings = ideal.run_settings(t_end, **kwargs)
+        raws = _core.run_batch([self.description(), ideal.description()], [settings, ideal_settings], 0)
         for raw in raws:
             if isinstance(raw, BaseException):
                 raise raw
-        return self._finish(raws[0]), ideal._finish(raws[1])
+        return self._finish(raws[0], settings), ideal._finish(raws[1], ideal_settings)
 
-    def _finish(self, raw: Dict[str, Any]) -> Result:
+    def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)
+        if settings is not None:
+            res.stats["integrator"] = settings["method"]
         err = raw.get("error")
         if err is not None:
             err.result = res

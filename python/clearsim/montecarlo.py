@@ -116,7 +116,7 @@ def monte_carlo(
     executor: Any = None,
     chunk_size: Optional[int] = None,
     progress: bool = True,
-    integrator: str = "rk45",
+    integrator: str = "auto",
     rtol: float = 1e-6,
     atol: float = 1e-9,
 ) -> MonteCarloResult:
@@ -144,6 +144,9 @@ def monte_carlo(
         ``None`` runs the batch in the Rust core on all local cores. Otherwise any object with a
         ``concurrent.futures``-style ``map`` (``ProcessPoolExecutor``, Dask's
         ``client.get_executor()``): chunks of samples are sent to :func:`run_descriptions`.
+    integrator, rtol, atol:
+        As in :meth:`Mechanism.simulate`; ``"auto"`` (default) runs lubricated samples with
+        RADAU5 and their ideal counterparts and dry samples with RK45.
     """
     import time
 
@@ -188,8 +191,17 @@ def monte_carlo(
             atol=atol,
             outputs=["states", "accelerations"] if "acceleration" in quantities else ["states"],
         )
-        descriptions += [m.description(), m.idealized().description()]
-        settings += [s, s]
+        ideal = m.idealized()
+        s_ideal = ideal.run_settings(
+            float(t_out[-1]),
+            t_out=t_out,
+            integrator=integrator,
+            rtol=rtol,
+            atol=atol,
+            outputs=["states", "accelerations"] if "acceleration" in quantities else ["states"],
+        )
+        descriptions += [m.description(), ideal.description()]
+        settings += [s, s_ideal]
         names = m.body_names
     if body not in names:
         raise InputError(f"invalid body = {body!r}: no such body (known: {', '.join(names)})", field="body", value=body)

@@ -22,9 +22,9 @@ class Result:
     t:
         Output times [s], shape (N,).
     stats:
-        ``steps``, ``rejected_steps``, ``rhs_evaluations``, ``jacobians`` (Newton / Jacobian
-        matrices built by the stiff methods), ``min_step``, ``max_step`` [s], ``t_reached`` [s],
-        ``wall_time`` [s].
+        ``integrator`` (the method used, ``"auto"`` resolved), ``steps``, ``rejected_steps``,
+        ``rhs_evaluations``, ``jacobians`` (Newton / Jacobian matrices built by the stiff
+        methods), ``min_step``, ``max_step`` [s], ``t_reached`` [s], ``wall_time`` [s].
     impacts:
         Number of impacts located per clearance joint.
     failure:

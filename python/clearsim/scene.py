@@ -62,7 +62,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     [simulation]
     t_end = 0.4                      # s, or: cycles = 3 (× period [s], default 2π/|ω| of
                                      #   the first constant-speed driver; period = ... to set it)
-    integrator = "rk45"              # rk45 | dop853 | radau | rodas4 | rk4 (rk4 needs step [s])
+    integrator = "auto"              # auto (radau if lubricated, else rk45) | rk45 | dop853 | radau | rodas4 | rk4 (needs step [s])
     rtol = 1e-6
     atol = 1e-9
     dt_out = 1e-4                    # s, output grid (default (t_end − t0)/1000)
@@ -388,7 +388,7 @@ class SimulationSettings:
     """
 
     t_end: float
-    integrator: str = "rk45"
+    integrator: str = "auto"
     rtol: float = 1e-6
     atol: float = 1e-9
     t0: float = 0.0
@@ -770,7 +770,7 @@ def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationS
     extra = t.strings("outputs", [], choices=OUTPUTS)
     outputs = tuple(k for k in OUTPUTS if k in set(extra) | set(needed))
     sim = SimulationSettings(
-        t_end=t_end, integrator=t.string("integrator", "rk45"), rtol=t.number("rtol", 1e-6), atol=t.number("atol", 1e-9),
+        t_end=t_end, integrator=t.string("integrator", "auto"), rtol=t.number("rtol", 1e-6), atol=t.number("atol", 1e-9),
         t0=t0, step=t.number("step", None), dt_out=t.number("dt_out", None), h_max=t.number("h_max", None),
         h_min=t.number("h_min", None), max_steps=t.integer("max_steps", None), outputs=outputs, cycles=cycles, period=period,
     )  # fmt: skip

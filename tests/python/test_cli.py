@@ -71,7 +71,7 @@ def test_bad_scene_exit_code_and_message(tmp_path, capsys):
 
 
 def test_simulation_failure_writes_partial_results(tmp_path, capsys):
-    text = (SCENES / "slider_crank.toml").read_text().replace('integrator = "rk45"', 'integrator = "rk45"\nmax_steps = 300')
+    text = (SCENES / "slider_crank.toml").read_text().replace('integrator = "auto"', 'integrator = "rk45"\nmax_steps = 300  #')
     scene = tmp_path / "short.toml"
     scene.write_text(text)
     out = tmp_path / "out"

@@ -42,7 +42,7 @@ def test_scene_settings():
     assert isinstance(scene, Scene) and scene.path == NINE_BAR
     sim = scene.simulation
     assert sim.t_end == pytest.approx(3 * 0.4) and sim.cycles == 3 and sim.period == pytest.approx(0.4)
-    assert sim.integrator == "rk45" and sim.dt_out == 2e-4
+    assert sim.integrator == "auto" and sim.dt_out == 2e-4
     assert set(sim.outputs) >= {"states", "accelerations", "joints", "violation"}
     assert scene.outputs.bodies == ["slider9"] and scene.outputs.components == ["y"] and scene.outputs.ideal
     rel = scene.reliability
@@ -164,7 +164,7 @@ def test_ends_and_position_exclusive(tmp_path):
 
 
 def test_simulation_value_error_is_located(tmp_path):
-    path, line = _edit(tmp_path, 'integrator = "rk45"', 'integrator = "euler"')
+    path, line = _edit(tmp_path, 'integrator = "auto"', 'integrator = "euler"')
     _assert_located(_error(path), path, line, "integrator", "'euler'")
 
 

@@ -98,3 +98,14 @@ def test_errors_follow_the_contract(integrator):
     part = e.value.result
     assert part is not None and 0 < part.stats["t_reached"] < NINE_BAR_CYCLE
     assert len(part.t) > 0 and part.t[-1] <= part.stats["t_reached"] + 1e-15
+
+
+def test_auto_picks_radau_for_lubricated_joints_only():
+    lub, dry = nine_bar("lubricated", clearance=0.5e-3), nine_bar("dry", clearance=0.5e-3)
+    assert lub.default_integrator == "radau" and dry.default_integrator == "rk45"
+    assert nine_bar("ideal").default_integrator == "rk45"
+    t_end = 0.02
+    r, ideal = lub.simulate_with_ideal(t_end)
+    assert r.stats["integrator"] == "radau" and ideal.stats["integrator"] == "rk45"
+    assert dry.simulate(t_end, progress=False).stats["integrator"] == "rk45"
+    assert lub.simulate(t_end, integrator="rk45", progress=False).stats["integrator"] == "rk45"
