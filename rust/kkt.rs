@@ -23,7 +23,7 @@ use faer::{MatMut, MatRef, Par};
 use crate::constraints::JacRow;
 
 /// Up to this many constraint rows the Schur complement is factorised by
-/// [`cholesky_solve_small`]; larger systems go to faer's blocked LLᵀ.
+/// [`cholesky_small`]; larger systems go to faer's blocked LLᵀ.
 pub const SMALL: usize = 64;
 
 /// The structurally non-zero entries of the Cholesky factor L of S (fill-in included), row by
@@ -71,10 +71,9 @@ impl LowerPattern {
 }
 
 /// In-place Cholesky LLᵀ of the lower triangle of the column-major n×n matrix `s`
-/// (left-looking, column by column, visiting only the structural non-zeros of `pattern`), then
-/// `S x = rhs` by forward and backward substitution.
+/// (left-looking, column by column, visiting only the structural non-zeros of `pattern`).
 /// Returns the index of a non-positive pivot (singular or indefinite `S`).
-fn cholesky_solve_small(s: &mut [f64], rhs: &mut [f64], n: usize, pattern: &LowerPattern) -> Result<(), usize> {
+fn cholesky_small(s: &mut [f64], n: usize, pattern: &LowerPattern) -> Result<(), usize> {
     for j in 0..n {
         // Column j below the diagonal: s[j.., j] −= L[j.., k] L[j, k] for the k < j with
         // L[j, k] structurally non-zero (no test on values in the loop).
@@ -99,6 +98,11 @@ fn cholesky_solve_small(s: &mut [f64], rhs: &mut [f64], n: usize, pattern: &Lowe
             *v *= inv;
         }
     }
+    Ok(())
+}
+
+/// `L Lᵀ x = rhs` with the factor of [`cholesky_small`], by forward and backward substitution.
+fn cholesky_solve_small(s: &[f64], rhs: &mut [f64], n: usize, pattern: &LowerPattern) {
     // L y = b, row by row over the structural non-zeros of each row of L.
     for i in 0..n {
         let mut v = rhs[i];
@@ -115,7 +119,6 @@ fn cholesky_solve_small(s: &mut [f64], rhs: &mut [f64], n: usize, pattern: &Lowe
             rhs[k as usize] -= s[i + k as usize * n] * xi;
         }
     }
-    Ok(())
 }
 
 /// Preallocated workspace and static sparsity structure of one model's KKT system.
@@ -186,20 +189,19 @@ impl KktSolver {
     /// rows, the generalised forces `force` and the constraint right-hand side `c`
     /// (= γ − 2αΦ̇ − β²Φ). Returns the index of a non-positive pivot if `S` is singular.
     pub fn solve(&mut self, jac: &[JacRow], force: &[f64], c: &[f64], qdd: &mut [f64], lambda: &mut [f64]) -> Result<(), usize> {
-        let n = self.inv_mass.len();
-        for i in 0..n {
-            self.w[i] = self.inv_mass[i] * force[i];
-        }
-        if self.rows == 0 {
-            qdd[..n].copy_from_slice(&self.w);
+        self.factor(jac)?;
+        self.solve_factored(jac, force, c, qdd, lambda);
+        Ok(())
+    }
+
+    /// Assemble and factorise `S = Φq M⁻¹ Φqᵀ` for the Jacobian rows `jac` (kept for
+    /// [`KktSolver::solve_factored`]). Returns the index of a non-positive pivot.
+    pub fn factor(&mut self, jac: &[JacRow]) -> Result<(), usize> {
+        let m = self.rows;
+        if m == 0 {
             return Ok(());
         }
-        // Right-hand side Φq M⁻¹ g − c.
-        for (r, row) in jac.iter().enumerate() {
-            self.rhs[r] = row.dot(&self.w) - c[r];
-        }
         // Lower triangle of S = Φq M⁻¹ Φqᵀ.
-        let m = self.rows;
         self.s.iter_mut().for_each(|v| *v = 0.0);
         let nb = self.body_start.len() - 1;
         for b in 0..nb {
@@ -217,15 +219,37 @@ impl KktSolver {
             }
         }
         if m <= SMALL {
-            cholesky_solve_small(&mut self.s, &mut self.rhs, m, &self.pattern)?;
+            cholesky_small(&mut self.s, m, &self.pattern)
         } else {
             let mut stack = MemStack::new(&mut self.mem);
-            let mut s = MatMut::from_column_major_slice_mut(&mut self.s, m, m);
-            llt::factor::cholesky_in_place(s.as_mut(), Default::default(), Par::Seq, &mut stack, Default::default()).map_err(
-                |e| match e {
+            let s = MatMut::from_column_major_slice_mut(&mut self.s, m, m);
+            llt::factor::cholesky_in_place(s, Default::default(), Par::Seq, &mut stack, Default::default())
+                .map(|_| ())
+                .map_err(|e| match e {
                     llt::factor::LltError::NonPositivePivot { index } => index,
-                },
-            )?;
+                })
+        }
+    }
+
+    /// [`KktSolver::solve`] with the factor of the last [`KktSolver::factor`] (same `jac`).
+    pub fn solve_factored(&mut self, jac: &[JacRow], force: &[f64], c: &[f64], qdd: &mut [f64], lambda: &mut [f64]) {
+        let n = self.inv_mass.len();
+        for i in 0..n {
+            self.w[i] = self.inv_mass[i] * force[i];
+        }
+        if self.rows == 0 {
+            qdd[..n].copy_from_slice(&self.w);
+            return;
+        }
+        // Right-hand side Φq M⁻¹ g − c.
+        for (r, row) in jac.iter().enumerate() {
+            self.rhs[r] = row.dot(&self.w) - c[r];
+        }
+        let m = self.rows;
+        if m <= SMALL {
+            cholesky_solve_small(&self.s, &mut self.rhs, m, &self.pattern);
+        } else {
+            let mut stack = MemStack::new(&mut self.mem);
             let l = MatRef::from_column_major_slice(&self.s, m, m);
             llt::solve::solve_in_place(l, MatMut::from_column_major_slice_mut(&mut self.rhs, m, 1), Par::Seq, &mut stack);
         }
@@ -241,7 +265,6 @@ impl KktSolver {
                 }
             }
         }
-        Ok(())
     }
 }
 
@@ -307,7 +330,8 @@ mod tests {
         let b: Vec<f64> = (0..n).map(|_| rnd()).collect();
         let (mut s1, mut x1) = (s.clone(), b.clone());
         let dense = LowerPattern::new(n, |_, _| true);
-        cholesky_solve_small(&mut s1, &mut x1, n, &dense).unwrap();
+        cholesky_small(&mut s1, n, &dense).unwrap();
+        cholesky_solve_small(&s1, &mut x1, n, &dense);
         let mut s2 = s.clone();
         let mut x2 = b.clone();
         let req = llt::factor::cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default());

@@ -264,13 +264,14 @@ impl OdeSystem for MechanismSystem<'_> {
             return Ok(true);
         }
         self.ws.eval_constraints(model, t, &y[..m], &y[m..2 * m]);
+        self.ws.factor_kkt(t)?;
         self.mobility_done.fill(false);
         for (j, joint) in model.clearance.iter().enumerate() {
             let bodies = [joint.bearing, joint.journal];
             for &b in bodies.iter().flatten() {
                 for k in 3 * b as usize..3 * b as usize + 3 {
                     if !self.mobility_done[k] {
-                        self.ws.unit_force_response(t, k, &mut self.mobility[k * m..(k + 1) * m])?;
+                        self.ws.unit_force_response(k, &mut self.mobility[k * m..(k + 1) * m]);
                         self.mobility_done[k] = true;
                     }
                 }

@@ -89,15 +89,19 @@ impl Workspace {
             .map_err(|index| Error::SingularJacobian { t, index })
     }
 
+    /// Factorise the KKT Schur complement at the pose of the last
+    /// [`Workspace::eval_constraints`], for [`Workspace::unit_force_response`].
+    pub fn factor_kkt(&mut self, t: f64) -> Result<()> {
+        self.kkt.factor(&self.jac).map_err(|index| Error::SingularJacobian { t, index })
+    }
+
     /// `out = S e_k`: the constrained acceleration response to a unit generalised force on
-    /// coordinate `k` at the pose of the last [`Workspace::eval_constraints`], with
-    /// `S = M⁻¹ − M⁻¹Φqᵀ(Φq M⁻¹ Φqᵀ)⁻¹Φq M⁻¹` (the KKT solve with `g = e_k`, `c = 0`).
-    pub fn unit_force_response(&mut self, t: f64, k: usize, out: &mut [f64]) -> Result<()> {
+    /// coordinate `k` (the KKT solve with `g = e_k`, `c = 0`, using the factor of
+    /// [`Workspace::factor_kkt`]), with `S = M⁻¹ − M⁻¹Φqᵀ(Φq M⁻¹ Φqᵀ)⁻¹Φq M⁻¹`.
+    pub fn unit_force_response(&mut self, k: usize, out: &mut [f64]) {
         self.unit.fill(0.0);
         self.unit[k] = 1.0;
-        self.kkt
-            .solve(&self.jac, &self.unit, &self.zero_c, out, &mut self.unit_lambda)
-            .map_err(|index| Error::SingularJacobian { t, index })
+        self.kkt.solve_factored(&self.jac, &self.unit, &self.zero_c, out, &mut self.unit_lambda);
     }
 
     /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`.
