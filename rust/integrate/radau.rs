@@ -797,6 +797,38 @@ mod tests {
         assert!(worst < 1e-6, "worst dense error {worst}");
     }
 
+    /// Robertson's chemical kinetics (Hairer–Wanner II, §IV.1; not second order: the
+    /// finite-difference path with full-size systems), against the literature values at t = 40.
+    struct Robertson(Vec<f64>);
+
+    impl OdeSystem for Robertson {
+        fn dim(&self) -> usize {
+            3
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), Error> {
+            dy[0] = -0.04 * y[0] + 1e4 * y[1] * y[2];
+            dy[2] = 3e7 * y[1] * y[1];
+            dy[1] = -dy[0] - dy[2];
+            Ok(())
+        }
+        fn output(&mut self, _t: f64, y: &[f64]) -> Result<(), Error> {
+            self.0 = y.to_vec();
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn robertson_matches_the_literature_with_few_steps() {
+        let lit = [0.7158270687193605, 9.185534764529569e-06, 0.2841637457458749];
+        let s = Settings { rtol: 1e-7, atol: 1e-12, ..Settings::default() };
+        let mut sys = Robertson(vec![]);
+        let st = integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 0.0, 0.0], 40.0, &[40.0], &s).unwrap();
+        let y = &sys.0;
+        assert!((y[0] - lit[0]).abs() < 1e-6 && (y[2] - lit[2]).abs() < 1e-6, "{y:?}");
+        assert!((y[1] / lit[1] - 1.0).abs() < 1e-4, "{y:?}");
+        assert!(st.steps_accepted < 200, "{st:?}");
+    }
+
     fn blow_up(_t: f64, y: &[f64], dy: &mut [f64]) {
         dy[0] = y[1];
         dy[1] = y[0] * y[0] * y[0];
