@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -16,12 +16,12 @@ use pyo3::types::{PyDict, PyList};
 use crate::batch::run_batch;
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
-use crate::integrate::{Method, Settings};
+use crate::integrate::{Method, OdeSystem, Settings};
 use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
 use crate::model::*;
 use crate::record::{Channels, JOINT_COLUMNS};
-use crate::simulate::{simulate, RunOutput, RunSettings};
+use crate::simulate::{simulate, MechanismSystem, RunOutput, RunSettings};
 use crate::system::Workspace;
 
 // ---------------------------------------------------------------- errors (the one mapping)
@@ -494,6 +494,31 @@ impl CompiledModel {
         dy[..n].copy_from_slice(&y[n..]);
         dy[n..].copy_from_slice(&ws.qdd);
         Ok(PyArray1::from_vec(py, dy))
+    }
+
+    /// The stiff part of ∂f/∂y at (t, y), dense (dim × dim): `[[0, I], [W_q, W_v]]` with the
+    /// clearance joints' force derivatives mapped through the constrained mobility (RADAU5's
+    /// Newton matrix; no impact memory, as `rhs`).
+    fn jacobian<'py>(&self, py: Python<'py>, t: f64, y: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let y = y.as_array();
+        let dim = self.model.state_dim();
+        if y.len() != dim {
+            return Err(input_error(py, "y", format!("array of length {}", y.len()), &format!("must have length {dim}")));
+        }
+        let y: Vec<f64> = y.iter().copied().collect();
+        let m = dim / 2;
+        let mut sys = MechanismSystem::new(&self.model, Channels::default(), 0, None);
+        let (mut w_q, mut w_v) = (vec![0.0; m * m], vec![0.0; m * m]);
+        sys.acceleration_jacobian(t, &y, &mut w_q, &mut w_v).map_err(|e| to_pyerr(py, &e))?;
+        let mut rows = vec![vec![0.0; dim]; dim];
+        for i in 0..m {
+            rows[i][m + i] = 1.0;
+            for j in 0..m {
+                rows[m + i][j] = w_q[i + j * m];
+                rows[m + i][m + j] = w_v[i + j * m];
+            }
+        }
+        PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
     /// Run the model; returns a dict of arrays (see `clearsim.result.Result`). `progress(t)`,

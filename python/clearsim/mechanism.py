@@ -371,6 +371,14 @@ class Mechanism:
         order added, then q̇ likewise. No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
         return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
 
+    def jacobian(self, t: float, y: np.ndarray) -> np.ndarray:
+        """The stiff part of ∂f/∂y at (t, y) as a dense (n, n) array, ``[[0, I], [W_q, W_v]]``:
+        the clearance joints' force derivatives mapped through the constrained mobility (the
+        Newton matrix clearsim's ``"radau"`` uses). The non-stiff remainder (pose dependence of
+        the constraints, Baumgarte terms) is left out, which implicit methods tolerate:
+        ``solve_ivp(m.rhs, ..., method="Radau", jac=m.jacobian)``. Units: 1/s² and 1/s."""
+        return self.compile().jacobian(float(t), np.ascontiguousarray(y, dtype=float))
+
     # ------------------------------------------------------------------ running
     @property
     def default_integrator(self) -> str:
