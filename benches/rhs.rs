@@ -79,16 +79,16 @@ fn bench_steps(c: &mut Criterion) {
     g.finish();
 }
 
-/// One full crank cycle with RK45 at rtol 1e-6, atol 1e-9 and 1000 outputs (assembly and
-/// recording included), as `Mechanism.simulate` runs it.
-fn bench_cycle(c: &mut Criterion) {
-    let mut g = c.benchmark_group("cycle_rk45");
-    g.sample_size(10).measurement_time(Duration::from_secs(8));
-    for name in MODELS {
+/// One full crank cycle of each model with `method` at rtol 1e-6, atol 1e-9 and 1000 outputs
+/// (assembly and recording included), as `Mechanism.simulate` runs it.
+fn bench_cycles(c: &mut Criterion, group: &str, method: Method, models: &[&str], seconds: u64) {
+    let mut g = c.benchmark_group(group);
+    g.sample_size(10).measurement_time(Duration::from_secs(seconds));
+    for &name in models {
         let model = common::model(name);
         let t_end = cycle(name);
         let rs = RunSettings {
-            method: Method::Dopri5,
+            method,
             ode: Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() },
             t0: 0.0,
             t_end,
@@ -106,33 +106,16 @@ fn bench_cycle(c: &mut Criterion) {
     g.finish();
 }
 
+fn bench_cycle(c: &mut Criterion) {
+    bench_cycles(c, "cycle_rk45", Method::Dopri5, &MODELS, 8);
+}
+
 /// The lubricated models, whose film makes RADAU5 the method of choice: one cycle at rtol 1e-6
 /// (as `bench_cycle`), and one structured Newton matrix (`acceleration_jacobian`: the clearance
 /// joints' force derivatives and the mobility columns of their bodies).
 fn bench_radau(c: &mut Criterion) {
     let lubricated = ["nine_bar_lubricated", "nine_bar_lubricated_mu004", "slider_crank_lubricated"];
-    let mut g = c.benchmark_group("cycle_radau");
-    g.sample_size(10).measurement_time(Duration::from_secs(5));
-    for name in lubricated {
-        let model = common::model(name);
-        let t_end = cycle(name);
-        let rs = RunSettings {
-            method: Method::Radau5,
-            ode: Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() },
-            t0: 0.0,
-            t_end,
-            t_out: RunSettings::grid(0.0, t_end, t_end / 1000.0),
-            channels: Channels::default(),
-        };
-        g.bench_function(name, |b| {
-            b.iter(|| {
-                let out = simulate(&model, &rs, None).unwrap();
-                assert!(out.error.is_none());
-                out.stats
-            })
-        });
-    }
-    g.finish();
+    bench_cycles(c, "cycle_radau", Method::Radau5, &lubricated, 5);
     let mut g = c.benchmark_group("newton_matrix");
     for name in lubricated {
         let model = common::model(name);

@@ -262,6 +262,38 @@ pub(super) fn accept_step<S: OdeSystem>(
     Ok(refresh)
 }
 
+/// The next trial step `[t, t1]` from a proposed size `h` (clamped to `h_max`): lands exactly
+/// on `t_end`, stretching by up to 1 % rather than leaving a sliver (Hairer), or splits the
+/// remainder in two when `h_max` forbids the stretch. Errors: the step budget is spent
+/// (`TooManySteps`), or the step fell below the floor `max(h_min, 1e-14·|t|)` — then the error of
+/// the failed trial steps that shrank it, if `failed_trials` gives one, else `StepSizeUnderflow`.
+/// Returns `(h_step, t1, last)`.
+pub(super) fn plan_step(
+    t: f64,
+    h: f64,
+    t_end: f64,
+    st: &Settings,
+    stats: &Stats,
+    failed_trials: impl FnOnce() -> Option<Error>,
+) -> Result<(f64, f64, bool), Error> {
+    let h = h.min(st.h_max);
+    let floor = st.h_min.max(1e-14 * t.abs());
+    if !(h > 0.0 && h >= floor) {
+        return Err(failed_trials().unwrap_or(Error::StepSizeUnderflow { t, h, detail: String::new() }));
+    }
+    if stats.steps_accepted + stats.steps_rejected >= st.max_steps {
+        return Err(Error::TooManySteps { t, max_steps: st.max_steps });
+    }
+    Ok(if t + 1.01 * h < t_end {
+        (h, t + h, false)
+    } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
+        (t_end - t, t_end, true)
+    } else {
+        let half = 0.5 * (t_end - t);
+        (half, t + half, false)
+    })
+}
+
 /// Consecutive trial steps that may fail (non-finite, singular) before the run stops.
 const MAX_TRIAL_FAILURES: usize = 12;
 
@@ -331,36 +363,7 @@ fn drive_adaptive<S: OdeSystem>(
     };
 
     loop {
-        h = h.min(st.h_max);
-        let floor = st.h_min.max(1e-14 * t.abs());
-        if !(h > 0.0 && h >= floor) {
-            if trial_failures > 0 {
-                // Shrinking did not get the trial steps back into the domain of f.
-                return Err(last_trial_error);
-            }
-            return Err(Error::StepSizeUnderflow {
-                t,
-                h,
-                detail: String::new(),
-            });
-        }
-        if stats.steps_accepted + stats.steps_rejected >= st.max_steps {
-            return Err(Error::TooManySteps {
-                t,
-                max_steps: st.max_steps,
-            });
-        }
-        // Land exactly on t_end; stretch by up to 1 % rather than leave a sliver (Hairer). If
-        // that would exceed h_max (beyond the rounding accumulated in t), split the remainder
-        // in two instead.
-        let (h_step, t1, last) = if t + 1.01 * h < t_end {
-            (h, t + h, false)
-        } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
-            (t_end - t, t_end, true)
-        } else {
-            let half = 0.5 * (t_end - t);
-            (half, t + half, false)
-        };
+        let (h_step, t1, last) = plan_step(t, h, t_end, st, stats, || (trial_failures > 0).then(|| last_trial_error.clone()))?;
 
         // The trial step: its stages may leave the region where f is defined (a huge
         // penetration, a singular pose); that rejects the step, it does not end the run.

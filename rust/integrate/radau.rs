@@ -26,7 +26,7 @@
 use faer::Mat;
 
 use super::controller::initial_step;
-use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite};
+use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
 use super::stiff::Lu;
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
@@ -374,25 +374,7 @@ pub(super) fn drive_radau5<S: OdeSystem>(
     let mut last_trial_error = non_finite(t);
 
     'steps: loop {
-        h = h.min(st.h_max);
-        let floor = st.h_min.max(1e-14 * t.abs());
-        if !(h > 0.0 && h >= floor) {
-            if trial_failures > 0 {
-                return Err(last_trial_error);
-            }
-            return Err(Error::StepSizeUnderflow { t, h, detail: String::new() });
-        }
-        if stats.steps_accepted + stats.steps_rejected >= st.max_steps {
-            return Err(Error::TooManySteps { t, max_steps: st.max_steps });
-        }
-        let (hs, t1, last) = if t + 1.01 * h < t_end {
-            (h, t + h, false)
-        } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
-            (t_end - t, t_end, true)
-        } else {
-            let half = 0.5 * (t_end - t);
-            (half, t + half, false)
-        };
+        let (hs, t1, last) = plan_step(t, h, t_end, st, stats, || (trial_failures > 0).then(|| last_trial_error.clone()))?;
         if need_w {
             newton.update(sys, stats, t, &y, &f0)?;
             need_w = false;

@@ -25,7 +25,7 @@ use faer::perm::PermRef;
 use faer::{Mat, Par};
 
 use super::controller::initial_step;
-use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite};
+use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
@@ -221,22 +221,7 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
     let mut singular = 0usize;
 
     loop {
-        h = h.min(st.h_max);
-        let floor = st.h_min.max(1e-14 * t.abs());
-        if !(h > 0.0 && h >= floor) {
-            return Err(Error::StepSizeUnderflow { t, h, detail: String::new() });
-        }
-        if stats.steps_accepted + stats.steps_rejected >= st.max_steps {
-            return Err(Error::TooManySteps { t, max_steps: st.max_steps });
-        }
-        let (hs, t1, last) = if t + 1.01 * h < t_end {
-            (h, t + h, false)
-        } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
-            (t_end - t, t_end, true)
-        } else {
-            let half = 0.5 * (t_end - t);
-            (half, t + half, false)
-        };
+        let (hs, t1, last) = plan_step(t, h, t_end, st, stats, || None)?;
 
         if need_jac {
             // ∂f/∂t and J = ∂f/∂y by forward differences (RODAS's increments).
