@@ -27,7 +27,7 @@ use faer::Mat;
 
 use super::controller::initial_step;
 use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
-use super::stiff::Lu;
+use super::stiff::{size_after_accept, Lu};
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
@@ -567,12 +567,7 @@ pub(super) fn drive_radau5<S: OdeSystem>(
             }
             fresh_rhs(sys, stats, t, &y, &mut f0)?;
             need_w = true;
-            let mut h_new = hs / quot;
-            if reject {
-                h_new = h_new.min(hs);
-            }
-            reject = false;
-            h = h_new;
+            h = size_after_accept(hs, quot, &mut reject);
         } else {
             stats.steps_rejected += 1;
             reject = true;

@@ -148,6 +148,14 @@ impl Lu {
     }
 }
 
+/// The step size after an accepted step of the stiff drivers: `hs/quot`, but no growth right
+/// after a rejection (Hairer's RODAS and RADAU5); clears `reject`.
+pub(super) fn size_after_accept(hs: f64, quot: f64, reject: &mut bool) -> f64 {
+    let h = if *reject { (hs / quot).min(hs) } else { hs / quot };
+    *reject = false;
+    h
+}
+
 /// `out = y + Σ w_j u_j` (`u_j = u[j*n..]`).
 fn lincomb(out: &mut [f64], y: &[f64], w: &[f64], u: &[f64]) {
     let n = out.len();
@@ -334,12 +342,7 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
             // f at the new point (always fresh: the system may have changed its memory).
             fresh_rhs(sys, stats, t, &y, &mut f0)?;
             need_jac = true;
-            let mut h_new = hs / q;
-            if reject {
-                h_new = h_new.min(hs);
-            }
-            reject = false;
-            h = h_new;
+            h = size_after_accept(hs, q, &mut reject);
         } else {
             stats.steps_rejected += 1;
             reject = true;
