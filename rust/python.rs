@@ -480,12 +480,8 @@ impl CompiledModel {
     /// ẏ = f(t, y) for external integrators (no impact memory: δ̇⁽⁻⁾ is the current approach
     /// speed).
     fn rhs<'py>(&self, py: Python<'py>, t: f64, y: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let y = y.as_array();
-        let dim = self.model.state_dim();
-        if y.len() != dim {
-            return Err(input_error(py, "y", format!("array of length {}", y.len()), &format!("must have length {dim}")));
-        }
-        let y: Vec<f64> = y.iter().copied().collect();
+        let y = self.state_vector(py, &y)?;
+        let dim = y.len();
         let mut guard = self.rhs_ws.lock().map_err(|_| PyRuntimeError::new_err("workspace poisoned"))?;
         let (ws, mem) = &mut *guard;
         ws.evaluate(&self.model, mem, t, &y).map_err(|e| to_pyerr(py, &e))?;
@@ -500,12 +496,8 @@ impl CompiledModel {
     /// clearance joints' force derivatives mapped through the constrained mobility (RADAU5's
     /// Newton matrix; no impact memory, as `rhs`).
     fn jacobian<'py>(&self, py: Python<'py>, t: f64, y: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let y = y.as_array();
-        let dim = self.model.state_dim();
-        if y.len() != dim {
-            return Err(input_error(py, "y", format!("array of length {}", y.len()), &format!("must have length {dim}")));
-        }
-        let y: Vec<f64> = y.iter().copied().collect();
+        let y = self.state_vector(py, &y)?;
+        let dim = y.len();
         let m = dim / 2;
         let mut sys = MechanismSystem::new(&self.model, Channels::default(), 0, None);
         let (mut w_q, mut w_v) = (vec![0.0; m * m], vec![0.0; m * m]);
@@ -539,6 +531,16 @@ impl CompiledModel {
 }
 
 impl CompiledModel {
+    /// `y` as a vector, checked to have the state's length.
+    fn state_vector(&self, py: Python<'_>, y: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
+        let y = y.as_array();
+        let dim = self.model.state_dim();
+        if y.len() != dim {
+            return Err(input_error(py, "y", format!("array of length {}", y.len()), &format!("must have length {dim}")));
+        }
+        Ok(y.iter().copied().collect())
+    }
+
     fn build(py: Python<'_>, desc: MechanismDesc) -> PyResult<Self> {
         let model = Model::compile(&desc).map_err(|e| to_pyerr(py, &e))?;
         let ws = Workspace::new(&model);

@@ -183,8 +183,7 @@ def monte_carlo(
         period = 2 * math.pi / abs(omegas[k])
         t0 = skip_cycles * period
         t_out = t0 + period * cycles * np.arange(n_out + 1) / n_out
-        s = m.run_settings(
-            float(t_out[-1]),
+        run = dict(
             t_out=t_out,
             integrator=integrator,
             rtol=rtol,
@@ -192,14 +191,8 @@ def monte_carlo(
             outputs=["states", "accelerations"] if "acceleration" in quantities else ["states"],
         )
         ideal = m.idealized()
-        s_ideal = ideal.run_settings(
-            float(t_out[-1]),
-            t_out=t_out,
-            integrator=integrator,
-            rtol=rtol,
-            atol=atol,
-            outputs=["states", "accelerations"] if "acceleration" in quantities else ["states"],
-        )
+        # ``integrator="auto"`` resolves per mechanism (the ideal twin has no film).
+        s, s_ideal = m.run_settings(float(t_out[-1]), **run), ideal.run_settings(float(t_out[-1]), **run)
         descriptions += [m.description(), ideal.description()]
         settings += [s, s_ideal]
         names = m.body_names
