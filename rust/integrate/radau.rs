@@ -26,8 +26,8 @@
 use faer::Mat;
 
 use super::controller::initial_step;
-use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
-use super::stiff::{size_after_accept, Lu};
+use super::explicit_rk::{all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
+use super::stiff::{finish_accepted, size_after_accept, Lu};
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
@@ -560,12 +560,9 @@ pub(super) fn drive_radau5<S: OdeSystem>(
             if !all_finite(&ynew) {
                 return Err(non_finite(t));
             }
-            accept_step(sys, stats, hs, t, t1, &mut y, &mut ynew, &dense, t_out, &mut next_out, &mut buf)?;
-            t = t1;
-            if last {
+            if finish_accepted(sys, stats, (hs, &mut t, t1, last), &mut y, &mut ynew, &dense, (t_out, &mut next_out), &mut buf, &mut f0)? {
                 return Ok(());
             }
-            fresh_rhs(sys, stats, t, &y, &mut f0)?;
             need_w = true;
             h = size_after_accept(hs, quot, &mut reject);
         } else {

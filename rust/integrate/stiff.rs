@@ -148,6 +148,32 @@ impl Lu {
     }
 }
 
+/// The end of an accepted step of the stiff drivers, its dense output filled: accept it
+/// ([`accept_step`]: memory, outputs), move `t` to `t1` and — unless it was the `last` — evaluate
+/// `f0 = f(t1, y1)` afresh (the system may have changed its memory). Returns whether the run is
+/// done. `step` is `(h, t, t1, last)`, `outputs` the output times and the next one to deliver.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn finish_accepted<S: OdeSystem>(
+    sys: &mut S,
+    stats: &mut Stats,
+    step: (f64, &mut f64, f64, bool),
+    y: &mut Vec<f64>,
+    ynew: &mut Vec<f64>,
+    dense: &dyn DenseOutput,
+    outputs: (&[f64], &mut usize),
+    buf: &mut [f64],
+    f0: &mut [f64],
+) -> Result<bool, Error> {
+    let (h, t, t1, last) = step;
+    accept_step(sys, stats, h, *t, t1, y, ynew, dense, outputs.0, outputs.1, buf)?;
+    *t = t1;
+    if last {
+        return Ok(true);
+    }
+    fresh_rhs(sys, stats, t1, y, f0)?;
+    Ok(false)
+}
+
 /// The step size after an accepted step of the stiff drivers: `hs/quot`, but no growth right
 /// after a rejection (Hairer's RODAS and RADAU5); clears `reject`.
 pub(super) fn size_after_accept(hs: f64, quot: f64, reject: &mut bool) -> f64 {
@@ -334,13 +360,9 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
             dense.y1.copy_from_slice(&ynew);
             weighted(&mut dense.r2, &D2, &u);
             weighted(&mut dense.r3, &D3, &u);
-            accept_step(sys, stats, hs, t, t1, &mut y, &mut ynew, &dense, t_out, &mut next_out, &mut buf)?;
-            t = t1;
-            if last {
+            if finish_accepted(sys, stats, (hs, &mut t, t1, last), &mut y, &mut ynew, &dense, (t_out, &mut next_out), &mut buf, &mut f0)? {
                 return Ok(());
             }
-            // f at the new point (always fresh: the system may have changed its memory).
-            fresh_rhs(sys, stats, t, &y, &mut f0)?;
             need_jac = true;
             h = size_after_accept(hs, q, &mut reject);
         } else {
