@@ -367,39 +367,15 @@ fn drive_adaptive<S: OdeSystem>(
 
         // The trial step: its stages may leave the region where f is defined (a huge
         // penetration, a singular pose); that rejects the step, it does not end the run.
+        let (c, a, last_stage) = if dop { (&dop853::C[..], &dop853::A[..], dop853::STAGES) } else { (&dopri5::C[..], &dopri5::A[..], 6) };
         let mut trial = || -> Result<f64, Error> {
+            stages(sys, c, a, 1..last_stage, t, t1, h_step, &y, &mut k, &mut ytmp, stats)?;
             Ok(if dop {
-                stages(
-                    sys,
-                    &dop853::C,
-                    &dop853::A,
-                    1..dop853::STAGES,
-                    t,
-                    t1,
-                    h_step,
-                    &y,
-                    &mut k,
-                    &mut ytmp,
-                    stats,
-                )?;
                 advance(&y, h_step, &dop853::B, &k, &mut y1);
                 combine(h_step, &dop853::E5, &k, &mut e5);
                 combine(h_step, &dop853::E3, &k, &mut e3);
                 dop853_error(&e5, &e3, &y, &y1, st.rtol, st.atol)
             } else {
-                stages(
-                    sys,
-                    &dopri5::C,
-                    &dopri5::A,
-                    1..6,
-                    t,
-                    t1,
-                    h_step,
-                    &y,
-                    &mut k,
-                    &mut ytmp,
-                    stats,
-                )?;
                 advance(&y, h_step, &dopri5::B, &k, &mut y1);
                 // FSAL stage 6 = f(t1, y1), part of the error estimate.
                 sys.rhs(t1, &y1, &mut k[6 * n..7 * n])?;
