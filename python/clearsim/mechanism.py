@@ -508,8 +508,8 @@ class Mechanism:
         with tqdm(total=settings["t_end"] - t0, unit="s", unit_scale=True, desc="simulating", delay=1.0, leave=False) as bar:
 
             def advance(t: float) -> None:
-                bar.n = min(t - t0, bar.total)
-                bar.refresh()
+                # ``update`` (not ``refresh``) honours the bar's one-second delay.
+                bar.update(min(t - t0, bar.total) - bar.n)
 
             raw = compiled.simulate(settings, advance)
         return self._finish(raw, settings)

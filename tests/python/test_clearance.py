@@ -191,6 +191,13 @@ def test_progress_callback_sees_the_simulated_time():
     assert seen and all(0.0 < t <= 1.2 for t in seen) and seen == sorted(seen)
 
 
+def test_a_short_run_shows_no_progress_bar(capfd):
+    """The bar appears only for runs longer than a second; a 0.2 s run writes nothing."""
+    res = models.nine_bar("lubricated").simulate(0.4, integrator="rk45", rtol=1e-6, atol=1e-9)
+    assert res.completed
+    assert capfd.readouterr().err == ""
+
+
 def test_an_exception_in_the_progress_callback_interrupts_and_keeps_the_partial_result():
     m = models.nine_bar("lubricated")
 
