@@ -1043,84 +1043,19 @@ mod tests {
     fn invalid_input_is_rejected() {
         let y0 = forced_exact(0.0);
         let s = Settings::default();
-        let bad = |r: Result<Stats, (Error, Stats)>| matches!(r, Err((Error::InvalidInput { .. }, _)));
-        assert!(bad(integrate(
-            &mut Sys::new(3, forced),
-            Method::Dopri5,
-            0.0,
-            &y0[..2],
-            1.0,
-            &[],
-            &s
-        )));
-        assert!(bad(integrate(
-            &mut Sys::new(3, forced),
-            Method::Dopri5,
-            0.0,
-            &y0,
-            -1.0,
-            &[],
-            &s
-        )));
-        assert!(bad(integrate(
-            &mut Sys::new(3, forced),
-            Method::Dopri5,
-            0.0,
-            &y0,
-            1.0,
-            &[0.5, 0.2],
-            &s
-        )));
-        assert!(bad(integrate(
-            &mut Sys::new(3, forced),
-            Method::Rk4 { step: 0.0 },
-            0.0,
-            &y0,
-            1.0,
-            &[],
-            &s
-        )));
-        assert!(bad(integrate(
-            &mut Sys::new(3, forced),
-            Method::Dop853,
-            0.0,
-            &y0,
-            1.0,
-            &[],
-            &Settings { rtol: -1.0, ..s }
-        )));
-        assert!(bad(integrate(
-            &mut Sys::new(3, forced),
-            Method::Dop853,
-            0.0,
-            &y0,
-            1.0,
-            &[],
-            &Settings { h0: Some(0.0), ..s }
-        )));
-        let s_bad = Settings {
-            h_min: 1.0,
-            h_max: 0.1,
-            ..s
+        let run = |method, y0: &[f64], t_end, t_out: &[f64], s: &Settings| {
+            integrate(&mut Sys::new(3, forced), method, 0.0, y0, t_end, t_out, s)
         };
-        assert!(bad(integrate(
-            &mut Sys::new(3, forced),
-            Method::Dop853,
-            0.0,
-            &y0,
-            1.0,
-            &[],
-            &s_bad
-        )));
-        let r = integrate(
-            &mut Sys::new(3, forced),
-            Method::Dopri5,
-            0.0,
-            &[f64::NAN, 0.0, 0.0],
-            1.0,
-            &[],
-            &s,
-        );
+        let bad = |r: Result<Stats, (Error, Stats)>| matches!(r, Err((Error::InvalidInput { .. }, _)));
+        assert!(bad(run(Method::Dopri5, &y0[..2], 1.0, &[], &s)), "state of the wrong length");
+        assert!(bad(run(Method::Dopri5, &y0, -1.0, &[], &s)), "t_end before t0");
+        assert!(bad(run(Method::Dopri5, &y0, 1.0, &[0.5, 0.2], &s)), "decreasing outputs");
+        assert!(bad(run(Method::Rk4 { step: 0.0 }, &y0, 1.0, &[], &s)), "zero RK4 step");
+        assert!(bad(run(Method::Dop853, &y0, 1.0, &[], &Settings { rtol: -1.0, ..s })), "negative rtol");
+        assert!(bad(run(Method::Dop853, &y0, 1.0, &[], &Settings { h0: Some(0.0), ..s })), "zero first step");
+        let s_bad = Settings { h_min: 1.0, h_max: 0.1, ..s };
+        assert!(bad(run(Method::Dop853, &y0, 1.0, &[], &s_bad)), "h_min above h_max");
+        let r = run(Method::Dopri5, &[f64::NAN, 0.0, 0.0], 1.0, &[], &s);
         assert!(matches!(r, Err((Error::NonFinite { .. }, _))));
     }
 }
