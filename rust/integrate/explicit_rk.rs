@@ -1,4 +1,4 @@
-//! Explicit Runge–Kutta stepper and the driver loop behind [`integrate`](super::integrate)
+//! Explicit Runge–Kutta stepper and the RK4 / DOPRI5 / DOP853 driver loops behind [`integrate`](super::integrate)
 //! (Hairer I, §II.4–II.6; the structure of Hairer's codes DOPRI5 and DOP853).
 //!
 //! All work vectors are allocated once per call; a step allocates nothing.
@@ -6,106 +6,8 @@
 use super::controller::{dop853_error, initial_step, rms_error, Controller, Decision};
 use super::dense::{combine, ContinuousExtension};
 use super::tableau::{dop853, dopri5, rk4};
-use super::{DenseOutput, Method, OdeSystem, Settings, Stats};
+use super::{DenseOutput, Method, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
-
-/// Run `method` (arguments as for [`integrate`](super::integrate)), validating the input.
-pub(crate) fn run<S: OdeSystem>(
-    sys: &mut S,
-    method: Method,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    t_out: &[f64],
-    settings: &Settings,
-) -> Result<Stats, (Error, Stats)> {
-    let mut stats = Stats {
-        h_min_used: f64::INFINITY,
-        t_reached: t0,
-        ..Stats::default()
-    };
-    let res = validate(sys.dim(), method, t0, y0, t_end, t_out, settings).and_then(|()| match method {
-        Method::Rk4 { step } => drive_rk4(sys, step, t0, y0, t_end, t_out, settings, &mut stats),
-        Method::Dopri5 | Method::Dop853 => drive_adaptive(sys, method, t0, y0, t_end, t_out, settings, &mut stats),
-        Method::Rodas4 => super::stiff::drive_rodas4(sys, t0, y0, t_end, t_out, settings, &mut stats),
-        Method::Radau5 => super::radau::drive_radau5(sys, t0, y0, t_end, t_out, settings, &mut stats),
-    });
-    match res {
-        Ok(()) => Ok(stats),
-        Err(e) => Err((e, stats)),
-    }
-}
-
-fn validate(
-    n: usize,
-    method: Method,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    t_out: &[f64],
-    s: &Settings,
-) -> Result<(), Error> {
-    if y0.len() != n {
-        return Err(Error::invalid(
-            "y0",
-            format!("length {}", y0.len()),
-            format!("the system has dimension {n}"),
-        ));
-    }
-    if !t0.is_finite() {
-        return Err(Error::invalid("t0", t0, "must be finite"));
-    }
-    if !(t_end.is_finite() && t_end >= t0) {
-        return Err(Error::invalid(
-            "t_end",
-            t_end,
-            "must be finite and ≥ t0 (forward integration only)",
-        ));
-    }
-    if t_out.iter().any(|t| !t.is_finite()) || t_out.windows(2).any(|w| w[1] < w[0]) {
-        return Err(Error::invalid("t_out", "[…]", "output times must be finite and sorted"));
-    }
-    if !y0.iter().all(|v| v.is_finite()) {
-        return Err(Error::NonFinite {
-            t: t0,
-            detail: String::new(),
-        });
-    }
-    match method {
-        Method::Rk4 { step } => {
-            if !(step.is_finite() && step > 0.0) {
-                return Err(Error::invalid("step", step, "must be finite and > 0"));
-            }
-        }
-        Method::Dopri5 | Method::Dop853 | Method::Rodas4 | Method::Radau5 => {
-            if !(s.rtol.is_finite() && s.rtol > 0.0) {
-                return Err(Error::invalid("rtol", s.rtol, "must be finite and > 0"));
-            }
-            if !(s.atol.is_finite() && s.atol > 0.0) {
-                return Err(Error::invalid("atol", s.atol, "must be finite and > 0"));
-            }
-            if let Some(h0) = s.h0 {
-                if !(h0.is_finite() && h0 > 0.0) {
-                    return Err(Error::invalid("h0", h0, "must be finite and > 0"));
-                }
-            }
-            if s.h_max.is_nan() || s.h_max <= 0.0 {
-                return Err(Error::invalid("h_max", s.h_max, "must be > 0"));
-            }
-            if !(s.h_min.is_finite() && s.h_min >= 0.0) {
-                return Err(Error::invalid("h_min", s.h_min, "must be finite and ≥ 0"));
-            }
-            if s.h_min > s.h_max {
-                return Err(Error::invalid(
-                    "h_min",
-                    s.h_min,
-                    format!("must not exceed h_max = {}", s.h_max),
-                ));
-            }
-        }
-    }
-    Ok(())
-}
 
 /// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.
 pub(super) fn emit<S: OdeSystem>(
@@ -300,17 +202,14 @@ const MAX_TRIAL_FAILURES: usize = 12;
 /// Adaptive DOPRI5 / DOP853 driver (Hairer's `DOPCOR` / `DP86CO` loop). A trial step whose
 /// stages leave the domain of f (non-finite values, a singular constraint Jacobian) is rejected
 /// and retried with a quarter of the step, up to `MAX_TRIAL_FAILURES` times in a row.
-#[allow(clippy::too_many_arguments)]
-fn drive_adaptive<S: OdeSystem>(
+pub(super) fn drive_adaptive<S: OdeSystem>(
     sys: &mut S,
     method: Method,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    t_out: &[f64],
+    span: Span<'_>,
     st: &Settings,
     stats: &mut Stats,
 ) -> Result<(), Error> {
+    let Span { t0, y0, t_end, t_out } = span;
     let dop = method == Method::Dop853;
     let n = y0.len();
     // Work vectors, allocated once.
@@ -459,17 +358,14 @@ fn drive_adaptive<S: OdeSystem>(
 
 /// Classic RK4 with fixed step `step` (the last step shortened to end on `t_end`) and cubic
 /// Hermite dense output from `f` at both ends; `f(t1, y1)` is reused as the next first stage.
-#[allow(clippy::too_many_arguments)]
-fn drive_rk4<S: OdeSystem>(
+pub(super) fn drive_rk4<S: OdeSystem>(
     sys: &mut S,
     step: f64,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    t_out: &[f64],
+    span: Span<'_>,
     st: &Settings,
     stats: &mut Stats,
 ) -> Result<(), Error> {
+    let Span { t0, y0, t_end, t_out } = span;
     let n = y0.len();
     // Stages 0–3, and f(t1, y1) in slot 4 (the next step's first stage).
     let mut k = vec![0.0; 5 * n];

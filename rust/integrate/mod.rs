@@ -127,5 +127,77 @@ pub fn integrate<S: OdeSystem>(
     t_out: &[f64],
     settings: &Settings,
 ) -> Result<Stats, (Error, Stats)> {
-    explicit_rk::run(sys, method, t0, y0, t_end, t_out, settings)
+    let span = Span { t0, y0, t_end, t_out };
+    let mut stats = Stats { h_min_used: f64::INFINITY, t_reached: t0, ..Stats::default() };
+    let res = span.validate(sys.dim(), method, settings).and_then(|()| match method {
+        Method::Rk4 { step } => explicit_rk::drive_rk4(sys, step, span, settings, &mut stats),
+        Method::Dopri5 | Method::Dop853 => explicit_rk::drive_adaptive(sys, method, span, settings, &mut stats),
+        Method::Rodas4 => stiff::drive_rodas4(sys, span, settings, &mut stats),
+        Method::Radau5 => radau::drive_radau5(sys, span, settings, &mut stats),
+    });
+    match res {
+        Ok(()) => Ok(stats),
+        Err(e) => Err((e, stats)),
+    }
+}
+
+/// What one integration covers: from `(t0, y0)` to `t_end`, with outputs at `t_out`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Span<'a> {
+    pub t0: f64,
+    pub y0: &'a [f64],
+    pub t_end: f64,
+    pub t_out: &'a [f64],
+}
+
+impl Span<'_> {
+    /// Checks the span, and the settings `method` uses, for a system of dimension `n`.
+    fn validate(&self, n: usize, method: Method, s: &Settings) -> Result<(), Error> {
+        let Span { t0, y0, t_end, t_out } = *self;
+        if y0.len() != n {
+            return Err(Error::invalid("y0", format!("length {}", y0.len()), format!("the system has dimension {n}")));
+        }
+        if !t0.is_finite() {
+            return Err(Error::invalid("t0", t0, "must be finite"));
+        }
+        if !(t_end.is_finite() && t_end >= t0) {
+            return Err(Error::invalid("t_end", t_end, "must be finite and ≥ t0 (forward integration only)"));
+        }
+        if t_out.iter().any(|t| !t.is_finite()) || t_out.windows(2).any(|w| w[1] < w[0]) {
+            return Err(Error::invalid("t_out", "[…]", "output times must be finite and sorted"));
+        }
+        if !y0.iter().all(|v| v.is_finite()) {
+            return Err(Error::NonFinite { t: t0, detail: String::new() });
+        }
+        match method {
+            Method::Rk4 { step } => {
+                if !(step.is_finite() && step > 0.0) {
+                    return Err(Error::invalid("step", step, "must be finite and > 0"));
+                }
+            }
+            Method::Dopri5 | Method::Dop853 | Method::Rodas4 | Method::Radau5 => {
+                if !(s.rtol.is_finite() && s.rtol > 0.0) {
+                    return Err(Error::invalid("rtol", s.rtol, "must be finite and > 0"));
+                }
+                if !(s.atol.is_finite() && s.atol > 0.0) {
+                    return Err(Error::invalid("atol", s.atol, "must be finite and > 0"));
+                }
+                if let Some(h0) = s.h0 {
+                    if !(h0.is_finite() && h0 > 0.0) {
+                        return Err(Error::invalid("h0", h0, "must be finite and > 0"));
+                    }
+                }
+                if s.h_max.is_nan() || s.h_max <= 0.0 {
+                    return Err(Error::invalid("h_max", s.h_max, "must be > 0"));
+                }
+                if !(s.h_min.is_finite() && s.h_min >= 0.0) {
+                    return Err(Error::invalid("h_min", s.h_min, "must be finite and ≥ 0"));
+                }
+                if s.h_min > s.h_max {
+                    return Err(Error::invalid("h_min", s.h_min, format!("must not exceed h_max = {}", s.h_max)));
+                }
+            }
+        }
+        Ok(())
+    }
 }

@@ -28,7 +28,7 @@ use faer::Mat;
 use super::controller::initial_step;
 use super::explicit_rk::{all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
 use super::stiff::{finish_accepted, size_after_accept, Lu};
-use super::{DenseOutput, OdeSystem, Settings, Stats};
+use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
 
 /// The method's constants (Hairer's `RADCOR` / `ESTRAD`): nodes, the eigenvalues of `A⁻¹`
@@ -318,16 +318,13 @@ const MAX_TRIAL_FAILURES: usize = 30;
 
 /// The RADAU5 driver, with the contract of the other drivers. `W` is recomputed after every
 /// accepted step (cheap with the structured hook) and kept on rejections.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn drive_radau5<S: OdeSystem>(
     sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    t_out: &[f64],
+    span: Span<'_>,
     st: &Settings,
     stats: &mut Stats,
 ) -> Result<(), Error> {
+    let Span { t0, y0, t_end, t_out } = span;
     let k = Radau5::new();
     let (c1, c2) = (k.c[0], k.c[1]);
     let (c1m1, c2m1, c1mc2) = (c1 - 1.0, c2 - 1.0, c1 - c2);

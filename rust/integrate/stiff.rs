@@ -26,7 +26,7 @@ use faer::{Mat, Par};
 
 use super::controller::initial_step;
 use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
-use super::{DenseOutput, OdeSystem, Settings, Stats};
+use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
 
 /// Coefficients of RODAS4 (Hairer's `ROCOE`, `METH = 1`).
@@ -207,16 +207,13 @@ fn weighted(out: &mut [f64], w: &[f64], u: &[f64]) {
 /// The RODAS4 driver loop (Hairer's `ROSCOR`), with the same contract as the explicit drivers:
 /// outputs from the dense output, `step_accepted` after every accepted step, errors
 /// `StepSizeUnderflow` / `NonFinite` / `TooManySteps`. The input has been validated.
-#[allow(clippy::too_many_arguments)]
 pub(super) fn drive_rodas4<S: OdeSystem>(
     sys: &mut S,
-    t0: f64,
-    y0: &[f64],
-    t_end: f64,
-    t_out: &[f64],
+    span: Span<'_>,
     st: &Settings,
     stats: &mut Stats,
 ) -> Result<(), Error> {
+    let Span { t0, y0, t_end, t_out } = span;
     use rodas4::*;
     let n = y0.len();
     // Work vectors, allocated once.
