@@ -64,8 +64,8 @@ def run_case(case, quick, budget, rows):
     family = "nine_bar" if case.startswith("nine") else "slider_crank"
     t_end = CYCLE[family]
     t = np.linspace(0.0, t_end, 1001)
-    k = m.body_names.index(slider)
-    n = 3 * len(m.body_names)
+    coord = "xy"[axis]
+    i_pos, i_vel = m.state_index(slider, coord), m.state_index(slider, coord, velocity=True)
     # The reference: DOP853 at rtol 1e-12; a lubricated journal crossing the small-eccentricity
     # regularisation (ε^m for ε < ε0, non-smooth at ε0) can underflow the step there, then the
     # next tolerance is used (recorded in the CSV's note column).
@@ -122,8 +122,8 @@ def run_case(case, quick, budget, rows):
                 wall = time.perf_counter() - t0
                 if not sol.success:
                     raise RuntimeError(sol.message)
-                pos = sol.y[3 * k + axis]
-                acc = np.array([m.rhs(tt, sol.y[:, i])[n + 3 * k + axis] for i, tt in enumerate(sol.t)])
+                pos = sol.y[i_pos]
+                acc = np.array([m.rhs(tt, sol.y[:, i])[i_vel] for i, tt in enumerate(sol.t)])
                 record(f"scipy_{method}", tol, wall, {"steps": sol.t.size and len(sol.t), "rhs_evaluations": sol.nfev}, pos, acc,
                        note="no impact memory" if "dry" in case else "")
                 rows[-1]["steps"] = ""

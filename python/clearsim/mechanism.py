@@ -361,6 +361,17 @@ class Mechanism:
         """Length of the state y = (q, q̇): 6 per body."""
         return 6 * len(self._bodies)
 
+    def state_index(self, body: str, coordinate: str, velocity: bool = False) -> int:
+        """Index in the state y = (q, q̇) of ``body``'s ``coordinate`` (``"x"``, ``"y"`` [m] or
+        ``"theta"`` [rad]; with ``velocity=True`` its rate, m/s or rad/s). In ``m.rhs(t, y)``
+        the same index gives its rate (position) or acceleration (velocity)."""
+        b = self._body("body", body, allow_ground=False)
+        assert b is not None
+        axes = ("x", "y", "theta")
+        if coordinate not in axes:
+            raise InputError(f"invalid coordinate = {coordinate!r}: must be one of x, y, theta", field="coordinate", value=coordinate)
+        return 3 * b + axes.index(coordinate) + (3 * len(self._bodies) if velocity else 0)
+
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
         """Consistent initial state y0 = (q0, q̇0) from the kinematic assembly at ``t0``."""
         return self.compile().initial_state(float(t0))
@@ -368,7 +379,7 @@ class Mechanism:
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """ẏ = f(t, y), for driving clearsim's model with an external integrator such as
         ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in the
-        order added, then q̇ likewise. No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
+        order added, then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
         return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
 
     def jacobian(self, t: float, y: np.ndarray) -> np.ndarray:

@@ -31,6 +31,22 @@ def test_state_layout():
     assert y0[3 * m.body_names.index("slider9") + 1] == pytest.approx(-0.4570, abs=2e-3)
 
 
+def test_state_index_names_the_entries_a_run_records():
+    m = nine_bar("ideal")
+    y0 = m.initial_state()
+    res = m.simulate(0.01, t_out=[0.0, 0.01], progress=False)
+    for body in ("crank1", "slider9"):
+        for c, coord in enumerate(("x", "y", "theta")):
+            assert y0[m.state_index(body, coord)] == pytest.approx(res.position(body)[0, c], abs=1e-12)
+            assert y0[m.state_index(body, coord, velocity=True)] == pytest.approx(res.velocity(body)[0, c], abs=1e-9)
+    dy = m.rhs(0.0, y0)
+    assert dy[m.state_index("slider9", "y", velocity=True)] == pytest.approx(res.acceleration("slider9")[0, 1], rel=1e-9)
+    with pytest.raises(InputError, match="coordinate = 'z'"):
+        m.state_index("slider9", "z")
+    with pytest.raises(InputError, match="no such body"):
+        m.state_index("ground", "x")
+
+
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_solve_ivp_on_rhs_matches_clearsim_rk45(name):
     build, slider, cycle, stroke = CASES[name]
