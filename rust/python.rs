@@ -380,6 +380,7 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
     let s = PyDict::new(py);
     s.set_item("steps", out.stats.steps_accepted)?;
     s.set_item("rejected_steps", out.stats.steps_rejected)?;
+    s.set_item("steps_to_switch", out.stats.steps_to_switch)?;
     s.set_item("rhs_evaluations", out.stats.rhs_evals)?;
     s.set_item("jacobians", out.stats.jacobians)?;
     s.set_item("min_step", out.stats.h_min_used)?;

@@ -153,6 +153,57 @@ impl<'a> MechanismSystem<'a> {
         worst
     }
 
+    /// The time in `[ta, tb]` where joint `j`'s penetration δ changes sign (δ at the two ends
+    /// of opposite signs), by Illinois (modified regula falsi) on δ(t) through the dense output,
+    /// with the joint's kinematics there.
+    fn locate_crossing(
+        &mut self,
+        j: usize,
+        (mut ta, ka): (f64, JointKinematics),
+        (mut tb, kb): (f64, JointKinematics),
+        dense: &dyn DenseOutput,
+    ) -> (f64, JointKinematics) {
+        // Orient so that δ(ta) ≤ 0 < δ(tb) (an onset) or the reverse (a separation).
+        let rising = kb.delta > 0.0;
+        let sign = if rising { 1.0 } else { -1.0 };
+        let (mut fa, mut fb) = (sign * ka.delta, sign * kb.delta);
+        let (t_lo, t_hi) = (ta, tb);
+        let mut side = 0i8;
+        let mut kin = kb;
+        let mut tm = tb;
+        let tol_f = 1e-15 * self.model.clearance[j].clearance;
+        for _ in 0..60 {
+            tm = (ta * fb - tb * fa) / (fb - fa);
+            if !(tm.is_finite() && tm > ta && tm < tb) {
+                tm = 0.5 * (ta + tb);
+            }
+            let mut s = std::mem::take(&mut self.scratch);
+            dense.eval(tm, &mut s);
+            kin = self.joint_kinematics(j, &s);
+            self.scratch = s;
+            let fm = sign * kin.delta;
+            if fm > 0.0 {
+                tb = tm;
+                fb = fm;
+                if side == 1 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            } else {
+                ta = tm;
+                fa = fm;
+                if side == -1 {
+                    fb *= 0.5;
+                }
+                side = -1;
+            }
+            if (tb - ta) <= 1e-14 * (1.0 + t_hi.abs()) || fm.abs() <= tol_f {
+                break;
+            }
+        }
+        (tm.clamp(t_lo, t_hi), kin)
+    }
+
     /// Where a failed run stood, for the error message.
     pub fn diagnosis(&self) -> String {
         let mut out = String::new();
@@ -183,6 +234,20 @@ impl OdeSystem for MechanismSystem<'_> {
         Ok(())
     }
 
+    /// The first contact onset or separation of any clearance joint inside the step: where the
+    /// contact force switches on or off and stops being smooth.
+    fn switching_point(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<Option<f64>> {
+        let mut first: Option<f64> = None;
+        for j in 0..self.memory.len() {
+            let (k0, k1) = (self.joint_kinematics(j, y0), self.joint_kinematics(j, y1));
+            if (k0.delta > 0.0) != (k1.delta > 0.0) {
+                let (ts, _) = self.locate_crossing(j, (t0, k0), (t1, k1), dense);
+                first = Some(first.map_or(ts, |f| f.min(ts)));
+            }
+        }
+        Ok(first)
+    }
+
     /// Locate contact onsets inside the step and record δ̇⁽⁻⁾ there (spec §3, P3); clear the
     /// memory at separation.
     fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
@@ -191,42 +256,7 @@ impl OdeSystem for MechanismSystem<'_> {
             let k1 = self.joint_kinematics(j, y1);
             if k1.delta > 0.0 && !self.memory[j].in_contact {
                 let k0 = self.joint_kinematics(j, y0);
-                let speed = if k0.delta >= 0.0 {
-                    k0.delta_dot
-                } else {
-                    // Illinois (modified regula falsi) on δ(t) through the dense output.
-                    let (mut ta, mut fa, mut tb, mut fb) = (t0, k0.delta, t1, k1.delta);
-                    let mut side = 0i8;
-                    let mut kin = k1;
-                    for _ in 0..60 {
-                        let tm = (ta * fb - tb * fa) / (fb - fa);
-                        let tm = if tm.is_finite() && tm > ta && tm < tb { tm } else { 0.5 * (ta + tb) };
-                        let mut s = std::mem::take(&mut self.scratch);
-                        dense.eval(tm, &mut s);
-                        kin = self.joint_kinematics(j, &s);
-                        self.scratch = s;
-                        let fm = kin.delta;
-                        if fm > 0.0 {
-                            tb = tm;
-                            fb = fm;
-                            if side == 1 {
-                                fa *= 0.5;
-                            }
-                            side = 1;
-                        } else {
-                            ta = tm;
-                            fa = fm;
-                            if side == -1 {
-                                fb *= 0.5;
-                            }
-                            side = -1;
-                        }
-                        if (tb - ta) <= 1e-14 * (1.0 + t1.abs()) || fm.abs() <= 1e-15 * self.model.clearance[j].clearance {
-                            break;
-                        }
-                    }
-                    kin.delta_dot
-                };
+                let speed = if k0.delta >= 0.0 { k0.delta_dot } else { self.locate_crossing(j, (t0, k0), (t1, k1), dense).1.delta_dot };
                 let m = &mut self.memory[j];
                 m.in_contact = true;
                 m.impact_speed = speed.abs();

@@ -36,6 +36,14 @@ pub trait OdeSystem {
     ) -> Result<bool, Error> {
         Ok(false)
     }
+    /// The earliest switching point inside a step `[t0, t1]` that passed the error test: a time
+    /// at which `f` stops being smooth (a contact starting or ending), located on `dense`, or
+    /// `None`. Called before [`OdeSystem::step_accepted`]; must not change any state. When the
+    /// point lies well inside the step, the drivers redo the step so that it ends there, so that
+    /// no step straddles it (the error estimates assume a smooth `f`). Default: none.
+    fn switching_point(&mut self, _t0: f64, _y0: &[f64], _t1: f64, _y1: &[f64], _dense: &dyn DenseOutput) -> Result<Option<f64>, Error> {
+        Ok(None)
+    }
     /// Called at every requested output time with the (interpolated) state.
     fn output(&mut self, t: f64, y: &[f64]) -> Result<(), Error>;
     /// For a second-order system, `y = (q, v)` and `f = (v, a(t, q, v))` with `q`, `v` of length
@@ -102,6 +110,8 @@ impl Default for Settings {
 pub struct Stats {
     pub steps_accepted: usize,
     pub steps_rejected: usize,
+    /// Steps redone to end on a switching point ([`OdeSystem::switching_point`]).
+    pub steps_to_switch: usize,
     pub rhs_evals: usize,
     /// Jacobian (or W-matrix) evaluations of the stiff methods.
     pub jacobians: usize,

@@ -26,7 +26,7 @@
 use faer::Mat;
 
 use super::controller::initial_step;
-use super::explicit_rk::{all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
+use super::explicit_rk::{all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
 use super::stiff::{finish_accepted, size_after_accept, Lu};
 use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
@@ -364,6 +364,9 @@ pub(super) fn drive_radau5<S: OdeSystem>(
     let (mut h_acc, mut err_acc) = (h, 1.0f64);
     let mut h_old = h; // the last accepted step (for extrapolating the stages)
     let mut first = true;
+    // Size of the step just abandoned to end on a switching point: the redone step starts from
+    // the same `t`, inside the abandoned step's collocation polynomial (in `dense`).
+    let mut redo_of: Option<f64> = None;
     let mut reject = false;
     let mut need_w = true;
     let mut faccon = 1.0f64;
@@ -380,17 +383,27 @@ pub(super) fn drive_radau5<S: OdeSystem>(
         newton.factor(fac1, alphn, betan);
 
         // Starting values: zero on the first step, else the last collocation polynomial.
+        // The polynomial is u(t_a + x h_a) − u(t_a) = x (a1 + (x − c2 + 1)(a2 + (x − c1 + 1) a3)),
+        // anchored at the end t_a of the step of size h_a it came from: extrapolated past it
+        // after an accepted step (x = c_i hs/h_old), read inside it for a redone step
+        // (x = c_i hs/h_a − 1, less its value at x = −1, the common start).
         if first {
             z.fill(0.0);
             w.fill(0.0);
         } else {
-            let c3q = hs / h_old;
-            let cq = [c1 * c3q, c2 * c3q, c3q];
+            let (h_from, shift) = match redo_of.take() {
+                Some(h_a) => (h_a, -1.0),
+                None => (h_old, 0.0),
+            };
+            let c3q = hs / h_from;
+            let cq = [c1 * c3q + shift, c2 * c3q + shift, c3q + shift];
+            let poly = |x: f64, a1: f64, a2: f64, a3: f64| x * (a1 + (x - c2m1) * (a2 + (x - c1m1) * a3));
             let cont = &dense.cont;
             for i in 0..n {
                 let (a1, a2, a3) = (cont[n + i], cont[2 * n + i], cont[3 * n + i]);
+                let base = if shift == 0.0 { 0.0 } else { poly(shift, a1, a2, a3) };
                 for (s, &x) in cq.iter().enumerate() {
-                    z[s * n + i] = x * (a1 + (x - c2m1) * (a2 + (x - c1m1) * a3));
+                    z[s * n + i] = poly(x, a1, a2, a3) - base;
                 }
             }
             transform(&k.ti, &z, &mut w, n);
@@ -556,6 +569,11 @@ pub(super) fn drive_radau5<S: OdeSystem>(
             h_old = hs;
             if !all_finite(&ynew) {
                 return Err(non_finite(t));
+            }
+            if let Some(h_switch) = step_to_switch(sys, st, stats, t, &y, t1, &ynew, &dense)? {
+                redo_of = Some(hs);
+                h = h_switch;
+                continue;
             }
             if finish_accepted(sys, stats, (hs, &mut t, t1, last), &mut y, &mut ynew, &dense, (t_out, &mut next_out), &mut buf, &mut f0)? {
                 return Ok(());

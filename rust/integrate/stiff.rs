@@ -25,7 +25,7 @@ use faer::perm::PermRef;
 use faer::{Mat, Par};
 
 use super::controller::initial_step;
-use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step};
+use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
 use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
 
@@ -357,6 +357,10 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
             dense.y1.copy_from_slice(&ynew);
             weighted(&mut dense.r2, &D2, &u);
             weighted(&mut dense.r3, &D3, &u);
+            if let Some(h_switch) = step_to_switch(sys, st, stats, t, &y, t1, &ynew, &dense)? {
+                h = h_switch;
+                continue;
+            }
             if finish_accepted(sys, stats, (hs, &mut t, t1, last), &mut y, &mut ynew, &dense, (t_out, &mut next_out), &mut buf, &mut f0)? {
                 return Ok(());
             }
