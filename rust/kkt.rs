@@ -9,7 +9,8 @@
 //! `S λ = Φq M⁻¹ g − c` with `S = Φq M⁻¹ Φqᵀ` (symmetric positive definite for independent
 //! constraints), factorised in place by faer's Cholesky (LLᵀ), then `q̈ = M⁻¹ (g − Φqᵀ λ)`.
 //! `S` is assembled from the sparse rows ([`JacRow`]) body by body: only pairs of rows that share a
-//! body contribute. All storage (the matrix, the right-hand side and faer's scratch stack) is
+//! body contribute, and the rows are numbered in a minimum-degree order so that the factor has
+//! little fill-in (nine-bar: 51 instead of 65 non-zeros below the diagonal). All storage (the matrix, the right-hand side and faer's scratch stack) is
 //! allocated once in [`KktSolver::new`]; [`KktSolver::solve`] allocates nothing.
 //!
 //! Mechanisms have a few dozen constraint rows; up to [`SMALL`] rows `S` is factorised by a
@@ -68,6 +69,31 @@ impl LowerPattern {
     fn row(&self, i: usize) -> &[u32] {
         &self.cols[self.start[i]..self.start[i + 1]]
     }
+}
+
+/// A greedy minimum-degree elimination order of the symmetric graph `adj` (`n × n`, row-major):
+/// repeatedly eliminate the node with the fewest remaining neighbours (the first such node on a
+/// tie) and join its neighbours into a clique (George & Liu, "The evolution of the minimum degree
+/// ordering algorithm", SIAM Rev. 31, 1989). Returns the nodes in elimination order.
+fn minimum_degree_order(n: usize, adj: &[bool]) -> Vec<u32> {
+    fn neighbours<'a>(n: usize, a: &'a [bool], done: &'a [bool], v: usize) -> impl Iterator<Item = usize> + 'a {
+        (0..n).filter(move |&u| u != v && !done[u] && a[v * n + u])
+    }
+    let mut a = adj.to_vec();
+    let mut done = vec![false; n];
+    let mut order = Vec::with_capacity(n);
+    for _ in 0..n {
+        let v = (0..n).filter(|&v| !done[v]).min_by_key(|&v| neighbours(n, &a, &done, v).count()).expect("a node is left");
+        let nbrs: Vec<usize> = neighbours(n, &a, &done, v).collect();
+        for &x in &nbrs {
+            for &y in &nbrs {
+                a[x * n + y] = true;
+            }
+        }
+        done[v] = true;
+        order.push(v as u32);
+    }
+    order
 }
 
 /// In-place Cholesky LLᵀ of the lower triangle of the column-major n×n matrix `s`
@@ -129,7 +155,11 @@ pub struct KktSolver {
     /// For each body, the (row, slot) pairs of Jacobian rows that touch it (CSR layout).
     body_start: Vec<usize>,
     body_rows: Vec<(u32, u8)>,
-    /// S, column-major (`s[i + j·rows]`); only the lower triangle is used.
+    /// Position of each constraint row in `s` (a minimum-degree order, less fill-in in L), and
+    /// the row at each position.
+    pos: Vec<u32>,
+    row_at: Vec<u32>,
+    /// S in that order, column-major (`s[i + j·rows]`); only the lower triangle is used.
     s: Vec<f64>,
     rhs: Vec<f64>,
     pattern: LowerPattern,
@@ -165,12 +195,19 @@ impl KktSolver {
                 }
             }
         }
-        let pattern = LowerPattern::new(rows, |i, j| shared[i * rows + j]);
+        let row_at = minimum_degree_order(rows, &shared);
+        let mut pos = vec![0u32; rows];
+        for (p, &r) in row_at.iter().enumerate() {
+            pos[r as usize] = p as u32;
+        }
+        let pattern = LowerPattern::new(rows, |i, j| shared[row_at[i] as usize * rows + row_at[j] as usize]);
         let req = llt::factor::cholesky_in_place_scratch::<f64>(rows, Par::Seq, Default::default())
             .or(llt::solve::solve_in_place_scratch::<f64>(rows, 1, Par::Seq));
         KktSolver {
             rows,
             pattern,
+            pos,
+            row_at,
             w: vec![0.0; inv_mass.len()],
             inv_mass,
             body_start,
@@ -187,7 +224,7 @@ impl KktSolver {
 
     /// Solve for `qdd` (generalised accelerations) and `lambda` (multipliers) given the Jacobian
     /// rows, the generalised forces `force` and the constraint right-hand side `c`
-    /// (= γ − 2αΦ̇ − β²Φ). Returns the index of a non-positive pivot if `S` is singular.
+    /// (= γ − 2αΦ̇ − β²Φ). Returns the constraint row of a non-positive pivot if `S` is singular.
     pub fn solve(&mut self, jac: &[JacRow], force: &[f64], c: &[f64], qdd: &mut [f64], lambda: &mut [f64]) -> Result<(), usize> {
         self.factor(jac)?;
         self.solve_factored(jac, force, c, qdd, lambda);
@@ -195,7 +232,7 @@ impl KktSolver {
     }
 
     /// Assemble and factorise `S = Φq M⁻¹ Φqᵀ` for the Jacobian rows `jac` (kept for
-    /// [`KktSolver::solve_factored`]). Returns the index of a non-positive pivot.
+    /// [`KktSolver::solve_factored`]). Returns the constraint row of a non-positive pivot.
     pub fn factor(&mut self, jac: &[JacRow]) -> Result<(), usize> {
         let m = self.rows;
         if m == 0 {
@@ -213,12 +250,13 @@ impl KktSolver {
                 for &(r2, k2) in &list[p..] {
                     let c2 = &jac[r2 as usize].coef[k2 as usize];
                     let v = m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
-                    let (i, j) = if r1 >= r2 { (r1, r2) } else { (r2, r1) };
+                    let (p1, p2) = (self.pos[r1 as usize], self.pos[r2 as usize]);
+                    let (i, j) = if p1 >= p2 { (p1, p2) } else { (p2, p1) };
                     self.s[i as usize + j as usize * m] += v;
                 }
             }
         }
-        if m <= SMALL {
+        let pivot = if m <= SMALL {
             cholesky_small(&mut self.s, m, &self.pattern)
         } else {
             let mut stack = MemStack::new(&mut self.mem);
@@ -228,7 +266,8 @@ impl KktSolver {
                 .map_err(|e| match e {
                     llt::factor::LltError::NonPositivePivot { index } => index,
                 })
-        }
+        };
+        pivot.map_err(|p| self.row_at[p] as usize)
     }
 
     /// [`KktSolver::solve`] with the factor of the last [`KktSolver::factor`] (same `jac`).
@@ -243,7 +282,7 @@ impl KktSolver {
         }
         // Right-hand side Φq M⁻¹ g − c.
         for (r, row) in jac.iter().enumerate() {
-            self.rhs[r] = row.dot(&self.w) - c[r];
+            self.rhs[self.pos[r] as usize] = row.dot(&self.w) - c[r];
         }
         let m = self.rows;
         if m <= SMALL {
@@ -253,7 +292,9 @@ impl KktSolver {
             let l = MatRef::from_column_major_slice(&self.s, m, m);
             llt::solve::solve_in_place(l, MatMut::from_column_major_slice_mut(&mut self.rhs, m, 1), Par::Seq, &mut stack);
         }
-        lambda[..m].copy_from_slice(&self.rhs);
+        for (l, &p) in lambda[..m].iter_mut().zip(&self.pos) {
+            *l = self.rhs[p as usize];
+        }
         // q̈ = M⁻¹ (g − Φqᵀ λ).
         qdd[..n].copy_from_slice(&self.w);
         for (r, row) in jac.iter().enumerate() {
@@ -271,6 +312,37 @@ impl KktSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An arrow (node 0 joined to all others): eliminated first it fills the whole factor,
+    /// minimum degree keeps it for last and the factor has no fill-in.
+    #[test]
+    fn minimum_degree_avoids_the_fill_of_an_arrow() {
+        let n = 6;
+        let arrow = |i: usize, j: usize| i == 0 || j == 0 || i == j;
+        let adj: Vec<bool> = (0..n * n).map(|k| arrow(k / n, k % n)).collect();
+        let natural = LowerPattern::new(n, |i, j| arrow(i, j));
+        assert_eq!(natural.cols.len(), n * (n - 1) / 2);
+        let order = minimum_degree_order(n, &adj);
+        assert_eq!(order[..4], [1, 2, 3, 4]); // the leaves go first
+        let reordered = LowerPattern::new(n, |i, j| arrow(order[i] as usize, order[j] as usize));
+        assert_eq!(reordered.cols.len(), n - 1);
+    }
+
+    /// A duplicated constraint row makes S singular; the error names a row of the pair in the
+    /// caller's numbering, whatever order the factor used.
+    #[test]
+    fn singular_pivot_is_reported_as_a_constraint_row() {
+        let inv_mass = vec![1.0; 9];
+        let rows = [
+            JacRow { bodies: [0, 1], count: 2, coef: [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]] },
+            JacRow { bodies: [1, 2], count: 2, coef: [[0.0, 1.0, 0.5], [0.0, -1.0, 0.0]] },
+            JacRow { bodies: [2, 0], count: 2, coef: [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0]] },
+            JacRow { bodies: [1, 2], count: 2, coef: [[0.0, 1.0, 0.5], [0.0, -1.0, 0.0]] },
+        ];
+        let mut kkt = KktSolver::new(inv_mass, &rows);
+        let row = kkt.factor(&rows).unwrap_err();
+        assert!(row == 1 || row == 3, "{row}");
+    }
 
     /// A point mass on a rod pinned at the origin (one revolute row pair on body 0 with a
     /// fixed x), checked against hand elimination.
