@@ -255,9 +255,12 @@ def test_impact_onset_is_located_so_restitution_does_not_depend_on_the_tolerance
 def test_dry_impacts_converge_with_the_tolerance():
     """Steps end where a contact starts or ends (stats ``steps_to_switch``), so no step straddles
     the kink of the contact force and the error follows the tolerance through the impacts: on
-    the dry slider-crank (≈ 40 contact switches a cycle) three methods at rtol 1e-10 agree with
-    a DOP853 reference at 1e-13 — itself confirmed by RADAU5 at 1e-12 — to 1e-9 m. (Steps
-    straddling the switches left DOP853 at 1e-10 off by 3e-9 m, and at 1e-11 by 5e-9 m.)"""
+    the dry slider-crank (≈ 40 contact switches a cycle) three methods at rtol ≈ 1e-10 agree
+    with a DOP853 reference at 1e-13 — itself confirmed by RADAU5 at 1e-12 — to 1e-9 m, and the
+    explicit methods' errors fall ≥ 10× from rtol 1e-8 to 1e-10. (Steps straddling the switches
+    left DOP853 at 1e-10 off by 3e-9 m, and at 1e-11 by 5e-9 m.) The impacts make the error at
+    one tolerance erratic within a factor of ~10, so each figure is the median over rtol × (0.8,
+    1, 1.25)."""
     m = models.slider_crank("dry")
     cycle = 60.0 / 5000.0
     t = np.linspace(0.0, cycle, 601)
@@ -270,8 +273,12 @@ def test_dry_impacts_converge_with_the_tolerance():
     ref, stats = slider_x("dop853", 1e-13)
     assert stats["steps_to_switch"] >= 20
     assert np.max(np.abs(slider_x("radau", 1e-12)[0] - ref)) < 1e-11
-    for integrator in ("dop853", "rk45", "radau"):
-        x, _ = slider_x(integrator, 1e-10)
-        assert np.max(np.abs(x - ref)) < 1e-9, integrator
-    # And the error falls with the tolerance (8.6e-9 m at 1e-8, 1.3e-10 m at 1e-10).
-    assert np.max(np.abs(slider_x("dop853", 1e-8)[0] - ref)) < 3e-8
+
+    def median_error(integrator, rtol):
+        return np.median([np.max(np.abs(slider_x(integrator, rtol * f)[0] - ref)) for f in (0.8, 1.0, 1.25)])
+
+    assert median_error("radau", 1e-10) < 1e-9
+    for integrator in ("dop853", "rk45"):
+        fine = median_error(integrator, 1e-10)
+        assert fine < 1e-9, integrator
+        assert median_error(integrator, 1e-8) > 10 * fine, integrator
