@@ -153,25 +153,26 @@ impl<'a> MechanismSystem<'a> {
         worst
     }
 
-    /// The time in `[ta, tb]` where joint `j`'s penetration δ changes sign (δ at the two ends
-    /// of opposite signs), by Illinois (modified regula falsi) on δ(t) through the dense output,
-    /// with the joint's kinematics there.
+    /// The time in `[ta, tb]` where the switching function `g` of joint `j`'s kinematics
+    /// changes sign (`g` at the two ends of opposite signs), by Illinois (modified regula falsi)
+    /// on g(t) through the dense output; `tol` is an absolute tolerance on g. Returns the time
+    /// and the joint's kinematics there.
     fn locate_crossing(
         &mut self,
         j: usize,
+        g: impl Fn(&JointKinematics) -> f64,
+        tol: f64,
         (mut ta, ka): (f64, JointKinematics),
         (mut tb, kb): (f64, JointKinematics),
         dense: &dyn DenseOutput,
     ) -> (f64, JointKinematics) {
-        // Orient so that δ(ta) ≤ 0 < δ(tb) (an onset) or the reverse (a separation).
-        let rising = kb.delta > 0.0;
-        let sign = if rising { 1.0 } else { -1.0 };
-        let (mut fa, mut fb) = (sign * ka.delta, sign * kb.delta);
+        // Orient so that g(ta) ≤ 0 < g(tb).
+        let sign = if g(&kb) > 0.0 { 1.0 } else { -1.0 };
+        let (mut fa, mut fb) = (sign * g(&ka), sign * g(&kb));
         let (t_lo, t_hi) = (ta, tb);
         let mut side = 0i8;
         let mut kin = kb;
         let mut tm = tb;
-        let tol_f = 1e-15 * self.model.clearance[j].clearance;
         for _ in 0..60 {
             tm = (ta * fb - tb * fa) / (fb - fa);
             if !(tm.is_finite() && tm > ta && tm < tb) {
@@ -181,7 +182,7 @@ impl<'a> MechanismSystem<'a> {
             dense.eval(tm, &mut s);
             kin = self.joint_kinematics(j, &s);
             self.scratch = s;
-            let fm = sign * kin.delta;
+            let fm = sign * g(&kin);
             if fm > 0.0 {
                 tb = tm;
                 fb = fm;
@@ -197,11 +198,17 @@ impl<'a> MechanismSystem<'a> {
                 }
                 side = -1;
             }
-            if (tb - ta) <= 1e-14 * (1.0 + t_hi.abs()) || fm.abs() <= tol_f {
+            if (tb - ta) <= 1e-14 * (1.0 + t_hi.abs()) || fm.abs() <= tol {
                 break;
             }
         }
         (tm.clamp(t_lo, t_hi), kin)
+    }
+
+    /// Locate where contact starts or ends (δ changes sign) inside a step: time and kinematics.
+    fn locate_contact_change(&mut self, j: usize, start: (f64, JointKinematics), end: (f64, JointKinematics), dense: &dyn DenseOutput) -> (f64, JointKinematics) {
+        let tol = 1e-15 * self.model.clearance[j].clearance;
+        self.locate_crossing(j, |k| k.delta, tol, start, end, dense)
     }
 
     /// Where a failed run stood, for the error message.
@@ -238,11 +245,22 @@ impl OdeSystem for MechanismSystem<'_> {
     /// contact force switches on or off and stops being smooth.
     fn switching_point(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<Option<f64>> {
         let mut first: Option<f64> = None;
+        let mut keep = |ts: f64| first = Some(first.map_or(ts, |f: f64| f.min(ts)));
         for j in 0..self.memory.len() {
             let (k0, k1) = (self.joint_kinematics(j, y0), self.joint_kinematics(j, y1));
             if (k0.delta > 0.0) != (k1.delta > 0.0) {
-                let (ts, _) = self.locate_crossing(j, (t0, k0), (t1, k1), dense);
-                first = Some(first.map_or(ts, |f| f.min(ts)));
+                keep(self.locate_contact_change(j, (t0, k0), (t1, k1), dense).0);
+            } else if k0.delta > 0.0 {
+                // In contact throughout: the friction ramp's corners at slip ±v0, ±v1 (P5).
+                let fr = self.model.clearance[j].friction;
+                if fr.friction_coefficient > 0.0 {
+                    for v in [-fr.v1, -fr.v0, fr.v0, fr.v1] {
+                        if (k0.slip > v) != (k1.slip > v) {
+                            let tol = 1e-12 * fr.v1.abs().max(1e-12);
+                            keep(self.locate_crossing(j, |k| k.slip - v, tol, (t0, k0), (t1, k1), dense).0);
+                        }
+                    }
+                }
             }
         }
         Ok(first)
@@ -256,7 +274,7 @@ impl OdeSystem for MechanismSystem<'_> {
             let k1 = self.joint_kinematics(j, y1);
             if k1.delta > 0.0 && !self.memory[j].in_contact {
                 let k0 = self.joint_kinematics(j, y0);
-                let speed = if k0.delta >= 0.0 { k0.delta_dot } else { self.locate_crossing(j, (t0, k0), (t1, k1), dense).1.delta_dot };
+                let speed = if k0.delta >= 0.0 { k0.delta_dot } else { self.locate_contact_change(j, (t0, k0), (t1, k1), dense).1.delta_dot };
                 let m = &mut self.memory[j];
                 m.in_contact = true;
                 m.impact_speed = speed.abs();

@@ -23,7 +23,8 @@ class Result:
         Output times [s], shape (N,).
     stats:
         ``integrator`` (the method used, ``"auto"`` resolved), ``steps``, ``rejected_steps``,
-        ``steps_to_switch`` (steps redone so as to end where a contact starts or ends),
+        ``steps_to_switch`` (steps redone so as to end where a contact starts or ends or
+        the friction ramp turns),
         ``rhs_evaluations``, ``jacobians`` (Newton / Jacobian matrices built by the stiff
         methods), ``min_step``, ``max_step`` [s], ``t_reached`` [s], ``wall_time`` [s].
     impacts:

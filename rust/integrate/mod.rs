@@ -37,7 +37,8 @@ pub trait OdeSystem {
         Ok(false)
     }
     /// The earliest switching point inside a step `[t0, t1]` that passed the error test: a time
-    /// at which `f` stops being smooth (a contact starting or ending), located on `dense`, or
+    /// at which `f` stops being smooth (a contact starting or ending, a friction law's corner),
+    /// located on `dense`, or
     /// `None`. Called before [`OdeSystem::step_accepted`]; must not change any state. When the
     /// point lies well inside the step, the drivers redo the step so that it ends there, so that
     /// no step straddles it (the error estimates assume a smooth `f`). Default: none.

@@ -253,8 +253,9 @@ def test_impact_onset_is_located_so_restitution_does_not_depend_on_the_tolerance
 
 
 def test_dry_impacts_converge_with_the_tolerance():
-    """Steps end where a contact starts or ends (stats ``steps_to_switch``), so no step straddles
-    the kink of the contact force and the error follows the tolerance through the impacts: on
+    """Steps end where a contact starts or ends and where the friction ramp turns (stats
+    ``steps_to_switch``), so no step straddles a kink of the joint force and the error follows
+    the tolerance through the impacts: on
     the dry slider-crank (≈ 40 contact switches a cycle) three methods at rtol ≈ 1e-10 agree
     with a DOP853 reference at 1e-13 — itself confirmed by RADAU5 at 1e-12 — to 1e-9 m, and the
     explicit methods' errors fall ≥ 10× from rtol 1e-8 to 1e-10. (Steps straddling the switches
