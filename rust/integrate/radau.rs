@@ -156,15 +156,17 @@ impl NewtonSystems {
             tmp: vec![0.0; k],
             tmp2: vec![0.0; 2 * k],
             gq: vec![0.0; 2 * m],
-            probe: if structured { Vec::new() } else { vec![0.0; n] },
-            df: if structured { Vec::new() } else { vec![0.0; n] },
+            probe: vec![0.0; n],
+            df: vec![0.0; n],
         })
     }
 
-    /// Recompute `W` at `(t, y)`; `f0 = f(t, y)`.
-    fn update<S: OdeSystem>(&mut self, sys: &mut S, stats: &mut Stats, t: f64, y: &[f64], f0: &[f64]) -> Result<(), Error> {
+    /// Recompute `W` at `(t, y)`; `f0 = f(t, y)`. In structured form `W_q`, `W_v` come from the
+    /// system's hook, or with `differenced` from forward differences of the whole `f` (`n`
+    /// right-hand sides: every term of `∂q̈/∂(q, q̇)`, not only the clearance forces').
+    fn update<S: OdeSystem>(&mut self, sys: &mut S, stats: &mut Stats, t: f64, y: &[f64], f0: &[f64], differenced: bool) -> Result<(), Error> {
         stats.jacobians += 1;
-        if self.half.is_some() {
+        if self.half.is_some() && !differenced {
             sys.acceleration_jacobian(t, y, &mut self.w_q, &mut self.w_v)?;
             return Ok(());
         }
@@ -175,8 +177,19 @@ impl NewtonSystems {
             self.probe[j] = y[j] + delta;
             sys.rhs(t, &self.probe, &mut self.df)?;
             self.probe[j] = y[j];
-            for i in 0..n {
-                self.jac[(i, j)] = (self.df[i] - f0[i]) / delta;
+            match self.half {
+                None => {
+                    for i in 0..n {
+                        self.jac[(i, j)] = (self.df[i] - f0[i]) / delta;
+                    }
+                }
+                Some(m) => {
+                    // Rows m.. of column j: ∂q̈/∂q_j (j < m) or ∂q̈/∂q̇_{j−m}.
+                    let col = if j < m { &mut self.w_q[j * m..(j + 1) * m] } else { &mut self.w_v[(j - m) * m..(j - m + 1) * m] };
+                    for (i, c) in col.iter_mut().enumerate() {
+                        *c = (self.df[m + i] - f0[m + i]) / delta;
+                    }
+                }
             }
         }
         stats.rhs_evals += n;
@@ -313,11 +326,16 @@ impl NewtonSystems {
 
 /// Most Newton iterations per step (Hairer's `NIT`).
 const NIT: usize = 7;
+/// Accepted steps that keep a differenced `W` after the hook's `W` failed (see [`drive_radau5`]).
+const DIFFERENCED_SPELL: usize = 10;
 /// Consecutive failed trial steps (non-finite stages, divergent Newton) before the run stops.
 const MAX_TRIAL_FAILURES: usize = 30;
 
 /// The RADAU5 driver, with the contract of the other drivers. `W` is recomputed after every
-/// accepted step (cheap with the structured hook) and kept on rejections.
+/// accepted step (cheap with the structured hook) and kept on rejections, except that after
+/// three failed trial steps a hook-supplied `W` is replaced by a differenced one, for that step
+/// and the next [`DIFFERENCED_SPELL`] (the hook leaves out terms that can matter: constraint
+/// curvature, Baumgarte terms).
 pub(super) fn drive_radau5<S: OdeSystem>(
     sys: &mut S,
     span: Span<'_>,
@@ -369,6 +387,10 @@ pub(super) fn drive_radau5<S: OdeSystem>(
     let mut redo_of: Option<f64> = None;
     let mut reject = false;
     let mut need_w = true;
+    // Failed trial steps since `W` was last built, and whether it came from the system's hook:
+    // after three failures it is rebuilt by differencing the whole right-hand side, and so are
+    // the next `DIFFERENCED_SPELL` steps' (where the hook fell short once it tends to again).
+    let (mut fails_on_w, mut w_from_hook, mut differenced_left) = (0usize, false, 0usize);
     let mut faccon = 1.0f64;
     let mut trial_failures = 0usize;
     let mut last_trial_error = non_finite(t);
@@ -376,8 +398,13 @@ pub(super) fn drive_radau5<S: OdeSystem>(
     'steps: loop {
         let (hs, t1, last) = plan_step(t, h, t_end, st, stats, || (trial_failures > 0).then(|| last_trial_error.clone()))?;
         if need_w {
-            newton.update(sys, stats, t, &y, &f0)?;
-            need_w = false;
+            let differenced = differenced_left > 0;
+            differenced_left = differenced_left.saturating_sub(1);
+            newton.update(sys, stats, t, &y, &f0, differenced)?;
+            (need_w, fails_on_w, w_from_hook) = (false, 0, newton.half.is_some() && !differenced);
+        } else if fails_on_w >= 3 && w_from_hook {
+            newton.update(sys, stats, t, &y, &f0, true)?;
+            (fails_on_w, w_from_hook, differenced_left) = (0, false, DIFFERENCED_SPELL);
         }
         let (fac1, alphn, betan) = (k.u1 / hs, k.alpha / hs, k.beta / hs);
         newton.factor(fac1, alphn, betan);
@@ -504,6 +531,7 @@ pub(super) fn drive_radau5<S: OdeSystem>(
             }
         }
         if let Some(fac) = failure {
+            fails_on_w += 1;
             trial_failures += 1;
             if trial_failures > MAX_TRIAL_FAILURES {
                 return Err(last_trial_error);
@@ -773,6 +801,21 @@ mod tests {
             // needs ~1e6.
             assert!(st.steps_accepted < 3000, "{st:?}");
         }
+    }
+
+    /// A hook that supplies a useless `W` (zero) on a stiff problem: after three failed trial
+    /// steps the driver differences the whole right-hand side instead, so the run still takes
+    /// steps of the stiff method's size (a zero `W` alone would be an explicit iteration).
+    #[test]
+    fn a_poor_hook_matrix_is_replaced_by_a_differenced_one() {
+        let t_end = 1500.0;
+        let yd = reference(vdp1000, &[2.0, 0.0], t_end);
+        let s = Settings { rtol: 1e-7, atol: 1e-7, max_steps: 20_000, ..Settings::default() };
+        let mut sys = Sys { f: vdp1000, outputs: vec![], w_scale: Some(0.0), jac: Some(vdp1000_jac) };
+        let st = integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], t_end, &[t_end], &s).unwrap();
+        let yr = &sys.outputs[0].1;
+        assert!((yr[0] - yd[0]).abs() < 1e-4 * yd[0].abs().max(1.0), "{yr:?} vs {yd:?}");
+        assert!(st.steps_accepted < 3000 && st.jacobians > st.steps_accepted, "{st:?}");
     }
 
     #[test]
