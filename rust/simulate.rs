@@ -99,6 +99,10 @@ pub struct MechanismSystem<'a> {
     stop: Option<StopCheck<'a>>,
     accepted: usize,
     scratch: Vec<f64>,
+    /// Each clearance joint's kinematics at the last and the next sample of a step
+    /// ([`OdeSystem::switching_point`]).
+    switch_prev: Vec<(f64, JointKinematics)>,
+    switch_next: Vec<JointKinematics>,
     /// Columns `S e_k` of the constrained mobility (m × m, column-major; only the columns of
     /// clearance-joint bodies are filled) and which are current.
     mobility: Vec<f64>,
@@ -120,6 +124,8 @@ impl<'a> MechanismSystem<'a> {
             stop,
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
+            switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
+            switch_next: vec![JointKinematics::default(); model.clearance.len()],
             mobility: vec![0.0; 9 * model.n_bodies() * model.n_bodies()],
             mobility_done: vec![false; 3 * model.n_bodies()],
             g_base: vec![0.0; 3 * model.n_bodies()],
@@ -211,6 +217,35 @@ impl<'a> MechanismSystem<'a> {
         self.locate_crossing(j, |k| k.delta, tol, start, end, dense)
     }
 
+    /// The first switching point of joint `j` between two samples `a`, `b` of a step: contact
+    /// starting or ending (δ changes sign), or, in contact at both, the slip crossing a corner
+    /// of the friction ramp (±v0, ±v1, P5).
+    fn first_switch_between(
+        &mut self,
+        j: usize,
+        a: (f64, JointKinematics),
+        b: (f64, JointKinematics),
+        dense: &dyn DenseOutput,
+    ) -> Option<f64> {
+        let (ka, kb) = (&a.1, &b.1);
+        if (ka.delta > 0.0) != (kb.delta > 0.0) {
+            return Some(self.locate_contact_change(j, a, b, dense).0);
+        }
+        let fr = self.model.clearance[j].friction;
+        if ka.delta <= 0.0 || fr.friction_coefficient <= 0.0 {
+            return None;
+        }
+        let mut first: Option<f64> = None;
+        for v in [-fr.v1, -fr.v0, fr.v0, fr.v1] {
+            if (ka.slip > v) != (kb.slip > v) {
+                let tol = 1e-12 * fr.v1.abs().max(1e-12);
+                let ts = self.locate_crossing(j, |k| k.slip - v, tol, a, b, dense).0;
+                first = Some(first.map_or(ts, |f| f.min(ts)));
+            }
+        }
+        first
+    }
+
     /// Where a failed run stood, for the error message.
     pub fn diagnosis(&self) -> String {
         let mut out = String::new();
@@ -228,6 +263,9 @@ impl<'a> MechanismSystem<'a> {
     }
 }
 
+/// Sub-intervals of a step in which [`OdeSystem::switching_point`] looks for switches.
+const SWITCH_SAMPLES: usize = 4;
+
 impl OdeSystem for MechanismSystem<'_> {
     fn dim(&self) -> usize {
         self.model.state_dim()
@@ -243,27 +281,42 @@ impl OdeSystem for MechanismSystem<'_> {
 
     /// The first contact onset or separation of any clearance joint inside the step: where the
     /// contact force switches on or off and stops being smooth.
+    /// The switching functions are sampled at the step's ends and at `SWITCH_SAMPLES − 1`
+    /// interior points of the dense output, so that a switch crossed twice inside one step (a
+    /// whole short contact, a slip reversal through the friction ramp) is seen too; the first
+    /// crossing is located in the first sub-interval that has one.
     fn switching_point(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<Option<f64>> {
-        let mut first: Option<f64> = None;
-        let mut keep = |ts: f64| first = Some(first.map_or(ts, |f: f64| f.min(ts)));
-        for j in 0..self.memory.len() {
-            let (k0, k1) = (self.joint_kinematics(j, y0), self.joint_kinematics(j, y1));
-            if (k0.delta > 0.0) != (k1.delta > 0.0) {
-                keep(self.locate_contact_change(j, (t0, k0), (t1, k1), dense).0);
-            } else if k0.delta > 0.0 {
-                // In contact throughout: the friction ramp's corners at slip ±v0, ±v1 (P5).
-                let fr = self.model.clearance[j].friction;
-                if fr.friction_coefficient > 0.0 {
-                    for v in [-fr.v1, -fr.v0, fr.v0, fr.v1] {
-                        if (k0.slip > v) != (k1.slip > v) {
-                            let tol = 1e-12 * fr.v1.abs().max(1e-12);
-                            keep(self.locate_crossing(j, |k| k.slip - v, tol, (t0, k0), (t1, k1), dense).0);
-                        }
-                    }
+        let nj = self.memory.len();
+        for j in 0..nj {
+            self.switch_prev[j] = (t0, self.joint_kinematics(j, y0));
+        }
+        for i in 1..=SWITCH_SAMPLES {
+            let tb = if i == SWITCH_SAMPLES { t1 } else { t0 + (t1 - t0) * i as f64 / SWITCH_SAMPLES as f64 };
+            let mut s = std::mem::take(&mut self.scratch);
+            let yb: &[f64] = if i == SWITCH_SAMPLES {
+                y1
+            } else {
+                dense.eval(tb, &mut s);
+                &s
+            };
+            for j in 0..nj {
+                self.switch_next[j] = self.joint_kinematics(j, yb);
+            }
+            self.scratch = s;
+            // Sub-intervals are visited in time order: the first with a switch holds the earliest.
+            let mut first: Option<f64> = None;
+            for j in 0..nj {
+                let (a, b) = (self.switch_prev[j], (tb, self.switch_next[j]));
+                if let Some(ts) = self.first_switch_between(j, a, b, dense) {
+                    first = Some(first.map_or(ts, |f| f.min(ts)));
                 }
+                self.switch_prev[j] = b;
+            }
+            if first.is_some() {
+                return Ok(first);
             }
         }
-        Ok(first)
+        Ok(None)
     }
 
     /// Locate contact onsets inside the step and record δ̇⁽⁻⁾ there (spec §3, P3); clear the
