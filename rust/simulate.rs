@@ -279,8 +279,10 @@ impl OdeSystem for MechanismSystem<'_> {
         Ok(())
     }
 
-    /// The first contact onset or separation of any clearance joint inside the step: where the
-    /// contact force switches on or off and stops being smooth.
+    /// The first switching point of any clearance joint inside the step: contact starting or
+    /// ending, or the slip crossing a corner of the friction ramp — where the joint force stops
+    /// being smooth.
+    ///
     /// The switching functions are sampled at the step's ends and at `SWITCH_SAMPLES − 1`
     /// interior points of the dense output, so that a switch crossed twice inside one step (a
     /// whole short contact, a slip reversal through the friction ramp) is seen too; the first
