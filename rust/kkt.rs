@@ -13,22 +13,21 @@
 //! little fill-in (nine-bar: 51 instead of 65 non-zeros below the diagonal). All storage (the matrix, the right-hand side and faer's scratch stack) is
 //! allocated once in [`KktSolver::new`]; [`KktSolver::solve`] allocates nothing.
 //!
-//! Mechanisms have a few dozen constraint rows; up to [`SMALL`] rows `S` is factorised by a
-//! plain left-looking Cholesky on contiguous columns (at this size faer's blocked, SIMD-dispatched
-//! kernel spends more time choosing than computing); larger systems use faer's LLᵀ.
+//! The symbolic work (ordering, elimination tree, the pattern of L) is done once per model, in
+//! time and memory proportional to the non-zeros; S and L live in compressed rows and are
+//! factorised row by row over the structural non-zeros, so a chain of n bodies costs O(n) per
+//! solve, from the slider-crank to a thousand links (`benches/chain.rs`, `docs/scaling.png`).
 
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt;
-use faer::{MatMut, MatRef, Par};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 use crate::constraints::JacRow;
 
-/// Up to this many constraint rows the Schur complement is factorised by
-/// [`cholesky_small`]; larger systems go to faer's blocked LLᵀ.
-pub const SMALL: usize = 64;
+const NONE: u32 = u32::MAX;
 
 /// The structurally non-zero entries of the Cholesky factor L of S (fill-in included), row by
-/// row below the diagonal: fixed by which constraint rows share a body, so computed once.
+/// row below the diagonal, ascending: fixed by which constraint rows share a body, so computed
+/// once.
 #[derive(Debug, Clone, Default)]
 pub struct LowerPattern {
     start: Vec<usize>,
@@ -36,29 +35,44 @@ pub struct LowerPattern {
 }
 
 impl LowerPattern {
-    /// Symbolic factorisation of an n×n pattern given by `nonzero(i, j)` for i > j.
-    fn new(n: usize, nonzero: impl Fn(usize, usize) -> bool) -> Self {
-        let mut p = vec![false; n * n]; // p[i * n + j], i > j
-        for i in 0..n {
-            for j in 0..i {
-                p[i * n + j] = nonzero(i, j);
-            }
-        }
-        for j in 0..n {
-            for k in 0..j {
-                if p[j * n + k] {
-                    for i in j + 1..n {
-                        if p[i * n + k] {
-                            p[i * n + j] = true; // fill-in
-                        }
-                    }
+    /// Symbolic factorisation of the symmetric pattern `lower[i]` = the j < i with S[i, j] ≠ 0,
+    /// in O(non-zeros of L): the elimination tree (parent of j = the first row i > j with
+    /// L[i, j] ≠ 0) by Liu's algorithm with path compression, then each row of L as the union of
+    /// the tree paths from the non-zeros of S's row up to the row itself (Liu, "The role of
+    /// elimination trees in sparse factorization", SIAM J. Matrix Anal. Appl. 11, 1990).
+    fn new(lower: &[Vec<u32>]) -> Self {
+        let n = lower.len();
+        let mut parent = vec![NONE; n];
+        let mut ancestor = vec![NONE; n];
+        for (i, row) in lower.iter().enumerate() {
+            for &j in row {
+                let mut r = j as usize;
+                while ancestor[r] != NONE && ancestor[r] as usize != i {
+                    let next = ancestor[r] as usize;
+                    ancestor[r] = i as u32;
+                    r = next;
+                }
+                if ancestor[r] == NONE {
+                    ancestor[r] = i as u32;
+                    parent[r] = i as u32;
                 }
             }
         }
+        let mut mark = vec![NONE; n];
         let mut start = vec![0];
         let mut cols = Vec::new();
-        for i in 0..n {
-            cols.extend((0..i).filter(|&j| p[i * n + j]).map(|j| j as u32));
+        for (i, row) in lower.iter().enumerate() {
+            let first = cols.len();
+            mark[i] = i as u32;
+            for &j in row {
+                let mut k = j as usize;
+                while mark[k] != i as u32 {
+                    mark[k] = i as u32;
+                    cols.push(k as u32);
+                    k = parent[k] as usize;
+                }
+            }
+            cols[first..].sort_unstable();
             start.push(cols.len());
         }
         LowerPattern { start, cols }
@@ -69,80 +83,145 @@ impl LowerPattern {
     fn row(&self, i: usize) -> &[u32] {
         &self.cols[self.start[i]..self.start[i + 1]]
     }
+
+    /// Number of structural non-zeros below the diagonal.
+    pub fn len(&self) -> usize {
+        self.cols.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.cols.is_empty()
+    }
 }
 
-/// A greedy minimum-degree elimination order of the symmetric graph `adj` (`n × n`, row-major):
-/// repeatedly eliminate the node with the fewest remaining neighbours (the first such node on a
-/// tie) and join its neighbours into a clique (George & Liu, "The evolution of the minimum degree
-/// ordering algorithm", SIAM Rev. 31, 1989). Returns the nodes in elimination order.
-fn minimum_degree_order(n: usize, adj: &[bool]) -> Vec<u32> {
-    fn neighbours<'a>(n: usize, a: &'a [bool], done: &'a [bool], v: usize) -> impl Iterator<Item = usize> + 'a {
-        (0..n).filter(move |&u| u != v && !done[u] && a[v * n + u])
-    }
-    let mut a = adj.to_vec();
+/// A greedy minimum-degree elimination order of the symmetric graph `adj` (neighbour lists):
+/// repeatedly eliminate the node with the fewest remaining neighbours (the lowest-numbered such
+/// node on a tie) and join its neighbours into a clique (George & Liu, "The evolution of the
+/// minimum degree ordering algorithm", SIAM Rev. 31, 1989). A heap with lazy deletion finds the
+/// next node, so the cost grows with the edges of the filled graph, not with n². Returns the nodes
+/// in elimination order.
+fn minimum_degree_order(adj: &[Vec<u32>]) -> Vec<u32> {
+    let n = adj.len();
+    let mut nbrs: Vec<Vec<u32>> = adj
+        .iter()
+        .enumerate()
+        .map(|(v, a)| {
+            let mut a: Vec<u32> = a.iter().copied().filter(|&u| u as usize != v).collect();
+            a.sort_unstable();
+            a.dedup();
+            a
+        })
+        .collect();
     let mut done = vec![false; n];
+    let mut heap: BinaryHeap<Reverse<(usize, u32)>> = (0..n).map(|v| Reverse((nbrs[v].len(), v as u32))).collect();
     let mut order = Vec::with_capacity(n);
-    for _ in 0..n {
-        let v = (0..n).filter(|&v| !done[v]).min_by_key(|&v| neighbours(n, &a, &done, v).count()).expect("a node is left");
-        let nbrs: Vec<usize> = neighbours(n, &a, &done, v).collect();
-        for &x in &nbrs {
-            for &y in &nbrs {
-                a[x * n + y] = true;
-            }
+    let mut merged = Vec::new();
+    while let Some(Reverse((deg, v))) = heap.pop() {
+        let v = v as usize;
+        if done[v] || deg != nbrs[v].len() {
+            continue; // a stale entry
         }
         done[v] = true;
         order.push(v as u32);
+        let clique = std::mem::take(&mut nbrs[v]);
+        for &x in &clique {
+            // x loses v and gains the other members of the clique.
+            let list = &nbrs[x as usize];
+            merged.clear();
+            let (mut a, mut b) = (0, 0);
+            while a < list.len() || b < clique.len() {
+                let next = match (list.get(a), clique.get(b)) {
+                    (Some(&p), Some(&q)) if p == q => {
+                        a += 1;
+                        b += 1;
+                        p
+                    }
+                    (Some(&p), Some(&q)) if p < q => {
+                        a += 1;
+                        p
+                    }
+                    (Some(_), Some(&q)) | (None, Some(&q)) => {
+                        b += 1;
+                        q
+                    }
+                    (Some(&p), None) => {
+                        a += 1;
+                        p
+                    }
+                    (None, None) => unreachable!(),
+                };
+                if next != x && next as usize != v {
+                    merged.push(next);
+                }
+            }
+            nbrs[x as usize].clone_from(&merged);
+            heap.push(Reverse((merged.len(), x)));
+        }
     }
     order
 }
 
-/// In-place Cholesky LLᵀ of the lower triangle of the column-major n×n matrix `s`
-/// (left-looking, column by column, visiting only the structural non-zeros of `pattern`).
-/// Returns the index of a non-positive pivot (singular or indefinite `S`).
-fn cholesky_small(s: &mut [f64], n: usize, pattern: &LowerPattern) -> Result<(), usize> {
-    for j in 0..n {
-        // Column j below the diagonal: s[j.., j] −= L[j.., k] L[j, k] for the k < j with
-        // L[j, k] structurally non-zero (no test on values in the loop).
-        let (left, right) = s.split_at_mut(j * n);
-        let col_j = &mut right[j..n];
-        for &k in pattern.row(j) {
-            let k = k as usize;
-            let ljk = left[j + k * n];
-            let col_k = &left[k * n + j..k * n + n];
-            for (dst, src) in col_j.iter_mut().zip(col_k) {
-                *dst -= ljk * src;
-            }
-        }
-        let d = s[j + j * n];
-        if !(d > 0.0) {
-            return Err(j);
-        }
-        let d = d.sqrt();
-        let inv = 1.0 / d;
-        s[j + j * n] = d;
-        for v in &mut s[j * n + j + 1..j * n + n] {
-            *v *= inv;
-        }
-    }
-    Ok(())
+/// S and then its factor L, stored row by row: `off[pattern.start[i]..]` holds the entries of
+/// row i at the columns `pattern.row(i)`, `diag[i]` the diagonal. Factorised up-looking (row i
+/// solves L₁₁ lᵢ = sᵢ by sparse forward substitution through a dense scatter vector that is kept
+/// zero between rows), so a chain of n bodies costs O(n).
+#[derive(Debug, Clone, Default)]
+struct SparseFactor {
+    off: Vec<f64>,
+    diag: Vec<f64>,
+    /// Scatter workspace, all zeros between calls.
+    x: Vec<f64>,
 }
 
-/// `L Lᵀ x = rhs` with the factor of [`cholesky_small`], by forward and backward substitution.
-fn cholesky_solve_small(s: &[f64], rhs: &mut [f64], n: usize, pattern: &LowerPattern) {
-    // L y = b, row by row over the structural non-zeros of each row of L.
-    for i in 0..n {
-        let mut v = rhs[i];
-        for &k in pattern.row(i) {
-            v -= s[i + k as usize * n] * rhs[k as usize];
+impl SparseFactor {
+    fn factor(&mut self, pattern: &LowerPattern) -> Result<(), usize> {
+        let n = self.diag.len();
+        for i in 0..n {
+            let range = pattern.start[i]..pattern.start[i + 1];
+            for s in range.clone() {
+                self.x[pattern.cols[s] as usize] = self.off[s];
+            }
+            let mut d = self.diag[i];
+            for s in range.clone() {
+                let k = pattern.cols[s] as usize;
+                let mut v = self.x[k];
+                for t in pattern.start[k]..pattern.start[k + 1] {
+                    v -= self.off[t] * self.x[pattern.cols[t] as usize];
+                }
+                v /= self.diag[k];
+                self.x[k] = v;
+                d -= v * v;
+            }
+            for s in range {
+                let k = pattern.cols[s] as usize;
+                self.off[s] = self.x[k];
+                self.x[k] = 0.0;
+            }
+            if !(d > 0.0) {
+                return Err(i);
+            }
+            self.diag[i] = d.sqrt();
         }
-        rhs[i] = v / s[i + i * n];
+        Ok(())
     }
-    // Lᵀ x = y: once x_i is known, remove its share from the unknowns of row i's columns.
-    for i in (0..n).rev() {
-        let xi = rhs[i] / s[i + i * n];
-        rhs[i] = xi;
-        for &k in pattern.row(i) {
-            rhs[k as usize] -= s[i + k as usize * n] * xi;
+
+    /// `L Lᵀ x = rhs` in place, by forward and backward substitution over the non-zeros of L.
+    fn solve(&self, pattern: &LowerPattern, rhs: &mut [f64]) {
+        let n = self.diag.len();
+        for i in 0..n {
+            let mut v = rhs[i];
+            for s in pattern.start[i]..pattern.start[i + 1] {
+                v -= self.off[s] * rhs[pattern.cols[s] as usize];
+            }
+            rhs[i] = v / self.diag[i];
+        }
+        // Lᵀ x = y: once x_i is known, remove its share from the unknowns of row i's columns.
+        for i in (0..n).rev() {
+            let xi = rhs[i] / self.diag[i];
+            rhs[i] = xi;
+            for s in pattern.start[i]..pattern.start[i + 1] {
+                rhs[pattern.cols[s] as usize] -= self.off[s] * xi;
+            }
         }
     }
 }
@@ -155,17 +234,21 @@ pub struct KktSolver {
     /// For each body, the (row, slot) pairs of Jacobian rows that touch it (CSR layout).
     body_start: Vec<usize>,
     body_rows: Vec<(u32, u8)>,
-    /// Position of each constraint row in `s` (a minimum-degree order, less fill-in in L), and
+    /// For each body and each pair (p ≤ q) of its rows in `body_rows` order, where the product
+    /// goes in the storage of S: an index of `factor.off`, or for a diagonal entry its row with
+    /// the top bit set.
+    pair_slot: Vec<u32>,
+    /// Position of each constraint row in S (a minimum-degree order, less fill-in in L), and
     /// the row at each position.
     pos: Vec<u32>,
     row_at: Vec<u32>,
-    /// S in that order, column-major (`s[i + j·rows]`); only the lower triangle is used.
-    s: Vec<f64>,
+    factor: SparseFactor,
     rhs: Vec<f64>,
     pattern: LowerPattern,
     w: Vec<f64>,
-    mem: MemBuffer,
 }
+
+const DIAG: u32 = 1 << 31;
 
 impl KktSolver {
     /// `inv_mass` holds 3 entries per body; `structure` is any evaluation of the Jacobian rows
@@ -186,40 +269,65 @@ impl KktSolver {
             body_start.push(body_rows.len());
         }
         // S[i, j] is non-zero where rows i and j share a body.
-        let mut shared = vec![false; rows * rows];
+        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); rows];
         for b in 0..nb {
             let list = &body_rows[body_start[b]..body_start[b + 1]];
             for &(r1, _) in list {
-                for &(r2, _) in list {
-                    shared[r1 as usize * rows + r2 as usize] = true;
-                }
+                adj[r1 as usize].extend(list.iter().map(|&(r2, _)| r2));
             }
         }
-        let row_at = minimum_degree_order(rows, &shared);
+        let row_at = minimum_degree_order(&adj);
         let mut pos = vec![0u32; rows];
         for (p, &r) in row_at.iter().enumerate() {
             pos[r as usize] = p as u32;
         }
-        let pattern = LowerPattern::new(rows, |i, j| shared[row_at[i] as usize * rows + row_at[j] as usize]);
-        let req = llt::factor::cholesky_in_place_scratch::<f64>(rows, Par::Seq, Default::default())
-            .or(llt::solve::solve_in_place_scratch::<f64>(rows, 1, Par::Seq));
+        let lower: Vec<Vec<u32>> = (0..rows)
+            .map(|i| {
+                let mut l: Vec<u32> = adj[row_at[i] as usize].iter().map(|&r| pos[r as usize]).filter(|&j| (j as usize) < i).collect();
+                l.sort_unstable();
+                l.dedup();
+                l
+            })
+            .collect();
+        let pattern = LowerPattern::new(&lower);
+        let mut pair_slot = Vec::new();
+        for b in 0..nb {
+            let list = &body_rows[body_start[b]..body_start[b + 1]];
+            for (p, &(r1, _)) in list.iter().enumerate() {
+                for &(r2, _) in &list[p..] {
+                    let (p1, p2) = (pos[r1 as usize], pos[r2 as usize]);
+                    let (i, j) = if p1 >= p2 { (p1 as usize, p2 as usize) } else { (p2 as usize, p1 as usize) };
+                    pair_slot.push(if i == j {
+                        DIAG | i as u32
+                    } else {
+                        (pattern.start[i] + pattern.row(i).binary_search(&(j as u32)).expect("S's pattern is in L's")) as u32
+                    });
+                }
+            }
+        }
+        let factor = SparseFactor { off: vec![0.0; pattern.len()], diag: vec![0.0; rows], x: vec![0.0; rows] };
         KktSolver {
             rows,
             pattern,
+            pair_slot,
             pos,
             row_at,
             w: vec![0.0; inv_mass.len()],
             inv_mass,
             body_start,
             body_rows,
-            s: vec![0.0; rows * rows],
+            factor,
             rhs: vec![0.0; rows],
-            mem: MemBuffer::new(req),
         }
     }
 
     pub fn rows(&self) -> usize {
         self.rows
+    }
+
+    /// Structural non-zeros of the factor L below its diagonal.
+    pub fn factor_nonzeros(&self) -> usize {
+        self.pattern.len()
     }
 
     /// Solve for `qdd` (generalised accelerations) and `lambda` (multipliers) given the Jacobian
@@ -238,9 +346,12 @@ impl KktSolver {
         if m == 0 {
             return Ok(());
         }
-        // Lower triangle of S = Φq M⁻¹ Φqᵀ.
-        self.s.iter_mut().for_each(|v| *v = 0.0);
+        // Lower triangle of S = Φq M⁻¹ Φqᵀ, body by body.
+        let f = &mut self.factor;
+        f.off.iter_mut().for_each(|v| *v = 0.0);
+        f.diag.iter_mut().for_each(|v| *v = 0.0);
         let nb = self.body_start.len() - 1;
+        let mut slot = 0;
         for b in 0..nb {
             let im = &self.inv_mass[3 * b..3 * b + 3];
             let list = &self.body_rows[self.body_start[b]..self.body_start[b + 1]];
@@ -250,24 +361,17 @@ impl KktSolver {
                 for &(r2, k2) in &list[p..] {
                     let c2 = &jac[r2 as usize].coef[k2 as usize];
                     let v = m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
-                    let (p1, p2) = (self.pos[r1 as usize], self.pos[r2 as usize]);
-                    let (i, j) = if p1 >= p2 { (p1, p2) } else { (p2, p1) };
-                    self.s[i as usize + j as usize * m] += v;
+                    let at = self.pair_slot[slot];
+                    slot += 1;
+                    if at & DIAG != 0 {
+                        f.diag[(at & !DIAG) as usize] += v;
+                    } else {
+                        f.off[at as usize] += v;
+                    }
                 }
             }
         }
-        let pivot = if m <= SMALL {
-            cholesky_small(&mut self.s, m, &self.pattern)
-        } else {
-            let mut stack = MemStack::new(&mut self.mem);
-            let s = MatMut::from_column_major_slice_mut(&mut self.s, m, m);
-            llt::factor::cholesky_in_place(s, Default::default(), Par::Seq, &mut stack, Default::default())
-                .map(|_| ())
-                .map_err(|e| match e {
-                    llt::factor::LltError::NonPositivePivot { index } => index,
-                })
-        };
-        pivot.map_err(|p| self.row_at[p] as usize)
+        f.factor(&self.pattern).map_err(|p| self.row_at[p] as usize)
     }
 
     /// [`KktSolver::solve`] with the factor of the last [`KktSolver::factor`] (same `jac`).
@@ -285,13 +389,7 @@ impl KktSolver {
             self.rhs[self.pos[r] as usize] = row.dot(&self.w) - c[r];
         }
         let m = self.rows;
-        if m <= SMALL {
-            cholesky_solve_small(&self.s, &mut self.rhs, m, &self.pattern);
-        } else {
-            let mut stack = MemStack::new(&mut self.mem);
-            let l = MatRef::from_column_major_slice(&self.s, m, m);
-            llt::solve::solve_in_place(l, MatMut::from_column_major_slice_mut(&mut self.rhs, m, 1), Par::Seq, &mut stack);
-        }
+        self.factor.solve(&self.pattern, &mut self.rhs);
         for (l, &p) in lambda[..m].iter_mut().zip(&self.pos) {
             *l = self.rhs[p as usize];
         }
@@ -312,6 +410,141 @@ impl KktSolver {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::cholesky::llt;
+    use faer::{MatMut, MatRef, Par};
+
+    /// A random generator for the tests (no dependency on the order of other tests).
+    fn lcg(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+        }
+    }
+
+    /// Random mechanisms' constraint rows: a tree of two-body joints (each body joined to an
+    /// earlier one or to ground, like a chain, a fan or a branching linkage), a few joints that
+    /// close loops, random coefficients; 2 rows per joint, as a revolute joint has.
+    fn random_mechanism(seed: u64, nb: usize, loops: usize) -> (Vec<f64>, Vec<JacRow>) {
+        let mut rnd = lcg(seed);
+        let inv_mass: Vec<f64> = (0..3 * nb).map(|_| 1.0 / (0.6 + rnd())).collect();
+        let mut rows = Vec::new();
+        let mut joint = |a: Option<usize>, b: usize, rnd: &mut dyn FnMut() -> f64| {
+            for _ in 0..2 {
+                let cb = [rnd(), rnd(), rnd()];
+                rows.push(match a {
+                    Some(a) => JacRow { bodies: [b as u32, a as u32], count: 2, coef: [cb, [rnd(), rnd(), rnd()]] },
+                    None => JacRow { bodies: [b as u32, 0], count: 1, coef: [cb, [0.0; 3]] },
+                });
+            }
+        };
+        for b in 0..nb {
+            let parent = if b == 0 { None } else { Some(((rnd() + 0.5) * b as f64) as usize % b) };
+            joint(parent, b, &mut rnd);
+        }
+        for _ in 0..loops {
+            let a = ((rnd() + 0.5) * nb as f64) as usize % nb;
+            let b = ((rnd() + 0.5) * nb as f64) as usize % nb;
+            if a != b {
+                // A loop-closing joint with one row (a distance constraint), so rows stay < 3 nb.
+                rows.push(JacRow { bodies: [a as u32, b as u32], count: 2, coef: [[rnd(), rnd(), rnd()], [rnd(), rnd(), rnd()]] });
+            }
+        }
+        (inv_mass, rows)
+    }
+
+    /// The sparse Schur-complement solve against the full KKT matrix `[M Φqᵀ; Φq 0]` solved
+    /// densely by LU (nalgebra) on random mechanisms, from 3 to 90 bodies: the same q̈ and λ to
+    /// round-off.
+    #[test]
+    fn sparse_solve_matches_a_dense_kkt_solve_on_random_mechanisms() {
+        for (seed, nb, loops) in [(1, 3, 0), (2, 10, 2), (3, 25, 5), (4, 40, 0), (5, 60, 12), (6, 90, 20)] {
+            let (inv_mass, rows) = random_mechanism(seed, nb, loops);
+            let (n, m) = (inv_mass.len(), rows.len());
+            let mut rnd = lcg(100 + seed);
+            let force: Vec<f64> = (0..n).map(|_| rnd()).collect();
+            let c: Vec<f64> = (0..m).map(|_| rnd()).collect();
+            let mut kkt = KktSolver::new(inv_mass.clone(), &rows);
+            let (mut qdd, mut lam) = (vec![0.0; n], vec![0.0; m]);
+            kkt.solve(&rows, &force, &c, &mut qdd, &mut lam).unwrap();
+            let mut a = nalgebra::DMatrix::<f64>::zeros(n + m, n + m);
+            let mut b = nalgebra::DVector::<f64>::zeros(n + m);
+            for i in 0..n {
+                a[(i, i)] = 1.0 / inv_mass[i];
+                b[i] = force[i];
+            }
+            for (r, row) in rows.iter().enumerate() {
+                for k in 0..row.count as usize {
+                    for ax in 0..3 {
+                        let col = 3 * row.bodies[k] as usize + ax;
+                        a[(n + r, col)] += row.coef[k][ax];
+                        a[(col, n + r)] += row.coef[k][ax];
+                    }
+                }
+                b[n + r] = c[r];
+            }
+            let x = a.lu().solve(&b).expect("a regular KKT matrix");
+            let scale = x.iter().fold(1.0f64, |s, v| s.max(v.abs()));
+            for i in 0..n {
+                assert!((qdd[i] - x[i]).abs() < 1e-10 * scale, "seed {seed}: q̈[{i}] {} vs {}", qdd[i], x[i]);
+            }
+            for r in 0..m {
+                // The sign convention: M q̈ + Φqᵀ λ = g.
+                assert!((lam[r] - x[n + r]).abs() < 1e-10 * scale, "seed {seed}: λ[{r}] {} vs {}", lam[r], x[n + r]);
+            }
+        }
+    }
+
+    /// The symbolic factorisation (elimination tree) gives exactly the fill-in of a dense
+    /// elimination on the same pattern.
+    #[test]
+    fn elimination_tree_pattern_matches_dense_elimination() {
+        let mut rnd = lcg(7);
+        let n = 40;
+        let mut p = vec![false; n * n];
+        for i in 0..n {
+            for j in 0..i {
+                p[i * n + j] = rnd() > 0.42;
+            }
+        }
+        let lower: Vec<Vec<u32>> = (0..n).map(|i| (0..i).filter(|&j| p[i * n + j]).map(|j| j as u32).collect()).collect();
+        for j in 0..n {
+            for k in 0..j {
+                if p[j * n + k] {
+                    for i in j + 1..n {
+                        if p[i * n + k] {
+                            p[i * n + j] = true;
+                        }
+                    }
+                }
+            }
+        }
+        let pattern = LowerPattern::new(&lower);
+        for i in 0..n {
+            let expect: Vec<u32> = (0..i).filter(|&j| p[i * n + j]).map(|j| j as u32).collect();
+            assert_eq!(pattern.row(i), &expect[..], "row {i}");
+        }
+    }
+
+    /// A chain's factor has O(n) non-zeros (no fill beyond a band).
+    #[test]
+    fn a_long_chain_factor_stays_linear() {
+        let counts: Vec<usize> = [100, 1000]
+            .iter()
+            .map(|&nb| {
+                let rows: Vec<JacRow> = (0..nb)
+                    .flat_map(|b| {
+                        let bodies = if b == 0 { [0, 0] } else { [b as u32, b as u32 - 1] };
+                        let count = if b == 0 { 1 } else { 2 };
+                        [JacRow { bodies, count, coef: [[1.0, 0.0, 0.3], [-1.0, 0.0, 0.2]] }, JacRow { bodies, count, coef: [[0.0, 1.0, -0.3], [0.0, -1.0, 0.1]] }]
+                    })
+                    .collect();
+                KktSolver::new(vec![1.0; 3 * nb], &rows).factor_nonzeros()
+            })
+            .collect();
+        assert!(counts[1] <= 11 * counts[0], "{counts:?}");
+    }
 
     /// An arrow (node 0 joined to all others): eliminated first it fills the whole factor,
     /// minimum degree keeps it for last and the factor has no fill-in.
@@ -319,12 +552,15 @@ mod tests {
     fn minimum_degree_avoids_the_fill_of_an_arrow() {
         let n = 6;
         let arrow = |i: usize, j: usize| i == 0 || j == 0 || i == j;
-        let adj: Vec<bool> = (0..n * n).map(|k| arrow(k / n, k % n)).collect();
-        let natural = LowerPattern::new(n, |i, j| arrow(i, j));
+        let lower_of = |perm: &dyn Fn(usize) -> usize| -> Vec<Vec<u32>> {
+            (0..n).map(|i| (0..i).filter(|&j| arrow(perm(i), perm(j))).map(|j| j as u32).collect()).collect()
+        };
+        let natural = LowerPattern::new(&lower_of(&|i| i));
         assert_eq!(natural.cols.len(), n * (n - 1) / 2);
-        let order = minimum_degree_order(n, &adj);
+        let adj: Vec<Vec<u32>> = (0..n).map(|i| (0..n).filter(|&j| j != i && arrow(i, j)).map(|j| j as u32).collect()).collect();
+        let order = minimum_degree_order(&adj);
         assert_eq!(order[..4], [1, 2, 3, 4]); // the leaves go first
-        let reordered = LowerPattern::new(n, |i, j| arrow(order[i] as usize, order[j] as usize));
+        let reordered = LowerPattern::new(&lower_of(&|i| order[i] as usize));
         assert_eq!(reordered.cols.len(), n - 1);
     }
 
@@ -378,15 +614,11 @@ mod tests {
         }
     }
 
-    /// The small-system Cholesky against faer's on a random SPD matrix.
+    /// The sparse factor on a full pattern against faer's dense Cholesky on a random SPD matrix.
     #[test]
-    fn small_cholesky_matches_faer() {
+    fn sparse_cholesky_matches_faer() {
         let n = 30;
-        let mut seed = 12345u64;
-        let mut rnd = || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
-        };
+        let mut rnd = lcg(12345);
         let a: Vec<f64> = (0..n * n).map(|_| rnd()).collect();
         // S = A Aᵀ + n I (column-major).
         let mut s = vec![0.0; n * n];
@@ -400,10 +632,14 @@ mod tests {
             }
         }
         let b: Vec<f64> = (0..n).map(|_| rnd()).collect();
-        let (mut s1, mut x1) = (s.clone(), b.clone());
-        let dense = LowerPattern::new(n, |_, _| true);
-        cholesky_small(&mut s1, n, &dense).unwrap();
-        cholesky_solve_small(&s1, &mut x1, n, &dense);
+        let full = LowerPattern::new(&(0..n).map(|i| (0..i as u32).collect()).collect::<Vec<_>>());
+        let mut f = SparseFactor { off: vec![], diag: (0..n).map(|i| s[i + i * n]).collect(), x: vec![0.0; n] };
+        for i in 0..n {
+            f.off.extend(full.row(i).iter().map(|&k| s[i + k as usize * n]));
+        }
+        f.factor(&full).unwrap();
+        let mut x1 = b.clone();
+        f.solve(&full, &mut x1);
         let mut s2 = s.clone();
         let mut x2 = b.clone();
         let req = llt::factor::cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default());

@@ -79,6 +79,23 @@ fn right_hand_side_allocates_nothing() {
     }
 }
 
+/// The sparse (row-by-row) KKT factor of a large mechanism allocates nothing either.
+#[test]
+fn large_chain_right_hand_side_allocates_nothing() {
+    let model = clearsim::model::Model::compile(&common::chain(300, &[0, 150])).unwrap();
+    assert!(model.rows > 500, "a large system");
+    let y = common::initial_state(&model);
+    let mut ws = Workspace::new(&model);
+    let memory = vec![ImpactMemory::default(); model.clearance.len()];
+    ws.evaluate(&model, &memory, 0.0, &y).unwrap();
+    let (a, _) = count(|| {
+        for i in 0..50 {
+            ws.evaluate(&model, &memory, 1e-3 * i as f64, &y).unwrap();
+        }
+    });
+    assert_eq!(a, 0, "the large-chain rhs allocates");
+}
+
 /// Allocations of a whole run (workspace set-up included) of `steps` steps of `method`.
 fn run_allocs(name: &str, method: Method, t_end: f64) -> (usize, usize) {
     let model = common::model(name);

@@ -42,3 +42,45 @@ pub fn initial_state(model: &Model) -> Vec<f64> {
     y.extend_from_slice(&qd);
     y
 }
+
+/// A pendulum chain of `n` links (0.1 m, 1 kg, pinned end to end, the first to the ground,
+/// hanging at 30° from the horizontal under gravity), with the joints at the listed link indices
+/// given a dry clearance (0.1 mm on a 5 mm pin) instead of an ideal revolute: the scaling model of
+/// `benches/chain.rs` (2 constraint rows per ideal joint).
+pub fn chain(n: usize, clearance_at: &[usize]) -> MechanismDesc {
+    use clearsim::model::{BodyDesc, ClearanceJointDesc, ClearanceModelDesc, DryDesc, JointDesc};
+    let (l, angle) = (0.1, -std::f64::consts::FRAC_PI_6);
+    let (dx, dy) = (l * angle.cos(), l * angle.sin());
+    let bodies = (0..n)
+        .map(|i| BodyDesc {
+            name: format!("link{i}"),
+            mass: 1.0,
+            inertia: l * l / 12.0,
+            position: [(i as f64 + 0.5) * dx, (i as f64 + 0.5) * dy],
+            angle,
+            velocity: [0.0; 3],
+        })
+        .collect();
+    let mut joints = Vec::new();
+    let mut clearance_joints = Vec::new();
+    for i in 0..n {
+        let (body_a, point_a) = if i == 0 { (None, [0.0, 0.0]) } else { (Some(i - 1), [l / 2.0, 0.0]) };
+        let (body_b, point_b) = (Some(i), [-l / 2.0, 0.0]);
+        if clearance_at.contains(&i) {
+            clearance_joints.push(ClearanceJointDesc {
+                name: format!("c{i}"),
+                bearing_body: body_a,
+                bearing_point: point_a,
+                journal_body: body_b,
+                journal_point: point_b,
+                journal_radius: 5e-3,
+                clearance: 1e-4,
+                model: ClearanceModelDesc::Dry(DryDesc::steel()),
+                initial_eccentricity: [0.0, 0.0],
+            });
+        } else {
+            joints.push(JointDesc::Revolute { name: format!("j{i}"), body_a, point_a, body_b: body_b, point_b });
+        }
+    }
+    MechanismDesc { bodies, joints, clearance_joints, ..MechanismDesc::default() }
+}
