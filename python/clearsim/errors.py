@@ -6,7 +6,7 @@ Every error of the Rust core is mapped to one of these classes in one place
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any, Dict, Optional
 
 
 class ClearsimError(Exception):
@@ -17,6 +17,18 @@ class ClearsimError(Exception):
         self.reason: str = info.pop("reason", message)
         for key, value in info.items():
             setattr(self, key, value)
+
+    def __reduce__(self) -> Any:
+        # Pickle with the keyword details (field, value, t, result, ...), which the default
+        # exception pickling would drop.
+        return (_rebuild_error, (self.__class__, self.args[0] if self.args else "", dict(self.__dict__)))
+
+
+def _rebuild_error(cls: type, message: str, info: Dict[str, Any]) -> "ClearsimError":
+    err = cls.__new__(cls)
+    Exception.__init__(err, message)
+    err.__dict__.update(info)
+    return err
 
 
 class InputError(ClearsimError, ValueError):

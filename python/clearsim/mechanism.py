@@ -81,6 +81,15 @@ class Mechanism:
             setattr(new, key, None if key == "_compiled" else copy.deepcopy(value, memo))
         return new
 
+    def __getstate__(self) -> Dict[str, Any]:
+        # Pickling keeps the description; the compiled Rust model is rebuilt on demand.
+        state = dict(self.__dict__)
+        state["_compiled"] = None
+        return state
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:
+        self.__dict__.update(state)
+
     # ------------------------------------------------------------------ building
     def add_body(
         self,

@@ -152,6 +152,30 @@ class Result:
         get = getters[quantity]
         return get(self, body)[:n] - get(ideal, body)[:n]
 
+    # ------------------------------------------------------------------ data out
+    def to_pandas(self) -> Any:
+        """A pandas DataFrame indexed by time ``t`` [s], one column per stored output
+        (``slider9.y`` [m], ``slider9.y_dot`` [m/s], ``A.ex`` [m], ...); ``df.attrs["units"]``
+        gives the units. Needs pandas (``pip install 'clearsim[io]'``)."""
+        from . import export
+
+        return export.to_pandas(self)
+
+    def to_xarray(self) -> Any:
+        """An xarray Dataset over ``time`` [s] with ``position``/``velocity``/``acceleration``
+        on (time, body, coordinate), the clearance-joint quantities and the constraint violation,
+        units and long names as attributes. Needs xarray (``pip install 'clearsim[io]'``)."""
+        from . import export
+
+        return export.to_xarray(self)
+
+    def save(self, path: Any) -> Any:
+        """Write to ``.csv`` (units in the column names) or ``.nc`` (NetCDF, via xarray);
+        returns the path."""
+        from . import export
+
+        return export.save(self, path)
+
     def summary(self) -> Dict[str, Any]:
         out: Dict[str, Any] = dict(self.stats)
         out["outputs"] = int(len(self.t))

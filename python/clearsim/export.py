@@ -1,0 +1,119 @@
+"""Results out of clearsim: pandas, xarray, CSV and NetCDF, with names and SI units.
+
+``Result.to_pandas()``, ``Result.to_xarray()`` and ``Result.save(path)`` call these. pandas and
+xarray (and netCDF4 for ``.nc`` files) are optional: ``pip install 'clearsim[io]'``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Dict, List, Tuple
+
+import numpy as np
+
+from .errors import InputError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .result import Result
+
+COORDINATES = ("x", "y", "theta")
+#: (variable, raw key, long name, units of x, y, θ)
+BODY_VARIABLES: Tuple[Tuple[str, str, str, Tuple[str, str, str]], ...] = (
+    ("position", "q", "centroid position and angle", ("m", "m", "rad")),
+    ("velocity", "qd", "centroid velocity and angular velocity", ("m/s", "m/s", "rad/s")),
+    ("acceleration", "qdd", "centroid acceleration and angular acceleration", ("m/s^2", "m/s^2", "rad/s^2")),
+)
+#: Units of the clearance-joint columns (``clearsim._core.JOINT_COLUMNS``).
+JOINT_UNITS: Dict[str, str] = {
+    "ex": "m", "ey": "m", "ex_dot": "m/s", "ey_dot": "m/s", "fx": "N", "fy": "N",
+    "normal": "N", "tangential": "N", "film_xi": "N", "film_eta": "N", "w_dry": "1", "state": "1",
+}
+_SUFFIX = {"position": "", "velocity": "_dot", "acceleration": "_ddot"}
+
+
+def _require(module: str) -> Any:
+    try:
+        return __import__(module)
+    except ImportError:
+        raise ImportError(f"{module} is needed for this export: pip install 'clearsim[io]'") from None
+
+
+def columns(res: "Result") -> List[Tuple[str, str, np.ndarray]]:
+    """Every stored output as (column name, units, values over res.t): ``slider9.y`` [m],
+    ``slider9.y_dot`` [m/s], ``slider9.y_ddot`` [m/s²], ``A.ex`` [m], ..., ``violation`` [-]."""
+    raw = res._raw
+    out: List[Tuple[str, str, np.ndarray]] = []
+    for var, key, _, units in BODY_VARIABLES:
+        if key not in raw:
+            continue
+        for b, body in enumerate(res.body_names):
+            for k, (coord, unit) in enumerate(zip(COORDINATES, units)):
+                out.append((f"{body}.{coord}{_SUFFIX[var]}", unit, raw[key][:, 3 * b + k]))
+    if "joints" in raw:
+        from .result import JOINT_COLUMNS
+
+        for j, joint in enumerate(res.joint_names):
+            for c, col in enumerate(JOINT_COLUMNS):
+                out.append((f"{joint}.{col}", JOINT_UNITS.get(col, "1"), raw["joints"][:, j, c]))
+    if "violation" in raw:
+        out.append(("constraint_violation", "m or rad", raw["violation"][:, 0]))
+        out.append(("velocity_violation", "m/s or rad/s", raw["violation"][:, 1]))
+    return out
+
+
+def to_pandas(res: "Result") -> Any:
+    """A DataFrame indexed by time [s] (index name ``t``), one column per stored output
+    (see :func:`columns`); ``df.attrs["units"]`` maps each column to its units."""
+    pd = _require("pandas")
+    cols = columns(res)
+    df = pd.DataFrame({name: values for name, _, values in cols}, index=pd.Index(res.t, name="t"))
+    df.attrs["units"] = {"t": "s", **{name: unit for name, unit, _ in cols}}
+    return df
+
+
+def to_xarray(res: "Result") -> Any:
+    """An xarray Dataset over ``time`` [s]: ``position``, ``velocity``, ``acceleration`` on
+    (time, body, coordinate) with coordinate = x, y, theta; ``clearance_joint`` on (time, joint,
+    quantity) for clearance joints; ``constraint_violation``. Units and long names in attrs."""
+    xr = _require("xarray")
+    raw = res._raw
+    data: Dict[str, Any] = {}
+    for var, key, long_name, units in BODY_VARIABLES:
+        if key in raw:
+            values = raw[key].reshape(len(res.t), len(res.body_names), 3)
+            data[var] = (("time", "body", "coordinate"), values, {"long_name": long_name, "units": ", ".join(units), "units_by_coordinate": list(units)})
+    coords: Dict[str, Any] = {"time": ("time", res.t, {"units": "s", "long_name": "time"}), "body": list(res.body_names), "coordinate": list(COORDINATES)}
+    if "joints" in raw and res.joint_names:
+        from .result import JOINT_COLUMNS
+
+        data["clearance_joint"] = (("time", "joint", "quantity"), raw["joints"], {"long_name": "clearance-joint quantities", "units_by_quantity": [JOINT_UNITS.get(c, "1") for c in JOINT_COLUMNS]})
+        coords["joint"] = list(res.joint_names)
+        coords["quantity"] = list(JOINT_COLUMNS)
+    if "violation" in raw:
+        data["constraint_violation"] = (("time",), raw["violation"][:, 0], {"long_name": "norm of the constraint equations", "units": "m or rad"})
+    attrs = {"integrator": str(res.stats.get("integrator", "")), "completed": int(res.completed), "software": "clearsim"}
+    if res.failure is not None:
+        attrs["failure"] = str(res.failure)
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def save(res: "Result", path: "str | Path") -> Path:
+    """Write the result to ``.csv`` (one column per output, units in the header: ``slider9.y [m]``)
+    or ``.nc`` (NetCDF through xarray). Returns the path."""
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".csv":
+        cols = [("t", "s", res.t)] + columns(res)
+        header = ",".join(f"{name} [{unit}]" for name, unit, _ in cols)
+        table = np.column_stack([values for _, _, values in cols]) if len(res.t) else np.zeros((0, len(cols)))
+        np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.17g")
+    elif suffix in (".nc", ".netcdf"):
+        ds = to_xarray(res)
+        # NetCDF attributes take strings and numbers; lists of unit strings are joined.
+        for var in ds.data_vars.values():
+            for key in [k for k, v in var.attrs.items() if isinstance(v, list)]:
+                var.attrs[key] = ", ".join(var.attrs[key])
+        ds.to_netcdf(path)
+    else:
+        raise InputError(f"invalid path = {str(path)!r}: save writes .csv or .nc files", field="path", value=str(path))
+    return path
