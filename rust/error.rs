@@ -33,6 +33,9 @@ pub enum Error {
     /// The maximum number of steps was reached before t_end.
     #[error("maximum number of steps ({max_steps}) reached at t = {t} s")]
     TooManySteps { t: f64, max_steps: usize },
+    /// The run used up its wall-time budget (`max_seconds`).
+    #[error("wall-time budget of {seconds} s used up at t = {t} s")]
+    TimeBudget { t: f64, seconds: f64 },
     /// The user interrupted the run (Ctrl-C).
     #[error("interrupted at t = {t} s")]
     Interrupted { t: f64 },
@@ -52,6 +55,7 @@ impl Error {
             | Error::StepSizeUnderflow { t, .. }
             | Error::NonFinite { t, .. }
             | Error::TooManySteps { t, .. }
+            | Error::TimeBudget { t, .. }
             | Error::Interrupted { t } => Some(*t),
             _ => None,
         }

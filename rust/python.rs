@@ -338,7 +338,8 @@ fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
             }
         }
     };
-    Ok(RunSettings { method, ode, t0: r.f64_or("t0", 0.0)?, t_end: r.f64("t_end")?, t_out, channels })
+    let max_wall_time = r.opt_f64("max_seconds")?;
+    Ok(RunSettings { method, ode, t0: r.f64_or("t0", 0.0)?, t_end: r.f64("t_end")?, t_out, channels, max_wall_time })
 }
 
 // ---------------------------------------------------------------- results

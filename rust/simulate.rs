@@ -27,6 +27,9 @@ pub struct RunSettings {
     /// Output times (sorted, within [t0, t_end]).
     pub t_out: Vec<f64>,
     pub channels: Channels,
+    /// Wall-time budget of the run [s] (`None`: none); a run over it stops with
+    /// [`Error::TimeBudget`] and keeps what it computed.
+    pub max_wall_time: Option<f64>,
 }
 
 impl RunSettings {
@@ -48,6 +51,11 @@ impl RunSettings {
         }
         if !(self.ode.atol > 0.0 && self.ode.atol.is_finite()) {
             return Err(Error::invalid("atol", self.ode.atol, "must be positive and finite"));
+        }
+        if let Some(b) = self.max_wall_time {
+            if !(b > 0.0) {
+                return Err(Error::invalid("max_seconds", b, "must be a positive number of seconds"));
+            }
         }
         if self.ode.max_steps == 0 {
             return Err(Error::invalid("max_steps", self.ode.max_steps, "must be a positive integer"));
@@ -97,6 +105,8 @@ pub struct MechanismSystem<'a> {
     pub memory: Vec<ImpactMemory>,
     pub recording: Recording,
     stop: Option<StopCheck<'a>>,
+    /// Start of the run and its wall-time budget [s] ([`RunSettings::max_wall_time`]).
+    pub budget: Option<(Instant, f64)>,
     accepted: usize,
     scratch: Vec<f64>,
     /// Each clearance joint's kinematics at the last and the next sample of a step
@@ -122,6 +132,7 @@ impl<'a> MechanismSystem<'a> {
             memory: vec![ImpactMemory::default(); model.clearance.len()],
             recording: Recording::new(channels, capacity, model),
             stop,
+            budget: None,
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -343,6 +354,11 @@ impl OdeSystem for MechanismSystem<'_> {
         self.last_y.copy_from_slice(y1);
         self.accepted += 1;
         if self.accepted % 64 == 0 {
+            if let Some((start, seconds)) = self.budget {
+                if start.elapsed().as_secs_f64() > seconds {
+                    return Err(Error::TimeBudget { t: t1, seconds });
+                }
+            }
             if let Some(stop) = self.stop {
                 if stop(t1) {
                     return Err(Error::Interrupted { t: t1 });
@@ -455,6 +471,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     y0.extend_from_slice(&qd0);
     let t_out: Vec<f64> = rs.t_out.iter().copied().filter(|t| *t >= rs.t0 && *t <= rs.t_end).collect();
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
+    sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {

@@ -422,6 +422,7 @@ class Mechanism:
         h_max: Optional[float] = None,
         h_min: float = 1e-14,
         max_steps: int = 50_000_000,
+        max_seconds: Optional[float] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`)."""
         t0 = check_finite("t0", t0)
@@ -483,6 +484,8 @@ class Mechanism:
             settings["step"] = step
         if h_max is not None:
             settings["h_max"] = check_positive("h_max", h_max)
+        if max_seconds is not None:
+            settings["max_seconds"] = check_positive("max_seconds", max_seconds)
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Any) -> Result:
@@ -510,6 +513,10 @@ class Mechanism:
             ``"joints"``, ``"violation"`` (default: all but ``"reactions"``).
         h_max, h_min, max_steps:
             Step limits [s] and the step budget.
+        max_seconds:
+            Wall-time budget of the run [s] (default none): a run over it stops with a
+            :class:`clearsim.SimulationError` ("wall-time budget ... used up at t = ...") and
+            keeps its partial result.
 
         progress:
             Show a progress bar (simulated time) for runs that take longer than a second.

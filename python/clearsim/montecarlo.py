@@ -20,7 +20,6 @@ from . import _core
 from .errors import InputError, SimulationError, check_positive
 from .mechanism import Mechanism
 from .reliability import (
-    PAPER_ALLOWABLE,
     Distribution,
     Estimate,
     MonteCarloBins,
@@ -32,6 +31,12 @@ from .reliability import (
 
 QUANTITIES = {"displacement": "q", "velocity": "qd", "acceleration": "qdd"}
 AXES = {"x": 0, "y": 1, "theta": 2}
+ON_FAILURE = ("fail", "exclude", "raise")
+#: Units of an error, per quantity and axis (x, y: translation; theta: rotation).
+UNITS = {
+    ("displacement", False): "m", ("velocity", False): "m/s", ("acceleration", False): "m/s²",
+    ("displacement", True): "rad", ("velocity", True): "rad/s", ("acceleration", True): "rad/s²",
+}
 
 
 def run_descriptions(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]]) -> List[Any]:
@@ -51,7 +56,16 @@ class MonteCarloResult:
     ok:
         Boolean mask of the samples whose clearance and ideal runs both completed.
     failures:
-        ``(sample index, message)`` of the samples that did not complete.
+        ``(sample index, reason)`` of every sample that did not complete (simulation error,
+        step or wall-time budget used up); none is dropped silently.
+    on_failure:
+        How failed samples entered the estimates: ``"fail"`` (each counts as leaving the
+        allowable range, in every bin and in the first-passage probability) or ``"exclude"``
+        (estimates over the completed samples; ``pf_bounds`` bounds them both ways).
+    pf_bounds:
+        ``{quantity: (low, high)}`` first-passage probability if every failed sample had stayed
+        within / left the range: the honest range of the answer when failures are excluded (with
+        ``"fail"`` the estimate is the high end).
     crank_angle:
         (n_ok, n_times) crank angle [deg] of each analysed output sample.
     errors:
@@ -74,21 +88,40 @@ class MonteCarloResult:
     bins: Dict[str, MonteCarloBins]
     first_passage: Dict[str, Estimate]
     allowable: Dict[str, Tuple[float, float]]
+    on_failure: str = "fail"
+    pf_bounds: Dict[str, Tuple[float, float]] = field(default_factory=dict)
     wall_time: float = 0.0
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def n_failed(self) -> int:
+        """Number of samples that did not complete."""
+        return len(self.failures)
+
+    def failure_reasons(self) -> Dict[str, int]:
+        """How many samples failed for each kind of reason (the message up to ' at t =')."""
+        counts: Dict[str, int] = {}
+        for _, reason in self.failures:
+            key = reason.split(" at t =")[0]
+            counts[key] = counts.get(key, 0) + 1
+        return counts
 
     def table(self, quantity: str) -> List[Dict[str, Any]]:
         """Per-bin rows: Monte Carlo reliability with its interval next to FOSM."""
         return compare_fosm_mc(self.bins[quantity])
 
     def summary(self) -> Dict[str, Any]:
-        out: Dict[str, Any] = {"samples": int(self.ok.size), "completed": int(self.ok.sum()), "wall_time": self.wall_time}
+        out: Dict[str, Any] = {
+            "samples": int(self.ok.size), "completed": int(self.ok.sum()), "failed": self.n_failed,
+            "failure_reasons": self.failure_reasons(), "on_failure": self.on_failure, "wall_time": self.wall_time,
+        }  # fmt: skip
         for q, b in self.bins.items():
             k = int(np.nanargmin(b.reliability))
             fp = self.first_passage[q]
             out[q] = {
                 "first_passage_probability": fp.p,
                 "first_passage_interval": (fp.lo, fp.hi),
+                "first_passage_bounds": self.pf_bounds.get(q),
                 "min_bin_reliability_mc": float(b.reliability[k]),
                 "min_bin_interval": (float(b.lo[k]), float(b.hi[k])),
                 "min_bin_angle_deg": float(b.bin_starts[k]),
@@ -105,10 +138,13 @@ def monte_carlo(
     omega: Union[str, float] = "omega",
     cycles: float = 1.0,
     skip_cycles: float = 0.0,
-    body: str = "slider9",
-    axis: str = "y",
-    quantities: Sequence[str] = ("displacement", "velocity", "acceleration"),
+    body: Optional[str] = None,
+    axis: Optional[str] = None,
     allowable: Optional[Mapping[str, Tuple[float, float]]] = None,
+    quantities: Optional[Sequence[str]] = None,
+    on_failure: str = "fail",
+    max_steps: Optional[int] = None,
+    max_seconds: Optional[float] = None,
     bin_width: float = 18.0,
     points_per_cycle: int = 360,
     seed: Optional[int] = 0,
@@ -135,11 +171,24 @@ def monte_carlo(
         The drive speed [rad/s] that defines the crank angle: the name of a sampled input, or a
         number. Each sample runs ``skip_cycles + cycles`` crank turns; the first ``skip_cycles``
         (start-up transient) are not analysed.
-    body, axis, quantities:
-        The output analysed: a body's ``x``, ``y`` or ``theta`` displacement, velocity and/or
-        acceleration error against the ideal mechanism.
+    body, axis:
+        The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
+        error against the ideal mechanism.
     allowable:
-        ``{quantity: (lower, upper)}`` allowable |error| ranges (default: the paper's, spec §6).
+        Required: ``{quantity: (lower, upper)}`` allowable |error| range of each analysed
+        quantity (``"displacement"``, ``"velocity"``, ``"acceleration"``) in that quantity's unit:
+        m, m/s, m/s² for ``x``/``y``; rad, rad/s, rad/s² for ``theta``. The paper's slider
+        limits are :data:`clearsim.reliability.PAPER_ALLOWABLE`, to be passed explicitly.
+    quantities:
+        The quantities analysed (default: those given in ``allowable``; each needs its limit).
+    on_failure:
+        A sample whose run fails (simulation error, ``max_steps`` or ``max_seconds`` used up) is
+        kept with its reason in ``.failures`` and ``"fail"`` (default) counts it as leaving the
+        allowable range; ``"exclude"`` estimates from the completed samples and reports
+        ``.pf_bounds``; ``"raise"`` raises :class:`clearsim.SimulationError` naming the sample.
+    max_steps, max_seconds:
+        Budget of each run (steps; wall time [s]): a sample that stalls fails with its reason
+        instead of holding up the batch.
     executor:
         ``None`` runs the batch in the Rust core on all local cores. Otherwise any object with a
         ``concurrent.futures``-style ``map`` (``ProcessPoolExecutor``, Dask's
@@ -154,16 +203,29 @@ def monte_carlo(
     n = int(n)
     if n < 1:
         raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
+    if body is None:
+        raise InputError("missing body: name the body whose error is analysed (there is no default)", field="body", value=None)
     if axis not in AXES:
-        raise InputError(f"invalid axis = {axis!r}: must be one of x, y, theta", field="axis", value=axis)
+        raise InputError(f"invalid axis = {axis!r}: must be one of x, y, theta (there is no default)", field="axis", value=axis)
+    if on_failure not in ON_FAILURE:
+        raise InputError(f"invalid on_failure = {on_failure!r}: must be one of {', '.join(ON_FAILURE)}", field="on_failure", value=on_failure)
+    if not allowable:
+        raise InputError(
+            "missing allowable: give {quantity: (lower, upper)} for each analysed quantity, in its unit "
+            "(m, m/s, m/s² for x and y; rad, rad/s, rad/s² for theta); there is no default",
+            field="allowable", value=allowable,
+        )  # fmt: skip
+    quantities = list(allowable) if quantities is None else list(quantities)
     for q in quantities:
         if q not in QUANTITIES:
             raise InputError(f"invalid quantity = {q!r}: must be one of {', '.join(QUANTITIES)}", field="quantities", value=q)
+        if q not in allowable:
+            unit = UNITS[(q, axis == "theta")]
+            raise InputError(f"missing allowable[{q!r}]: the limit of the {axis} {q} error [{unit}] is required", field=f"allowable.{q}", value=None)
     cycles = check_positive("cycles", cycles)
     if skip_cycles < 0:
         raise InputError(f"invalid skip_cycles = {skip_cycles!r}: must not be negative", field="skip_cycles", value=skip_cycles)
-    limits = dict(PAPER_ALLOWABLE)
-    limits.update(allowable or {})
+    limits = {q: tuple(allowable[q]) for q in quantities}
     inputs = sample_inputs(distributions, n, seed)
     if isinstance(omega, str):
         if omega not in inputs:
@@ -190,6 +252,10 @@ def monte_carlo(
             atol=atol,
             outputs=["states", "accelerations"] if "acceleration" in quantities else ["states"],
         )
+        if max_steps is not None:
+            run["max_steps"] = max_steps
+        if max_seconds is not None:
+            run["max_seconds"] = max_seconds
         ideal = m.idealized()
         # ``integrator="auto"`` resolves per mechanism (the ideal twin has no film).
         s, s_ideal = m.run_settings(float(t_out[-1]), **run), ideal.run_settings(float(t_out[-1]), **run)
@@ -212,23 +278,32 @@ def monte_carlo(
         bad = next((r for r in (actual, ideal) if isinstance(r, BaseException) or r.get("error") is not None), None)
         if bad is not None:
             err = bad if isinstance(bad, BaseException) else bad["error"]
-            failures.append((k, str(err)))
+            which = "sample" if bad is actual else "ideal twin of the sample"
+            failures.append((k, f"{err} ({which})"))
             continue
         ok[k] = True
         for q in quantities:
             key = QUANTITIES[q]
             errs[q].append(actual[key][:, col] - ideal[key][:, col])
         angles.append(np.degrees(abs(omegas[k]) * (actual["t"] - actual["t"][0])))
+    if failures and on_failure == "raise":
+        k, reason = failures[0]
+        params = ", ".join(f"{name}={float(v[k]):.6g}" for name, v in inputs.items())
+        raise SimulationError(f"Monte Carlo sample {k} ({params}) failed: {reason}; {len(failures)} of {n} samples failed", reason=reason)
     if not ok.any():
-        raise SimulationError(f"no Monte Carlo sample completed; first failure: {failures[0][1]}", reason=failures[0][1])
+        raise SimulationError(f"no Monte Carlo sample completed ({n} failed); first failure: {failures[0][1]}", reason=failures[0][1])
+    n_failed = len(failures) if on_failure == "fail" else 0
     crank = np.array(angles)
     errors = {q: np.array(v) for q, v in errs.items()}
     bins = {}
     passage = {}
+    bounds = {}
     for q in quantities:
         lo, hi = limits[q]
-        bins[q] = mc_bin_reliability(np.abs(errors[q]), crank, hi, lo, bin_width=bin_width, confidence=confidence)
-        passage[q] = first_passage_probability(np.abs(errors[q]), hi, lo, confidence=confidence)
+        bins[q] = mc_bin_reliability(np.abs(errors[q]), crank, hi, lo, bin_width=bin_width, confidence=confidence, failed=n_failed)
+        passage[q] = first_passage_probability(np.abs(errors[q]), hi, lo, confidence=confidence, failed=n_failed)
+        exceed = int(np.any((np.abs(errors[q]) > hi) | (np.abs(errors[q]) < lo), axis=1).sum())
+        bounds[q] = (exceed / n, (exceed + len(failures)) / n)
     return MonteCarloResult(
         inputs=inputs,
         ok=ok,
@@ -238,6 +313,8 @@ def monte_carlo(
         bins=bins,
         first_passage=passage,
         allowable={q: tuple(limits[q]) for q in quantities},  # type: ignore[misc]
+        on_failure=on_failure,
+        pf_bounds=bounds,
         wall_time=time.perf_counter() - start,
     )
 

@@ -685,7 +685,7 @@ def _check_limits(upper: Any, lower: Any) -> Tuple[float, float]:
     return _check_range(lower, upper, "lower", "upper")
 
 
-def first_passage_probability(abs_errors: Any, upper: float, lower: float = 0.0, confidence: float = 0.95) -> Estimate:
+def first_passage_probability(abs_errors: Any, upper: float, lower: float = 0.0, confidence: float = 0.95, failed: int = 0) -> Estimate:
     """Probability that |error| leaves ``[lower, upper]`` anywhere in the analysed window.
 
     Parameters
@@ -698,6 +698,9 @@ def first_passage_probability(abs_errors: Any, upper: float, lower: float = 0.0,
         Allowable range of |error| (``Δu``, ``Δv``), same unit as the errors.
     confidence:
         Confidence level of the Wilson interval.
+    failed:
+        Samples whose simulation failed, counted as leaving the range (they are drawn samples:
+        leaving them out would bias the estimate towards the samples that run).
 
     Returns
     -------
@@ -708,8 +711,8 @@ def first_passage_probability(abs_errors: Any, upper: float, lower: float = 0.0,
     err = _abs_error_matrix(abs_errors)
     lo_lim, hi_lim = _check_limits(upper, lower)
     out = np.any((err > hi_lim) | (err < lo_lim), axis=1)
-    k = int(out.sum())
-    n = int(out.size)
+    k = int(out.sum()) + int(failed)
+    n = int(out.size) + int(failed)
     lo, hi = wilson_interval(k, n, confidence)
     return Estimate(k / n, float(lo), float(hi))
 
@@ -763,6 +766,7 @@ def mc_bin_reliability(
     bin_width: float = 18.0,
     confidence: float = 0.95,
     per_cycle: bool = False,
+    failed: int = 0,
 ) -> MonteCarloBins:
     """Per-bin Monte Carlo reliability: P(lower ≤ |error| ≤ upper over the whole bin).
 
@@ -782,6 +786,9 @@ def mc_bin_reliability(
         Confidence level of the Wilson intervals.
     per_cycle:
         One set of bins per cycle instead of pooling the cycles modulo 360°.
+    failed:
+        Samples whose simulation failed: counted as unreliable in every bin and in the
+        overall estimate (FOSM's pooled moments use the completed samples only).
     """
     err = _abs_error_matrix(abs_errors)
     n_s, n_t = err.shape
@@ -809,7 +816,7 @@ def mc_bin_reliability(
     present = np.bincount(flat, minlength=n_s * n_bins).reshape(n_s, n_bins) > 0
     viol = ((err > hi_lim) | (err < lo_lim)).ravel().astype(float)
     left = np.bincount(flat, weights=viol, minlength=n_s * n_bins).reshape(n_s, n_bins) > 0
-    n_in = present.sum(axis=0)
+    n_in = present.sum(axis=0) + int(failed)
     k_ok = (present & ~left).sum(axis=0)
     rel = np.full(n_bins, np.nan)
     lo = np.full(n_bins, np.nan)
@@ -821,7 +828,7 @@ def mc_bin_reliability(
 
     mu_S, sigma_S = allowable_statistics(lo_lim, hi_lim)
     pooled = _fosm_bins(err, _Bins(index2, bins.starts, bins.centres, bins.cycle), mu_S, sigma_S, width, 0)
-    fp = first_passage_probability(err, hi_lim, lo_lim, conf)
+    fp = first_passage_probability(err, hi_lim, lo_lim, conf, failed=failed)
     overall = Estimate(1.0 - fp.p, 1.0 - fp.hi, 1.0 - fp.lo)
     return MonteCarloBins(bins.starts, bins.centres, bins.cycle, n_in, rel, lo, hi, pooled, overall, lo_lim, hi_lim, conf, width)
 

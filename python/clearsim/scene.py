@@ -89,7 +89,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     omega = 523.6                    # rad/s; crank angle = |ω| (t − t0) in degrees
                                      #   (default: the first constant-speed driver)
     t_start = 0.0                    # s, analyse from here on (drop a start-up transient)
-    [reliability.allowable]          # [Δv, Δu] per analysed quantity (default: the paper's)
+    [reliability.allowable]          # required: [Δv, Δu] of |error| per analysed quantity,
+                                     #   in its unit (theta: rad, rad/s, rad/s²)
     displacement = [0.0, 0.004]      # m
     velocity = [0.0, 0.6]            # m/s
     acceleration = [0.0, 200.0]      # m/s²
@@ -799,18 +800,22 @@ def _outputs(b: _Builder, m: Mechanism) -> OutputSettings:
 
 
 def _reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]:
-    from .reliability import PAPER_ALLOWABLE
-
     t = b.top.table("reliability", _RELIABILITY_KEYS)
     if t is None:
         return None
     if not m.clearance_joint_names:
         raise t.error(None, "invalid [reliability]: the mechanism has no clearance joint (errors are clearance − ideal)")
     body = t.string("body", choices=m.body_names)
-    allowable: Dict[str, Tuple[float, float]] = dict(PAPER_ALLOWABLE)
     a = t.table("allowable", tuple(RELIABILITY_QUANTITIES))
-    if a is not None:
-        allowable = {}
+    if a is None:
+        # No silent default: the paper's limits are in m, m/s and m/s², wrong for most outputs.
+        raise t.error(
+            None,
+            "missing table [reliability.allowable]: give [lower, upper] of the |error| for each analysed "
+            "quantity in its unit (m, m/s, m/s² for x and y; rad, rad/s, rad/s² for theta)",
+        )
+    else:
+        allowable: Dict[str, Tuple[float, float]] = {}
         for q in RELIABILITY_QUANTITIES:
             if q in a:
                 lo, hi = a.numbers(q, length=2)

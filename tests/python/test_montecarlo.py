@@ -49,4 +49,69 @@ def test_monte_carlo_with_dask_executor_matches_local_batch():
 
 def test_bad_omega_name_is_an_input_error():
     with pytest.raises(clearsim.InputError, match="omega"):
-        clearsim.monte_carlo(build, {"clearance": 0.3e-3}, 2, omega="speed", progress=False)
+        clearsim.monte_carlo(build, {"clearance": 0.3e-3}, 2, omega="speed", body="slider", axis="x", allowable=ALLOW, progress=False)
+
+
+@pytest.mark.parametrize(
+    "kwargs, field, message",
+    [
+        ({"axis": "x", "allowable": ALLOW}, "body", "missing body"),
+        ({"body": "slider", "allowable": ALLOW}, "axis", "no default"),
+        ({"body": "slider", "axis": "x"}, "allowable", "missing allowable"),
+        ({"body": "slider", "axis": "theta", "allowable": {"velocity": (0, 1.0)}, "quantities": ["displacement"]}, "allowable.displacement", r"\[rad\]"),
+        ({"body": "slider", "axis": "x", "allowable": ALLOW, "on_failure": "ignore"}, "on_failure", "fail, exclude, raise"),
+    ],
+)
+def test_limits_and_output_are_explicit(kwargs, field, message):
+    """No default body, axis or limit: a missing one is an InputError naming it (a theta
+    output asks for its limit in rad)."""
+    with pytest.raises(clearsim.InputError, match=message) as info:
+        clearsim.monte_carlo(build, {"clearance": 0.3e-3, "omega": 500.0}, 2, omega="omega", progress=False, **kwargs)
+    assert info.value.field == field
+
+
+def _locking(clearance, omega):
+    """Samples with clearance above 0.4 mm get a rod shorter than the crank: the mechanism locks
+    up within the first turn, so those runs fail; the others are the usual slider-crank."""
+    rod = 0.03 if clearance > 0.4e-3 else 0.12
+    return models.slider_crank("dry", clearance=clearance, rpm=omega * 60 / (2 * math.pi), journal_radius=10e-3 - clearance, rod_length=rod)
+
+
+def test_failed_samples_are_counted_with_their_reason():
+    """Failed samples are kept with their reason; with on_failure='fail' each counts as an
+    exceedance, with 'exclude' the estimate is over the completed ones and bounded both ways,
+    with 'raise' the first failure is raised naming the sample."""
+    # A completed sample takes < 1 000 steps; a locked one would run on with its journal many
+    # clearances deep: the step budget stops it.
+    common = dict(omega="omega", body="slider", axis="x", allowable={"displacement": (0.0, 1.0)}, progress=False, seed=2, max_steps=20_000)
+    n = 12
+    mc = clearsim.monte_carlo(_locking, DISTS, n, **common)
+    locked = mc.inputs["clearance"] > 0.4e-3
+    assert 0 < locked.sum() < n
+    np.testing.assert_array_equal(~mc.ok, locked)
+    assert mc.n_failed == int(locked.sum()) and sorted(k for k, _ in mc.failures) == list(np.flatnonzero(locked))
+    assert all(reason for _, reason in mc.failures) and sum(mc.failure_reasons().values()) == mc.n_failed
+    # A 1 m limit is never reached by a completed sample: every exceedance is a failed sample.
+    fp = mc.first_passage["displacement"]
+    assert fp.p == pytest.approx(mc.n_failed / n)
+    assert np.nanmax(mc.bins["displacement"].reliability) == pytest.approx(1 - mc.n_failed / n)
+    excluded = clearsim.monte_carlo(_locking, DISTS, n, on_failure="exclude", **common)
+    assert excluded.first_passage["displacement"].p == 0.0
+    assert excluded.pf_bounds["displacement"] == pytest.approx((0.0, mc.n_failed / n))
+    with pytest.raises(clearsim.SimulationError, match=r"Monte Carlo sample \d+ \(clearance="):
+        clearsim.monte_carlo(_locking, DISTS, n, on_failure="raise", **common)
+
+
+def test_a_step_budget_fails_samples_with_that_reason():
+    common = dict(omega="omega", body="slider", axis="x", allowable={"displacement": (0.0, 1.0)}, progress=False, seed=2)
+    with pytest.raises(clearsim.SimulationError, match=r"no Monte Carlo sample completed \(4 failed\).*maximum number of steps \(40\)"):
+        clearsim.monte_carlo(build, DISTS, 4, max_steps=40, **common)
+
+
+def test_a_stalled_sample_is_stopped_by_its_wall_time_budget():
+    m = models.slider_crank("dry", clearance=0.5e-3)
+    with pytest.raises(clearsim.SimulationError, match="wall-time budget") as info:
+        m.simulate(10.0, rtol=1e-12, atol=1e-15, dt_out=1e-3, max_seconds=0.2, progress=False)
+    partial = info.value.result
+    assert 0.0 < partial.t[-1] < 10.0  # what was computed is kept
+

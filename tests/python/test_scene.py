@@ -176,3 +176,15 @@ def test_rpm_and_omega_exclusive(tmp_path):
 def test_missing_file(tmp_path):
     err = _error(tmp_path / "nope.toml")
     assert "nope.toml" in str(err) and "cannot read" in str(err)
+
+
+def test_reliability_limits_are_required(tmp_path):
+    """No silent paper defaults: a [reliability] block without [reliability.allowable] is an
+    error at the [reliability] table naming the missing limits."""
+    text = NINE_BAR.read_text()
+    start = text.index("[reliability.allowable]")
+    path = tmp_path / "scene.toml"
+    path.write_text(text[:start])
+    err = _error(path)
+    assert "missing table [reliability.allowable]" in str(err) and "rad" in str(err)
+    assert err.field == "reliability"
