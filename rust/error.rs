@@ -33,6 +33,14 @@ pub enum Error {
     /// The maximum number of steps was reached before t_end.
     #[error("maximum number of steps ({max_steps}) reached at t = {t} s")]
     TooManySteps { t: f64, max_steps: usize },
+    /// A journal went deeper into its bearing than any contact law can mean
+    /// ([`crate::simulate::max_penetration`]): the mechanism locks up or is driven through a pose
+    /// it cannot pass.
+    #[error("journal of clearance joint '{joint}' driven {penetration:.3e} m into its bearing at t = {t} s (limit {limit:.3e} m): the mechanism is locked up or driven through a pose it cannot pass")]
+    PenetrationTooDeep { t: f64, joint: String, penetration: f64, limit: f64 },
+    /// An implicit method's Newton iteration kept failing to converge, down to step `h`.
+    #[error("Newton iteration does not converge at t = {t} s, even with h = {h:.3e} s")]
+    NewtonFailure { t: f64, h: f64 },
     /// The run used up its wall-time budget (`max_seconds`).
     #[error("wall-time budget of {seconds} s used up at t = {t} s")]
     TimeBudget { t: f64, seconds: f64 },
@@ -56,6 +64,8 @@ impl Error {
             | Error::NonFinite { t, .. }
             | Error::TooManySteps { t, .. }
             | Error::TimeBudget { t, .. }
+            | Error::NewtonFailure { t, .. }
+            | Error::PenetrationTooDeep { t, .. }
             | Error::Interrupted { t } => Some(*t),
             _ => None,
         }
@@ -63,6 +73,10 @@ impl Error {
 
     /// Append a diagnosis (e.g. "; joint B, ε = 1.07") to a simulation failure.
     pub fn with_detail(mut self, extra: &str) -> Self {
+        if let Error::NewtonFailure { t, h } = self {
+            // Reported as the step-size underflow it is, with the cause and the diagnosis.
+            return Error::StepSizeUnderflow { t, h, detail: format!("; the Newton iteration does not converge{extra}") };
+        }
         match &mut self {
             Error::StepSizeUnderflow { detail, .. } | Error::NonFinite { detail, .. } => detail.push_str(extra),
             _ => {}

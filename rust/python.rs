@@ -50,6 +50,12 @@ fn to_pyerr(py: Python<'_>, e: &Error) -> PyErr {
                 kwargs.set_item("t", t)?;
                 "InterruptedRun"
             }
+            Error::PenetrationTooDeep { t, joint, penetration, .. } => {
+                kwargs.set_item("t", t)?;
+                kwargs.set_item("joint", joint)?;
+                kwargs.set_item("penetration", penetration)?;
+                "SimulationError"
+            }
             other => {
                 kwargs.set_item("t", other.time())?;
                 "SimulationError"

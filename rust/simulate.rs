@@ -17,6 +17,15 @@ use crate::system::Workspace;
 /// progress bars.
 pub type StopCheck<'a> = &'a (dyn Fn(f64) -> bool + Sync);
 
+/// The deepest penetration δ = e − c [m] a clearance joint may reach before the run stops:
+/// the larger of the clearance and 5 % of the journal radius. Hertzian contact laws assume a
+/// contact patch small against the radii; a journal driven deeper than this has left the
+/// model (a locked-up mechanism, a pose it cannot pass, a far too soft law) and would otherwise
+/// run on with meaningless forces (docs: "Failures").
+pub fn max_penetration(clearance: f64, journal_radius: f64) -> f64 {
+    clearance.max(0.05 * journal_radius)
+}
+
 /// What to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
@@ -338,6 +347,15 @@ impl OdeSystem for MechanismSystem<'_> {
         let mut changed = false;
         for j in 0..self.memory.len() {
             let k1 = self.joint_kinematics(j, y1);
+            let cj = &self.model.clearance[j];
+            let limit = max_penetration(cj.clearance, cj.journal_radius);
+            if k1.delta > limit {
+                // The diagnosis (worst joint, its ε) describes the state that went too deep.
+                self.last_t = t1;
+                self.last_y.copy_from_slice(y1);
+                let cj = &self.model.clearance[j];
+                return Err(Error::PenetrationTooDeep { t: t1, joint: cj.name.clone(), penetration: k1.delta, limit });
+            }
             if k1.delta > 0.0 && !self.memory[j].in_contact {
                 let k0 = self.joint_kinematics(j, y0);
                 let speed = if k0.delta >= 0.0 { k0.delta_dot } else { self.locate_contact_change(j, (t0, k0), (t1, k1), dense).1.delta_dot };

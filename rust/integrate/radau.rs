@@ -444,6 +444,10 @@ pub(super) fn drive_radau5<S: OdeSystem>(
         let (mut dyno_old, mut thq_old) = (1.0f64, 1.0f64);
         let mut newt = 0usize;
         let mut failure: Option<f64> = None; // step factor on failure
+        // Why this trial would fail if the Newton iteration does not converge (a failed stage
+        // evaluation below replaces it with its own error), so a run that gives up reports this
+        // step, not a stale error of an earlier one.
+        last_trial_error = Error::NewtonFailure { t, h: hs };
         loop {
             if newt >= NIT {
                 failure = Some(0.5);

@@ -283,3 +283,18 @@ def test_dry_impacts_converge_with_the_tolerance():
         fine = median_error(integrator, 1e-10)
         assert fine < 1e-9, integrator
         assert median_error(integrator, 1e-8) > 10 * fine, integrator
+
+
+def test_a_locked_up_mechanism_stops_and_names_the_joint():
+    """A rod shorter than the crank cannot follow it past ~37°: the dry journal is driven into
+    its bearing. The run stops once the penetration exceeds max(c, 0.05 R_j) (before this check it
+    ran on with the journal 14 clearances deep), names the joint and keeps the partial result."""
+    m = clearsim.models.slider_crank("dry", clearance=0.5e-3, journal_radius=9.5e-3, rod_length=0.03)
+    with pytest.raises(clearsim.SimulationError, match="locked up") as info:
+        m.simulate(0.012, progress=False)
+    err = info.value
+    assert err.joint == "rod-slider" and err.penetration > 0.5e-3
+    assert 0.0 < err.t < 0.012 and len(err.result.t) > 10 and err.result.t[-1] <= err.t
+    # The ideal twin of a sound slider-crank never comes near the limit.
+    ok = clearsim.models.slider_crank("dry", clearance=0.5e-3).simulate(0.012, progress=False)
+    assert ok.completed

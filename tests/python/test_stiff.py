@@ -109,3 +109,21 @@ def test_auto_picks_radau_for_lubricated_joints_only():
     assert r.stats["integrator"] == "radau" and ideal.stats["integrator"] == "rk45"
     assert dry.simulate(t_end, progress=False).stats["integrator"] == "rk45"
     assert lub.simulate(t_end, integrator="rk45", progress=False).stats["integrator"] == "rk45"
+
+
+def test_radau_giving_up_reports_the_step_where_it_failed():
+    """A case found by the property test: RADAU5's Newton iteration stops converging at
+    t ≈ 0.019 s; the error used to say 'non-finite state at t = 0 s' (a stale error from the
+    start). It must name the time reached and why."""
+    c = 0.001953125
+    lub = clearsim.Lubricated(viscosity=1.0, length=0.0625, film="long_paper",
+                              dry=clearsim.Dry(normal_law="lankarani_nikravesh", restitution=0.5, friction=0.0, v1=0.0625))  # fmt: skip
+    m = slider_crank("lubricated", clearance=c, rpm=100.0, lubricated=lub)
+    m._clearance[0]["initial_eccentricity"] = [c, c]
+    t_end = 60 / 100 / 8
+    try:
+        m.simulate(t_end, dt_out=t_end / 50, max_steps=20_000, progress=False)
+    except clearsim.SimulationError as e:
+        assert e.t == pytest.approx(e.result.stats["t_reached"]) and e.t > 0.01
+        assert "Newton iteration does not converge" in str(e) or "non-finite" in str(e)
+        assert e.result.t[-1] <= e.t
