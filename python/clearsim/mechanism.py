@@ -298,6 +298,14 @@ class Mechanism:
                 value=initial_eccentricity,
             )
         model = Dry() if model is None else model
+        if isinstance(model, Dry) and c > 0.25 * r_j:
+            # Lubricated joints reject this (thin-film theory); a dry one may be meant, but a
+            # clearance a quarter of the pin radius is more often a unit slip.
+            warnings.warn(
+                f"clearance joint '{name}': clearance {c!r} m is {c / r_j:.3g} × the journal radius {r_j!r} m "
+                "(machine bearings have c/R_j ≈ 1e-3): is it given in metres?",
+                stacklevel=2,
+            )
         if not isinstance(model, (Dry, Lubricated)):
             raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
         self._clearance.append(

@@ -101,6 +101,11 @@ pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
     positive(&format!("{f}.impact_speed_floor"), d.impact_speed_floor)
 }
 
+/// The largest radial clearance of a lubricated joint, as a fraction of the journal radius:
+/// the film laws (docs: "Lubricated joints") are thin-film theory, c ≪ R_j. Real bearings have
+/// c/R_j ≈ 1e-3; the paper's exaggerated study clearances reach 0.06.
+pub const MAX_FILM_CLEARANCE_RATIO: f64 = 0.25;
+
 pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
     let nb = desc.bodies.len();
     if nb == 0 {
@@ -155,8 +160,17 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
             }
         }
     }
-    for d in &desc.drivers {
+    for (k, d) in desc.drivers.iter().enumerate() {
         body_ref(&format!("driver '{}'.body", d.name), Some(d.body), nb)?;
+        if let Some(first) = desc.drivers[..k].iter().find(|o| o.body == d.body) {
+            // Two angle laws on one body: identical ones are redundant (a singular constraint
+            // Jacobian), different ones contradict each other (no assembly).
+            return Err(Error::invalid(
+                format!("driver '{}'.body", d.name),
+                &desc.bodies[d.body].name,
+                format!("the body is already driven by driver '{}': one body takes one driver", first.name),
+            ));
+        }
     }
     for c in &desc.clearance_joints {
         let f = format!("clearance joint '{}'", c.name);
@@ -201,6 +215,17 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
         match &c.model {
             ClearanceModelDesc::Dry(d) => validate_dry(&f, d)?,
             ClearanceModelDesc::Lubricated(l) => {
+                if c.clearance > MAX_FILM_CLEARANCE_RATIO * c.journal_radius {
+                    return Err(Error::invalid(
+                        format!("{f}.clearance"),
+                        num(c.clearance),
+                        format!(
+                            "is not small against the journal radius R_j = {} m (c/R_j = {} > {MAX_FILM_CLEARANCE_RATIO}): the film laws are thin-film (Reynolds) theory, valid for c ≪ R_j; is the clearance in metres?",
+                            c.journal_radius,
+                            num(c.clearance / c.journal_radius)
+                        ),
+                    ));
+                }
                 positive(&format!("{f}.viscosity"), l.viscosity)?;
                 positive(&format!("{f}.length"), l.length)?;
                 within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;

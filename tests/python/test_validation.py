@@ -332,3 +332,22 @@ def test_scene_invalid_toml_and_missing_file(tmp_path):
     with pytest.raises(cs.InputError) as info:
         scene.load_scene(tmp_path / "nope.toml")
     assert "nope.toml" in str(info.value)
+
+
+def test_two_drivers_on_one_body_are_named():
+    """A second driver on a driven body used to end as 'residual = NaN' in the assembly."""
+    m = cs.models.slider_crank("ideal")
+    m.driver("crank", omega=100.0, name="second")
+    with pytest.raises(cs.InputError, match="already driven by driver") as info:
+        m.simulate(1e-3, progress=False)
+    assert info.value.field == "driver 'second'.body" and info.value.value == "crank"
+
+
+def test_lubricated_clearance_must_be_small_against_the_radius():
+    """0.2 m of clearance on a 5 mm pin (a unit slip) is refused for a film; warned for dry."""
+    m = cs.models.slider_crank("lubricated", clearance=0.2, journal_radius=5e-3)
+    with pytest.raises(cs.InputError, match=r"c/R_j = 40 > 0.25.*thin-film") as info:
+        m.simulate(1e-3, progress=False)
+    assert info.value.field == "clearance joint 'rod-slider'.clearance" and float(info.value.value) == 0.2
+    with pytest.warns(UserWarning, match="is it given in metres"):
+        cs.models.slider_crank("dry", clearance=0.2, journal_radius=5e-3)
