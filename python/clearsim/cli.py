@@ -340,7 +340,12 @@ def _cmd_paper(args: argparse.Namespace) -> int:
 
 
 def _first_line(obj: Any) -> str:
-    return " ".join((obj.__doc__ or "").strip().split("\n\n")[0].split())
+    """The docstring's first paragraph as plain text (reST ``literals`` and :role:`x` unwrapped)."""
+    import re
+
+    text = " ".join((obj.__doc__ or "").strip().split("\n\n")[0].split())
+    text = re.sub(r":[a-z]+:`~?([^`]+)`", r"\1", text)
+    return text.replace("``", "")
 
 
 def _cmd_info(args: argparse.Namespace) -> int:

@@ -87,6 +87,7 @@ def test_info_and_version(capsys):
     assert main(["info"]) == 0
     out = capsys.readouterr().out
     assert clearsim.__version__ in out and "nine_bar" in out and "slider_crank" in out and "rk45" in out
+    assert "``" not in out and ":class:" not in out, "reST markup leaks into the terminal"
     with pytest.raises(SystemExit) as exc:
         main(["--version"])
     assert exc.value.code == 0 and clearsim.__version__ in capsys.readouterr().out
