@@ -38,6 +38,7 @@ fn bench_batch(c: &mut Criterion) {
         t_out: RunSettings::grid(0.0, t_end, t_end / 250.0),
         channels: Channels::default(),
         max_wall_time: None,
+        monitors: Vec::new(),
     };
     let mut g = c.benchmark_group("batch_nine_bar_lubricated");
     g.sample_size(10).measurement_time(Duration::from_secs(10));

@@ -95,6 +95,7 @@ fn bench_cycles(c: &mut Criterion, group: &str, method: Method, models: &[&str],
             t_out: RunSettings::grid(0.0, t_end, t_end / 1000.0),
             channels: Channels::default(),
             max_wall_time: None,
+            monitors: Vec::new(),
         };
         g.bench_function(name, |b| {
             b.iter(|| {

@@ -15,6 +15,7 @@ pub mod integrate;
 pub mod kkt;
 pub mod laws;
 pub mod model;
+pub mod monitor;
 pub mod record;
 pub mod simulate;
 pub mod system;

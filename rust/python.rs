@@ -20,6 +20,7 @@ use crate::integrate::{Method, OdeSystem, Settings};
 use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
 use crate::model::*;
+use crate::monitor::{MonitorSpec, Quantity, Reference};
 use crate::record::{Channels, JOINT_COLUMNS};
 use crate::simulate::{simulate, MechanismSystem, RunOutput, RunSettings};
 use crate::system::Workspace;
@@ -345,7 +346,62 @@ fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
         }
     };
     let max_wall_time = r.opt_f64("max_seconds")?;
-    Ok(RunSettings { method, ode, t0: r.f64_or("t0", 0.0)?, t_end: r.f64("t_end")?, t_out, channels, max_wall_time })
+    let monitors = match r.opt("monitors")? {
+        None => Vec::new(),
+        Some(v) => {
+            let list = v.cast::<PyList>().map_err(|_| input_error(py, "monitors", "…", "must be a list of dicts"))?;
+            let mut out = Vec::with_capacity(list.len());
+            for item in list.iter() {
+                let d = item.cast::<PyDict>().map_err(|_| input_error(py, "monitors", "…", "must be a list of dicts"))?;
+                out.push(read_monitor(d)?);
+            }
+            out
+        }
+    };
+    Ok(RunSettings { method, ode, t0: r.f64_or("t0", 0.0)?, t_end: r.f64("t_end")?, t_out, channels, max_wall_time, monitors })
+}
+
+/// The `monitor` entry of the run settings (built by `clearsim.montecarlo`).
+fn read_monitor(d: &Bound<'_, PyDict>) -> PyResult<MonitorSpec> {
+    let py = d.py();
+    let r = Reader::new(d, "monitor");
+    let quantity = match r.string("quantity")?.as_str() {
+        "displacement" => Quantity::Displacement,
+        "velocity" => Quantity::Velocity,
+        "acceleration" => Quantity::Acceleration,
+        other => return Err(input_error(py, "monitor.quantity", other, "must be 'displacement', 'velocity' or 'acceleration'")),
+    };
+    let reference = match r.opt("reference")? {
+        None => None,
+        Some(_) => {
+            let rd = r.dict("reference")?;
+            let rr = Reader::new(&rd, "monitor.reference");
+            let reference = Reference { t: rr.vec("t")?, value: rr.vec("value")?, rate: rr.vec("rate")? };
+            if reference.value.len() != reference.t.len() || reference.rate.len() != reference.t.len() {
+                return Err(input_error(py, "monitor.reference", reference.t.len(), "t, value and rate must have the same length"));
+            }
+            if reference.t.windows(2).any(|w| !(w[1] > w[0])) {
+                return Err(input_error(py, "monitor.reference.t", "[…]", "must increase strictly"));
+            }
+            Some(reference)
+        }
+    };
+    let count = |key: &str, default: usize| -> PyResult<usize> {
+        match r.opt(key)? {
+            Some(v) => v.extract::<usize>().map_err(|_| input_error(py, &format!("monitor.{key}"), v, "must be a non-negative integer")),
+            None => Ok(default),
+        }
+    };
+    Ok(MonitorSpec {
+        coordinate: count("coordinate", usize::MAX)?,
+        quantity,
+        reference,
+        t_start: r.f64("t_start")?,
+        bin_width: r.f64("bin_width")?,
+        bins: count("bins", 1)?,
+        limit: r.opt_f64("limit")?,
+        samples_per_step: count("samples_per_step", 8)?.max(1),
+    })
 }
 
 // ---------------------------------------------------------------- results
@@ -384,6 +440,22 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
     d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;
     d.set_item("impacts", out.impacts.clone())?;
     d.set_item("max_violation", out.max_violation.to_vec())?;
+    let monitors = PyList::empty(py);
+    for m in &out.monitors {
+        let md = PyDict::new(py);
+        md.set_item("peak", m.peak)?;
+        md.set_item("t_peak", m.t_peak)?;
+        md.set_item("first_passage", m.first_passage)?;
+        md.set_item("bin_max", PyArray1::from_slice(py, &m.bin_max))?;
+        md.set_item("bin_min", PyArray1::from_slice(py, &m.bin_min))?;
+        md.set_item("bin_abs", PyArray1::from_slice(py, &m.bin_abs))?;
+        md.set_item("bin_sq", PyArray1::from_slice(py, &m.bin_sq))?;
+        md.set_item("bin_time", PyArray1::from_slice(py, &m.bin_time))?;
+        monitors.append(md)?;
+    }
+    if !out.monitors.is_empty() {
+        d.set_item("monitors", monitors)?;
+    }
     let s = PyDict::new(py);
     s.set_item("steps", out.stats.steps_accepted)?;
     s.set_item("rejected_steps", out.stats.steps_rejected)?;

@@ -9,6 +9,7 @@ use crate::constraints::BodyKin;
 use crate::error::{Error, Result};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
 use crate::model::Model;
+use crate::monitor::{Monitor, MonitorResult, MonitorSpec, Quantity};
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 
@@ -39,6 +40,8 @@ pub struct RunSettings {
     /// Wall-time budget of the run [s] (`None`: none); a run over it stops with
     /// [`Error::TimeBudget`] and keeps what it computed.
     pub max_wall_time: Option<f64>,
+    /// Outputs tracked between the output samples ([`crate::monitor`]).
+    pub monitors: Vec<MonitorSpec>,
 }
 
 impl RunSettings {
@@ -105,6 +108,8 @@ pub struct RunOutput {
     pub wall_time: f64,
     /// For a failed run: the clearance joint nearest contact and its eccentricity ratio ε.
     pub failure_joint: Option<(String, f64)>,
+    /// What each monitor found (over the part of the run completed).
+    pub monitors: Vec<MonitorResult>,
 }
 
 /// The model as an [`OdeSystem`].
@@ -116,6 +121,8 @@ pub struct MechanismSystem<'a> {
     stop: Option<StopCheck<'a>>,
     /// Start of the run and its wall-time budget [s] ([`RunSettings::max_wall_time`]).
     pub budget: Option<(Instant, f64)>,
+    /// The running extremes of [`RunSettings::monitors`].
+    pub monitors: Vec<Monitor>,
     accepted: usize,
     scratch: Vec<f64>,
     /// Each clearance joint's kinematics at the last and the next sample of a step
@@ -142,6 +149,7 @@ impl<'a> MechanismSystem<'a> {
             recording: Recording::new(channels, capacity, model),
             stop,
             budget: None,
+            monitors: Vec::new(),
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -168,6 +176,44 @@ impl<'a> MechanismSystem<'a> {
     }
 
     /// The clearance joint closest to (or deepest in) contact at the last accepted state.
+    /// Feed every monitor its quantity at (t, y): a coordinate of q or q̇, or of q̈ from the
+    /// KKT solve (evaluated once for all monitors that need it).
+    fn observe(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration) {
+            self.ws.evaluate(self.model, &self.memory, t, y)?;
+        }
+        let nq = 3 * self.model.n_bodies();
+        for m in &mut self.monitors {
+            let c = m.spec.coordinate;
+            let v = match m.spec.quantity {
+                Quantity::Displacement => y[c],
+                Quantity::Velocity => y[nq + c],
+                Quantity::Acceleration => self.ws.qdd[c],
+            };
+            m.observe(t, v);
+        }
+        Ok(())
+    }
+
+    /// Feed the monitors the initial state.
+    pub fn observe_start(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        self.observe(t, y)
+    }
+
+    /// Feed the monitors `samples_per_step` points of the accepted step (t0, t1], the last at t1.
+    fn observe_step(&mut self, t0: f64, t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<()> {
+        let k = self.monitors.iter().map(|m| m.spec.samples_per_step).max().unwrap_or(1).max(1);
+        for i in 1..k {
+            let t = t0 + (t1 - t0) * i as f64 / k as f64;
+            let mut s = std::mem::take(&mut self.scratch);
+            dense.eval(t, &mut s);
+            let r = self.observe(t, &s);
+            self.scratch = s;
+            r?;
+        }
+        self.observe(t1, y1)
+    }
+
     pub fn worst_joint(&self) -> Option<(usize, JointKinematics)> {
         let mut worst: Option<(usize, JointKinematics)> = None;
         for j in 0..self.model.clearance.len() {
@@ -368,6 +414,9 @@ impl OdeSystem for MechanismSystem<'_> {
                 self.memory[j].in_contact = false;
             }
         }
+        if !self.monitors.is_empty() {
+            self.observe_step(t0, t1, y1, dense)?;
+        }
         self.last_t = t1;
         self.last_y.copy_from_slice(y1);
         self.accepted += 1;
@@ -482,6 +531,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
                 max_violation: [0.0; 2],
                 wall_time: start.elapsed().as_secs_f64(),
                 failure_joint: None,
+                monitors: Vec::new(),
             })
         }
     };
@@ -490,6 +540,18 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let t_out: Vec<f64> = rs.t_out.iter().copied().filter(|t| *t >= rs.t0 && *t <= rs.t_end).collect();
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
+    for spec in &rs.monitors {
+        if spec.coordinate >= 3 * model.n_bodies() {
+            return Err(Error::invalid("monitor.coordinate", spec.coordinate, format!("must be below 3 × bodies = {}", 3 * model.n_bodies())));
+        }
+        if !(spec.bin_width > 0.0 && spec.bin_width.is_finite() && spec.t_start.is_finite()) {
+            return Err(Error::invalid("monitor.bin_width", spec.bin_width, "must be a positive, finite time [s]"));
+        }
+        sys.monitors.push(Monitor::new(spec.clone()));
+    }
+    if !sys.monitors.is_empty() {
+        sys.observe_start(rs.t0, &y0)?;
+    }
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
@@ -515,5 +577,6 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         max_violation,
         wall_time: start.elapsed().as_secs_f64(),
         failure_joint,
+        monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
     })
 }

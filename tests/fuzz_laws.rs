@@ -310,7 +310,12 @@ proptest! {
         in_contact in any::<bool>(), impact in 0.0f64..10.0,
     ) {
         let desc = slider_crank(lub, law, ce, cf, c);
-        let model = Model::compile(&desc).expect("valid description");
+        let model = match Model::compile(&desc) {
+            Ok(m) => m,
+            // A film needs c ≪ R_j: large lubricated clearances are refused by validation.
+            Err(e) if lub && e.to_string().contains("thin-film") => return Ok(()),
+            Err(e) => panic!("valid description refused: {e}"),
+        };
         let mut ws = Workspace::new(&model);
         // Perturb the assembled-ish guess: journals land inside, on and beyond the clearance.
         let mut y = model.q_guess.clone();

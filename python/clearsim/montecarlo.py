@@ -10,6 +10,7 @@ intervals, next to FOSM.
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
@@ -24,6 +25,7 @@ from .reliability import (
     Estimate,
     MonteCarloBins,
     compare_fosm_mc,
+    wilson_interval,
     first_passage_probability,
     mc_bin_reliability,
     sample_inputs,
@@ -32,6 +34,8 @@ from .reliability import (
 QUANTITIES = {"displacement": "q", "velocity": "qd", "acceleration": "qdd"}
 AXES = {"x": 0, "y": 1, "theta": 2}
 ON_FAILURE = ("fail", "exclude", "raise")
+#: Points per crank cycle of the ideal reference trajectory the errors are measured against.
+REFERENCE_POINTS_PER_CYCLE = 7200
 #: Units of an error, per quantity and axis (x, y: translation; theta: rotation).
 UNITS = {
     ("displacement", False): "m", ("velocity", False): "m/s", ("acceleration", False): "m/s²",
@@ -78,6 +82,14 @@ class MonteCarloResult:
         in the analysed cycles.
     allowable:
         ``{quantity: (lower, upper)}``.
+    peaks, first_passage_times:
+        ``{quantity: (n_ok,) array}``: each completed sample's largest |error| over the analysed
+        window and the first time [s] it exceeded the upper limit (NaN: never), tracked by the
+        integrator at every step (not from the stored grid).
+
+    ``first_passage`` and the per-bin Monte Carlo reliability ``bins[q].reliability`` come from
+    the same step-by-step tracking, so they do not depend on ``points_per_cycle``; the FOSM
+    figures in ``bins[q].fosm`` and the ``errors`` traces are on the stored output grid.
     """
 
     inputs: Dict[str, np.ndarray]
@@ -90,6 +102,8 @@ class MonteCarloResult:
     allowable: Dict[str, Tuple[float, float]]
     on_failure: str = "fail"
     pf_bounds: Dict[str, Tuple[float, float]] = field(default_factory=dict)
+    peaks: Dict[str, np.ndarray] = field(default_factory=dict)
+    first_passage_times: Dict[str, np.ndarray] = field(default_factory=dict)
     wall_time: float = 0.0
     extra: Dict[str, Any] = field(default_factory=dict)
 
@@ -236,43 +250,67 @@ def monte_carlo(
     if np.any(omegas == 0) or not np.all(np.isfinite(omegas)):
         raise InputError("invalid omega: the drive speed must be finite and non-zero", field="omega", value=omega)
 
-    descriptions: List[Dict[str, Any]] = []
-    settings: List[Dict[str, Any]] = []
     n_out = int(round(points_per_cycle * cycles))
+    # The ideal twin is smooth: it runs once per distinct ideal mechanism and window (random
+    # inputs such as a clearance do not change it), on a grid fine enough to interpolate it
+    # anywhere (cubic Hermite, REFERENCE_POINTS_PER_CYCLE) and containing the output grid.
+    refine = max(1, math.ceil(REFERENCE_POINTS_PER_CYCLE / points_per_cycle))
+    outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
+    budget: Dict[str, Any] = {}
+    if max_steps is not None:
+        budget["max_steps"] = max_steps
+    if max_seconds is not None:
+        budget["max_seconds"] = max_seconds
+    samples: List[Tuple[Mechanism, Dict[str, Any], str]] = []
+    ideal_jobs: Dict[str, Tuple[Dict[str, Any], Dict[str, Any]]] = {}
     for k in range(n):
         params = {name: float(v[k]) for name, v in inputs.items()}
         m = build(**params)
         period = 2 * math.pi / abs(omegas[k])
         t0 = skip_cycles * period
         t_out = t0 + period * cycles * np.arange(n_out + 1) / n_out
-        run = dict(
-            t_out=t_out,
-            integrator=integrator,
-            rtol=rtol,
-            atol=atol,
-            outputs=["states", "accelerations"] if "acceleration" in quantities else ["states"],
-        )
-        if max_steps is not None:
-            run["max_steps"] = max_steps
-        if max_seconds is not None:
-            run["max_seconds"] = max_seconds
+        t_ref = t0 + period * cycles * np.arange(n_out * refine + 1) / (n_out * refine)
+        t_ref[::refine] = t_out  # the output grid exactly, its end included
+        run = dict(t_out=t_out, integrator=integrator, rtol=rtol, atol=atol, outputs=outputs, **budget)
         ideal = m.idealized()
-        # ``integrator="auto"`` resolves per mechanism (the ideal twin has no film).
-        s, s_ideal = m.run_settings(float(t_out[-1]), **run), ideal.run_settings(float(t_out[-1]), **run)
-        descriptions += [m.description(), ideal.description()]
-        settings += [s, s_ideal]
+        ideal_desc = ideal.description()
+        key = json.dumps(ideal_desc, sort_keys=True, default=_plain) + f"|{t0!r}|{float(t_out[-1])!r}|{len(t_ref)}"
+        if key not in ideal_jobs:
+            # ``integrator="auto"`` resolves per mechanism (the ideal twin has no film); the
+            # reference is computed to a tenth of the samples' tolerances.
+            ideal_run = dict(run, t_out=t_ref, outputs=["states", "accelerations"], rtol=rtol / 10, atol=atol / 10)
+            ideal_jobs[key] = (ideal_desc, ideal.run_settings(float(t_out[-1]), **ideal_run))
+        samples.append((m, m.run_settings(float(t_out[-1]), **run), key))
         names = m.body_names
     if body not in names:
         raise InputError(f"invalid body = {body!r}: no such body (known: {', '.join(names)})", field="body", value=body)
     b = names.index(body)
+    col = 3 * b + AXES[axis]
+    keys = list(ideal_jobs)
+    ideal_raws = dict(zip(keys, _run_all([ideal_jobs[k][0] for k in keys], [ideal_jobs[k][1] for k in keys], executor, chunk_size, progress, "ideal mechanisms")))
 
-    raws = _run_all(descriptions, settings, executor, chunk_size, progress)
+    descriptions: List[Dict[str, Any]] = []
+    settings: List[Dict[str, Any]] = []
+    for k, (m, s, key) in enumerate(samples):
+        ideal_raw = ideal_raws[key]
+        if not _failed(ideal_raw):
+            period = 2 * math.pi / abs(omegas[k])
+            s["monitors"] = [
+                _monitor_spec(ideal_raw, col, q, limits[q], float(s["t_out"][0]), period, cycles, bin_width) for q in quantities
+            ]
+        descriptions.append(m.description())
+        settings.append(s)
+    sample_raws = _run_all(descriptions, settings, executor, chunk_size, progress, "Monte Carlo samples")
+    raws: List[Any] = []
+    for k, (_, _, key) in enumerate(samples):
+        ideal_raw = ideal_raws[key]
+        raws += [sample_raws[k], _on_grid(ideal_raw, refine) if not _failed(ideal_raw) else ideal_raw]
 
     ok = np.zeros(n, dtype=bool)
     failures: List[Tuple[int, str]] = []
     errs: Dict[str, List[np.ndarray]] = {q: [] for q in quantities}
     angles: List[np.ndarray] = []
-    col = 3 * b + AXES[axis]
+    monitored: Dict[str, List[Dict[str, Any]]] = {q: [] for q in quantities}
     for k in range(n):
         actual, ideal = raws[2 * k], raws[2 * k + 1]
         bad = next((r for r in (actual, ideal) if isinstance(r, BaseException) or r.get("error") is not None), None)
@@ -282,9 +320,10 @@ def monte_carlo(
             failures.append((k, f"{err} ({which})"))
             continue
         ok[k] = True
-        for q in quantities:
+        for i, q in enumerate(quantities):
             key = QUANTITIES[q]
             errs[q].append(actual[key][:, col] - ideal[key][:, col])
+            monitored[q].append(actual["monitors"][i])
         angles.append(np.degrees(abs(omegas[k]) * (actual["t"] - actual["t"][0])))
     if failures and on_failure == "raise":
         k, reason = failures[0]
@@ -297,13 +336,24 @@ def monte_carlo(
     errors = {q: np.array(v) for q, v in errs.items()}
     bins = {}
     passage = {}
-    bounds = {}
+    bounds: Dict[str, Tuple[float, float]] = {}
+    peaks: Dict[str, np.ndarray] = {}
+    first_times: Dict[str, np.ndarray] = {}
     for q in quantities:
         lo, hi = limits[q]
         bins[q] = mc_bin_reliability(np.abs(errors[q]), crank, hi, lo, bin_width=bin_width, confidence=confidence, failed=n_failed)
-        passage[q] = first_passage_probability(np.abs(errors[q]), hi, lo, confidence=confidence, failed=n_failed)
-        exceed = int(np.any((np.abs(errors[q]) > hi) | (np.abs(errors[q]) < lo), axis=1).sum())
-        bounds[q] = (exceed / n, (exceed + len(failures)) / n)
+        # Exceedances from the integrator's every step (the monitor), not from the stored grid.
+        exceed_bins = np.array([(mon["bin_max"] > hi) | (mon["bin_min"] < lo) for mon in monitored[q]])
+        _fold_into_bins(bins[q], exceed_bins, bin_width, n_failed, confidence)
+        exceed = exceed_bins.any(axis=1)
+        k_out = int(exceed.sum())
+        n_all = int(exceed.size) + n_failed
+        p_lo, p_hi = wilson_interval(k_out + n_failed, n_all, confidence)
+        passage[q] = Estimate((k_out + n_failed) / n_all, float(p_lo), float(p_hi))
+        bins[q].overall = Estimate(1.0 - passage[q].p, 1.0 - passage[q].hi, 1.0 - passage[q].lo)
+        bounds[q] = (k_out / n, (k_out + len(failures)) / n)
+        peaks[q] = np.array([mon["peak"] for mon in monitored[q]])
+        first_times[q] = np.array([mon["first_passage"] for mon in monitored[q]])
     return MonteCarloResult(
         inputs=inputs,
         ok=ok,
@@ -315,37 +365,100 @@ def monte_carlo(
         allowable={q: tuple(limits[q]) for q in quantities},  # type: ignore[misc]
         on_failure=on_failure,
         pf_bounds=bounds,
+        peaks=peaks,
+        first_passage_times=first_times,
         wall_time=time.perf_counter() - start,
     )
 
 
-def _run_all(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], executor: Any, chunk_size: Optional[int], progress: bool) -> List[Any]:
+def _run_all(
+    descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], executor: Any, chunk_size: Optional[int], progress: bool, what: str
+) -> List[Any]:
     """Run in chunks (so a progress bar can move), locally in Rust or through ``executor``."""
     total = len(descriptions)
     if chunk_size is None:
-        chunk_size = max(2, min(64, total // 20 * 2 or 2))
-    chunk_size += chunk_size % 2  # keep each sample's actual/ideal pair together
+        chunk_size = max(1, min(32, total // 20 or 1))
     chunks = [(descriptions[i : i + chunk_size], settings[i : i + chunk_size]) for i in range(0, total, chunk_size)]
-    bar = _progress(total // 2, progress)
+    bar = _progress(total, progress, what)
     out: List[Any] = []
     try:
         if executor is None:
             for d, s in chunks:
                 out += run_descriptions(d, s)
-                bar.update(len(d) // 2)
+                bar.update(len(d))
         else:
             for res in executor.map(run_descriptions, [c[0] for c in chunks], [c[1] for c in chunks]):
                 out += list(res)
-                bar.update(len(res) // 2)
+                bar.update(len(res))
     finally:
         bar.close()
     return out
 
 
-def _progress(total: int, enabled: bool) -> Any:
+def _failed(raw: Any) -> bool:
+    return isinstance(raw, BaseException) or raw.get("error") is not None
+
+
+def _plain(value: Any) -> Any:
+    """JSON form of the numpy values inside a description (to key the ideal runs)."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"cannot key a description holding {type(value).__name__}")
+
+
+def _on_grid(raw: Dict[str, Any], refine: int) -> Dict[str, Any]:
+    """The ideal run's outputs at every ``refine``-th reference point: the samples' output grid."""
+    return {key: (value[::refine] if key in ("t", "q", "qd", "qdd") else value) for key, value in raw.items()}
+
+
+def _monitor_spec(ideal: Dict[str, Any], col: int, quantity: str, limit: Tuple[float, float], t_start: float, period: float, cycles: float, bin_width: float) -> Dict[str, Any]:
+    """The monitor of one quantity: its error against the ideal run (cubic Hermite through the
+    ideal's values and rates on the reference grid), in time bins of ``bin_width`` degrees of
+    crank angle."""
+    t = ideal["t"]
+    if quantity == "displacement":
+        value, rate = ideal["q"][:, col], ideal["qd"][:, col]
+    elif quantity == "velocity":
+        value, rate = ideal["qd"][:, col], ideal["qdd"][:, col]
+    else:
+        value = ideal["qdd"][:, col]
+        rate = np.gradient(value, t)
+    return {
+        "coordinate": col,
+        "quantity": quantity,
+        "reference": {"t": np.ascontiguousarray(t), "value": np.ascontiguousarray(value), "rate": np.ascontiguousarray(rate)},
+        "t_start": t_start,
+        "bin_width": period * bin_width / 360.0,
+        "bins": int(math.ceil(cycles * 360.0 / bin_width - 1e-9)),
+        "limit": float(limit[1]),
+    }
+
+
+def _fold_into_bins(b: Any, exceed_bins: np.ndarray, bin_width: float, failed: int, confidence: float) -> None:
+    """Per crank-angle bin (cycles folded modulo 360°, as ``b`` numbers its bins): the fraction of
+    samples whose |error| stays in range over the whole bin, from the monitor's time bins."""
+    n_s, n_time_bins = exceed_bins.shape
+    per_cycle = max(1, int(math.ceil(360.0 / bin_width - 1e-9)))
+    n_bins = len(b.bin_starts)
+    left = np.zeros((n_s, n_bins), dtype=bool)
+    for k in range(n_time_bins):
+        start = (k * bin_width) % 360.0
+        j = int(np.argmin(np.abs(np.asarray(b.bin_starts) - start))) if n_bins != per_cycle else k % per_cycle
+        left[:, j] |= exceed_bins[:, k]
+    n_in = np.full(n_bins, n_s + failed)
+    k_ok = (~left).sum(axis=0)
+    b.n_samples = n_in
+    b.reliability = k_ok / n_in
+    lo, hi = wilson_interval(k_ok, n_in, confidence)
+    b.lo, b.hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+
+
+def _progress(total: int, enabled: bool, what: str) -> Any:
     from tqdm.auto import tqdm
 
-    return tqdm(total=total, desc="Monte Carlo samples", unit="sample", disable=not enabled)
+    return tqdm(total=total, desc=what, unit="run", disable=not enabled)
 
 
 __all__ = ["monte_carlo", "MonteCarloResult", "run_descriptions"]
