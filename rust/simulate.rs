@@ -178,12 +178,18 @@ impl<'a> MechanismSystem<'a> {
     /// The clearance joint closest to (or deepest in) contact at the last accepted state.
     /// Feed every monitor its quantity at (t, y): a coordinate of q or q̇, or of q̈ from the
     /// KKT solve (evaluated once for all monitors that need it).
-    fn observe(&mut self, t: f64, y: &[f64]) -> Result<()> {
-        if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration) {
+    /// `at = Some((i, k))`: the i-th of k interior points of a step, which a monitor with fewer
+    /// points a step skips unless it falls on its own sub-grid (4 of 8: every second point).
+    fn observe(&mut self, t: f64, y: &[f64], at: Option<(usize, usize)>) -> Result<()> {
+        let wants = |m: &Monitor| at.is_none_or(|(i, k)| (i * m.spec.samples_per_step.max(1)) % k == 0);
+        if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration && wants(m)) {
             self.ws.evaluate(self.model, &self.memory, t, y)?;
         }
         let nq = 3 * self.model.n_bodies();
         for m in &mut self.monitors {
+            if !wants(m) {
+                continue;
+            }
             let c = m.spec.coordinate;
             let v = match m.spec.quantity {
                 Quantity::Displacement => y[c],
@@ -197,21 +203,22 @@ impl<'a> MechanismSystem<'a> {
 
     /// Feed the monitors the initial state.
     pub fn observe_start(&mut self, t: f64, y: &[f64]) -> Result<()> {
-        self.observe(t, y)
+        self.observe(t, y, None)
     }
 
     /// Feed the monitors `samples_per_step` points of the accepted step (t0, t1], the last at t1.
     fn observe_step(&mut self, t0: f64, t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<()> {
+        // Each monitor sees its own `samples_per_step` points: the union of all is visited.
         let k = self.monitors.iter().map(|m| m.spec.samples_per_step).max().unwrap_or(1).max(1);
         for i in 1..k {
             let t = t0 + (t1 - t0) * i as f64 / k as f64;
             let mut s = std::mem::take(&mut self.scratch);
             dense.eval(t, &mut s);
-            let r = self.observe(t, &s);
+            let r = self.observe(t, &s, Some((i, k)));
             self.scratch = s;
             r?;
         }
-        self.observe(t1, y1)
+        self.observe(t1, y1, None)
     }
 
     pub fn worst_joint(&self) -> Option<(usize, JointKinematics)> {
