@@ -154,7 +154,8 @@ impl<'a> MechanismSystem<'a> {
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
             switch_next: vec![JointKinematics::default(); model.clearance.len()],
-            mobility: vec![0.0; 9 * model.n_bodies() * model.n_bodies()],
+            // Sized on first use: only the stiff methods' Newton matrices need it (9 n² values).
+            mobility: Vec::new(),
             mobility_done: vec![false; 3 * model.n_bodies()],
             g_base: vec![0.0; 3 * model.n_bodies()],
             g_probe: vec![0.0; 3 * model.n_bodies()],
@@ -458,6 +459,9 @@ impl OdeSystem for MechanismSystem<'_> {
         }
         self.ws.eval_constraints(model, t, &y[..m], &y[m..2 * m]);
         self.ws.factor_kkt(t)?;
+        if self.mobility.len() != m * m {
+            self.mobility.resize(m * m, 0.0); // once per run
+        }
         self.mobility_done.fill(false);
         for (j, joint) in model.clearance.iter().enumerate() {
             let bodies = [joint.bearing, joint.journal];
