@@ -23,8 +23,11 @@ from .mechanism import Mechanism
 from .reliability import (
     Distribution,
     Estimate,
+    FosmResult,
     MonteCarloBins,
     compare_fosm_mc,
+    normal_cdf,
+    reliability_index,
     wilson_interval,
     first_passage_probability,
     mc_bin_reliability,
@@ -87,9 +90,10 @@ class MonteCarloResult:
         window and the first time [s] it exceeded the upper limit (NaN: never), tracked by the
         integrator at every step (not from the stored grid).
 
-    ``first_passage`` and the per-bin Monte Carlo reliability ``bins[q].reliability`` come from
-    the same step-by-step tracking, so they do not depend on ``points_per_cycle``; the FOSM
-    figures in ``bins[q].fosm`` and the ``errors`` traces are on the stored output grid.
+    ``first_passage``, the per-bin Monte Carlo reliability ``bins[q].reliability`` and the
+    pooled FOSM ``bins[q].fosm`` (time-averaged moments of |error| per bin) come from the same
+    step-by-step tracking, so they do not depend on ``points_per_cycle``; only the ``errors``
+    traces are on the stored output grid.
     """
 
     inputs: Dict[str, np.ndarray]
@@ -344,7 +348,7 @@ def monte_carlo(
         bins[q] = mc_bin_reliability(np.abs(errors[q]), crank, hi, lo, bin_width=bin_width, confidence=confidence, failed=n_failed)
         # Exceedances from the integrator's every step (the monitor), not from the stored grid.
         exceed_bins = np.array([(mon["bin_max"] > hi) | (mon["bin_min"] < lo) for mon in monitored[q]])
-        _fold_into_bins(bins[q], exceed_bins, bin_width, n_failed, confidence)
+        _fold_into_bins(bins[q], exceed_bins, monitored[q], bin_width, n_failed, confidence)
         exceed = exceed_bins.any(axis=1)
         k_out = int(exceed.sum())
         n_all = int(exceed.size) + n_failed
@@ -439,23 +443,39 @@ def _monitor_spec(ideal: Dict[str, Any], col: int, quantity: str, limit: Tuple[f
     }
 
 
-def _fold_into_bins(b: Any, exceed_bins: np.ndarray, bin_width: float, failed: int, confidence: float) -> None:
-    """Per crank-angle bin (cycles folded modulo 360°, as ``b`` numbers its bins): the fraction of
-    samples whose |error| stays in range over the whole bin, from the monitor's time bins."""
+def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], bin_width: float, failed: int, confidence: float) -> None:
+    """Per crank-angle bin (cycles folded modulo 360°, as ``b`` numbers its bins), from the
+    monitor's time bins: the fraction of samples whose |error| stays in range over the whole
+    bin, and FOSM (P27–P32) from the time-averaged mean and standard deviation of |error| over
+    the completed samples and the analysed cycles (μ_s = Σ∫|e|dt / Σ∫dt, σ_s² = Σ∫e²dt / Σ∫dt −
+    μ_s²), so neither depends on the stored output grid."""
     n_s, n_time_bins = exceed_bins.shape
     per_cycle = max(1, int(math.ceil(360.0 / bin_width - 1e-9)))
-    n_bins = len(b.bin_starts)
+    starts = np.asarray(b.bin_starts, dtype=float)
+    n_bins = len(starts)
+    fold = np.array([k % per_cycle if n_bins == per_cycle else int(np.argmin(np.abs(starts - (k * bin_width) % 360.0))) for k in range(n_time_bins)])
     left = np.zeros((n_s, n_bins), dtype=bool)
+    integral = np.zeros((3, n_bins))
+    count = np.zeros(n_bins, dtype=int)
     for k in range(n_time_bins):
-        start = (k * bin_width) % 360.0
-        j = int(np.argmin(np.abs(np.asarray(b.bin_starts) - start))) if n_bins != per_cycle else k % per_cycle
-        left[:, j] |= exceed_bins[:, k]
+        left[:, fold[k]] |= exceed_bins[:, k]
+    for mon in monitored:
+        np.add.at(integral[0], fold, mon["bin_abs"][:n_time_bins])
+        np.add.at(integral[1], fold, mon["bin_sq"][:n_time_bins])
+        np.add.at(integral[2], fold, mon["bin_time"][:n_time_bins])
+        np.add.at(count, fold, (mon["bin_time"][:n_time_bins] > 0).astype(int))
     n_in = np.full(n_bins, n_s + failed)
     k_ok = (~left).sum(axis=0)
     b.n_samples = n_in
     b.reliability = k_ok / n_in
     lo, hi = wilson_interval(k_ok, n_in, confidence)
     b.lo, b.hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mu_s = integral[0] / integral[2]
+        sigma_s = np.sqrt(np.maximum(integral[1] / integral[2] - mu_s**2, 0.0))
+    old = b.fosm
+    beta = reliability_index(old.mu_S, old.sigma_S, mu_s, sigma_s)
+    b.fosm = FosmResult(old.bin_starts, old.bin_centres, old.cycle, count, mu_s, sigma_s, beta, normal_cdf(beta), old.mu_S, old.sigma_S, old.bin_width)
 
 
 def _progress(total: int, enabled: bool, what: str) -> Any:

@@ -70,6 +70,18 @@ def test_limits_and_output_are_explicit(kwargs, field, message):
     assert info.value.field == field
 
 
+def test_pooled_fosm_is_the_time_average_of_a_dense_grid():
+    """The monitor's FOSM moments (∫|e|dt/∫dt per bin) against sample moments of the errors on
+    a dense stored grid (a second method): they agree to the grid's quadrature error."""
+    dists = {"clearance": Uniform(0.3e-3, 0.5e-3), "omega": 5000 * 2 * math.pi / 60}
+    mc = clearsim.monte_carlo(build, dists, 4, omega="omega", body="slider", axis="x", allowable={"displacement": (0.0, 2e-4)},
+                              progress=False, seed=3, bin_width=36.0, points_per_cycle=7200)  # fmt: skip
+    e = np.abs(mc.errors["displacement"])[:, :-1]  # drop the window's end point (it opens no segment)
+    per_bin = e.reshape(e.shape[0], 10, -1)
+    np.testing.assert_allclose(mc.bins["displacement"].fosm.mu_s, per_bin.mean(axis=(0, 2)), rtol=2e-3)
+    np.testing.assert_allclose(mc.bins["displacement"].fosm.sigma_s, per_bin.std(axis=(0, 2)), rtol=2e-2)
+
+
 def _locking(clearance, omega):
     """Samples with clearance above 0.4 mm get a rod shorter than the crank: the mechanism locks
     up within the first turn, so those runs fail; the others are the usual slider-crank."""
@@ -129,6 +141,9 @@ def test_answers_do_not_depend_on_the_output_density():
     np.testing.assert_allclose(coarse.peaks["acceleration"], fine.peaks["acceleration"], rtol=1e-6)
     assert coarse.first_passage["acceleration"] == fine.first_passage["acceleration"]
     np.testing.assert_array_equal(coarse.bins["acceleration"].reliability, fine.bins["acceleration"].reliability)
+    # FOSM from time-averaged moments: the same to round-off, not within "1 %".
+    np.testing.assert_allclose(coarse.bins["acceleration"].fosm.mu_s, fine.bins["acceleration"].fosm.mu_s, rtol=1e-9)
+    np.testing.assert_allclose(coarse.bins["acceleration"].fosm.reliability, fine.bins["acceleration"].fosm.reliability, rtol=1e-9)
     # The monitor sees at least what any stored grid sees (up to the reference's interpolation).
     grid_peak = np.abs(fine.errors["acceleration"]).max(axis=1)
     assert np.all(fine.peaks["acceleration"] >= grid_peak * (1 - 1e-4))
