@@ -14,6 +14,7 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
     // The clearance joints become revolute joints with the initial eccentricity as offset.
     let mut ideal = model.clone();
     for (c, e) in model.clearance.iter().zip(&model.initial_eccentricity) {
+        ideal.constraint_names.push(format!("clearance joint '{}' (held at its initial eccentricity)", c.name));
         ideal.constraints.push(Constraint::Revolute {
             a: c.journal,
             sa: c.journal_point,
@@ -51,10 +52,13 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         // Minimum-norm Newton step: Δq = −Φqᵀ (Φq Φqᵀ)⁻¹ Φ.
         ws.force.iter_mut().for_each(|f| *f = 0.0);
         ws.c.copy_from_slice(&ws.phi);
-        ws.solve_kkt(t0).map_err(|_| Error::Assembly {
+        ws.solve_kkt(t0).map_err(|e| Error::Assembly {
             t: t0,
             residual,
-            reason: "the constraint Jacobian is singular at the guessed pose (redundant joints or a toggle position)".into(),
+            reason: format!(
+                "the constraint Jacobian became singular during assembly at {}: it is redundant with other joints, the pose is a toggle position, or the loop cannot close with these link lengths",
+                singular_constraint(&ideal, &e)
+            ),
         })?;
         // With zero force and c = Φ the solver returns q̈ = Φqᵀ (Φq Φqᵀ)⁻¹ Φ = −Δq.
         for i in 0..n {
@@ -63,10 +67,16 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         }
     }
     if !(residual <= tol) {
+        // The equation that is furthest from closing names the joint to look at.
+        let worst = ws.phi.iter().enumerate().fold((0, -1.0f64), |w, (r, v)| if !(v.abs() <= w.1) { (r, v.abs()) } else { w }).0;
         return Err(Error::Assembly {
             t: t0,
             residual,
-            reason: format!("Newton did not converge in {MAX_ITERATIONS} iterations; give body positions and angles closer to an assembled pose"),
+            reason: format!(
+                "Newton did not converge in {MAX_ITERATIONS} iterations; {} is furthest from closing (|Φ| = {:.3e}): check its points (body frame) and give body positions and angles closer to an assembled pose",
+                ideal.constraint_of_row(worst),
+                ws.phi[worst].abs()
+            ),
         });
     }
     // Velocities: project the guess onto Φq q̇ = −Φt.
@@ -75,7 +85,22 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
     for r in 0..ideal.rows {
         ws.c[r] = -ws.phi_t[r];
     }
-    ws.solve_kkt(t0).map_err(|_| Error::Assembly { t: t0, residual, reason: "singular Jacobian in the velocity analysis".into() })?;
+    ws.solve_kkt(t0).map_err(|e| Error::Assembly {
+        t: t0,
+        residual,
+        reason: format!(
+            "the constraint Jacobian is singular at the assembled pose, at {}: it is redundant with other joints, or the pose is a toggle position",
+            singular_constraint(&ideal, &e)
+        ),
+    })?;
     let qd = ws.qdd.clone();
     Ok((q, qd))
+}
+
+/// The constraint named by a singular-pivot error of the KKT solve.
+fn singular_constraint(model: &Model, e: &Error) -> String {
+    match e {
+        Error::SingularJacobian { index, .. } => model.constraint_of_row(*index),
+        _ => "a constraint".into(),
+    }
 }

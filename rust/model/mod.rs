@@ -24,6 +24,8 @@ pub struct Model {
     pub alpha: f64,
     pub beta: f64,
     pub constraints: Vec<Constraint>,
+    /// What each constraint is, for messages: `joint 'A'`, `driver 'drive1'`.
+    pub constraint_names: Vec<String>,
     /// Number of scalar constraint equations.
     pub rows: usize,
     pub clearance: Vec<ClearanceJoint>,
@@ -87,6 +89,15 @@ impl Model {
             gravity: desc.gravity.into(),
             alpha: desc.baumgarte[0],
             beta: desc.baumgarte[1],
+            constraint_names: desc
+                .joints
+                .iter()
+                .map(|j| match j {
+                    JointDesc::Revolute { name, .. } => format!("revolute joint '{name}'"),
+                    JointDesc::Prismatic { name, .. } => format!("prismatic joint '{name}'"),
+                })
+                .chain(desc.drivers.iter().map(|d| format!("driver '{}'", d.name)))
+                .collect(),
             constraints,
             rows,
             clearance,
@@ -94,6 +105,18 @@ impl Model {
             qd_guess,
             initial_eccentricity: desc.clearance_joints.iter().map(|c| c.initial_eccentricity.into()).collect(),
         })
+    }
+
+    /// The name of the constraint that equation `row` belongs to (see `constraint_names`).
+    pub fn constraint_of_row(&self, row: usize) -> String {
+        let mut start = 0;
+        for (c, name) in self.constraints.iter().zip(&self.constraint_names) {
+            if row < start + c.rows() {
+                return name.clone();
+            }
+            start += c.rows();
+        }
+        format!("constraint row {row}")
     }
 
     pub fn n_bodies(&self) -> usize {

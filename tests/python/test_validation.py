@@ -351,3 +351,36 @@ def test_lubricated_clearance_must_be_small_against_the_radius():
     assert info.value.field == "clearance joint 'rod-slider'.clearance" and float(info.value.value) == 0.2
     with pytest.warns(UserWarning, match="is it given in metres"):
         cs.models.slider_crank("dry", clearance=0.2, journal_radius=5e-3)
+
+
+def _two_links(duplicate: bool, reach: float = 0.15) -> cs.Mechanism:
+    m = cs.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("a", mass=1.0, inertia=0.01, position=(0.05, 0.0))
+    m.add_body("b", mass=1.0, inertia=0.01, position=(0.15, 0.0))
+    m.revolute("ground", (0.0, 0.0), "a", (-0.05, 0.0), name="pivot")
+    m.revolute("a", (0.05, 0.0), "b", (-0.05, 0.0), name="elbow")
+    if duplicate:
+        m.revolute("a", (0.05, 0.0), "b", (-0.05, 0.0), name="elbow_again")
+    return m
+
+
+def test_a_redundant_joint_is_named():
+    """Two identical pins between the same bodies: the assembly names one of them."""
+    with pytest.raises(cs.AssemblyError, match="revolute joint 'elbow(_again)?'.*redundant"):
+        _two_links(duplicate=True).simulate(0.01, progress=False)
+
+
+def test_a_loop_that_cannot_close_names_a_joint():
+    """A four-bar whose ground pivots are 1 m apart with 0.1 m links cannot assemble: the
+    error names a joint of the loop instead of a bare residual."""
+    m = cs.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("crank", mass=1.0, inertia=0.01, position=(0.05, 0.0))
+    m.add_body("rod", mass=1.0, inertia=0.01, position=(0.15, 0.0))
+    m.add_body("rocker", mass=1.0, inertia=0.01, position=(1.0, 0.05))
+    m.revolute("ground", (0.0, 0.0), "crank", (-0.05, 0.0), name="O2")
+    m.revolute("crank", (0.05, 0.0), "rod", (-0.05, 0.0), name="A")
+    m.revolute("rod", (0.05, 0.0), "rocker", (0.0, -0.05), name="B")
+    m.revolute("ground", (1.0, 0.0), "rocker", (0.0, -0.05), name="O4")
+    m.driver("crank", omega=1.0)
+    with pytest.raises(cs.AssemblyError, match=r"revolute joint '(O2|A|B|O4)'"):
+        m.simulate(0.01, progress=False)
