@@ -44,6 +44,11 @@ def _positive_int(field: str, value: Any) -> int:
     return int(value)
 
 
+#: A body moved by the assembly by more than this fraction of the mechanism's extent (or by
+#: more than 0.5 rad) gets a warning.
+ASSEMBLY_SHIFT = 0.2
+
+
 class Mechanism:
     """A planar mechanism of rigid bodies.
 
@@ -563,10 +568,31 @@ class Mechanism:
                 raise raw
         return self._finish(raws[0], settings), ideal._finish(raws[1], ideal_settings)
 
+    def _check_assembly_shift(self, res: Result) -> None:
+        """Warn when the assembly moved a body far from the pose given: a joint point given in
+        the global instead of the body frame, or a wrong length, is the usual cause."""
+        q0 = np.asarray(res.q0, dtype=float)
+        if q0.size != 3 * len(self._bodies) or not np.all(np.isfinite(q0)):
+            return
+        guess = np.array([[*b["position"], b.get("angle", 0.0)] for b in self._bodies], dtype=float)
+        pos = guess[:, :2]
+        extent = max(float(np.ptp(pos[:, 0]) + np.ptp(pos[:, 1])), 1e-3) if len(pos) > 1 else 1.0
+        moved = np.hypot(q0[0::3] - guess[:, 0], q0[1::3] - guess[:, 1])
+        turned = np.abs((q0[2::3] - guess[:, 2] + math.pi) % (2 * math.pi) - math.pi)
+        k = int(np.argmax(moved / extent + turned / 0.5))
+        if moved[k] > ASSEMBLY_SHIFT * extent or turned[k] > 0.5:
+            warnings.warn(
+                f"the assembly moved body '{self._bodies[k]['name']}' by {moved[k]:.3g} m and {math.degrees(turned[k]):.3g}° "
+                f"from the pose given (the mechanism spans {extent:.3g} m): check its joint points (body frame, not global) "
+                "and lengths",
+                stacklevel=4,
+            )
+
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)
         if settings is not None:
             res.stats["integrator"] = settings["method"]
+        self._check_assembly_shift(res)
         err = raw.get("error")
         if err is not None:
             err.result = res

@@ -384,3 +384,31 @@ def test_a_loop_that_cannot_close_names_a_joint():
     m.driver("crank", omega=1.0)
     with pytest.raises(cs.AssemblyError, match=r"revolute joint '(O2|A|B|O4)'"):
         m.simulate(0.01, progress=False)
+
+
+def test_a_joint_point_in_the_wrong_frame_warns_how_far_the_assembly_moved():
+    """The rocker's pin given in global coordinates (1.0, 0.1) instead of its body frame: the
+    assembly has to move the rocker far, and says which body and how far."""
+    m = cs.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("crank", mass=1.0, inertia=0.01, position=(0.05, 0.0))
+    m.add_body("rod", mass=1.0, inertia=0.01, position=(0.25, 0.05))
+    m.add_body("rocker", mass=1.0, inertia=0.01, position=(0.4, 0.05), angle=math.pi / 2)
+    m.revolute("ground", (0.0, 0.0), "crank", (-0.05, 0.0), name="O2")
+    m.revolute("crank", (0.05, 0.0), "rod", (-0.15, -0.05), name="A")
+    m.revolute("rod", (0.15, 0.05), "rocker", (0.05, 0.0), name="B")
+    m.revolute("ground", (0.4, 0.0), "rocker", (-0.05, 0.0), name="O4")
+    m.driver("crank", omega=1.0)
+    m.simulate(0.01, progress=False)  # the right frames: no warning
+    bad = cs.Mechanism(gravity=(0.0, 0.0))
+    for b in m._bodies:
+        bad.add_body(b["name"], mass=1.0, inertia=0.01, position=tuple(b["position"]), angle=b.get("angle", 0.0))
+    bad.revolute("ground", (0.0, 0.0), "crank", (-0.05, 0.0), name="O2")
+    bad.revolute("crank", (0.05, 0.0), "rod", (-0.15, -0.05), name="A")
+    bad.revolute("rod", (0.15, 0.05), "rocker", (0.4, 0.1), name="B")  # global, not body frame
+    bad.revolute("ground", (0.4, 0.0), "rocker", (-0.05, 0.0), name="O4")
+    bad.driver("crank", omega=1.0)
+    with pytest.warns(UserWarning, match=r"the assembly moved body '\w+' by .* m .*body frame"):
+        try:
+            bad.simulate(0.01, progress=False)
+        except cs.ClearsimError:
+            pass
