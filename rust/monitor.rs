@@ -122,9 +122,14 @@ impl Monitor {
         }
     }
 
+    /// The error of a value of the monitored quantity at time `t` (value − reference).
+    pub fn error(&self, t: f64, value: f64) -> f64 {
+        value - self.spec.reference.as_ref().map_or(0.0, |r| r.eval(t))
+    }
+
     /// The monitored quantity's value `value` at time `t` (samples come in increasing time).
     pub fn observe(&mut self, t: f64, value: f64) {
-        let e = value - self.spec.reference.as_ref().map_or(0.0, |r| r.eval(t));
+        let e = self.error(t, value);
         let a = e.abs();
         let mid = self.last.and_then(|(t0, _)| if t0 >= self.spec.t_start { self.bin(0.5 * (t0 + t)) } else { None });
         if let Some(k) = self.bin(t) {
