@@ -17,8 +17,6 @@ use crate::batch::run_batch;
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
 use crate::integrate::{Method, OdeSystem, Settings};
-use crate::laws::contact::NormalLaw;
-use crate::laws::film::FilmModel;
 use crate::model::*;
 use crate::monitor::{MonitorSpec, Quantity, Reference};
 use crate::record::{Channels, JOINT_COLUMNS};
@@ -126,178 +124,81 @@ impl<'a, 'py> Reader<'a, 'py> {
         let v = self.any(key)?;
         v.extract::<Vec<f64>>().map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be a sequence of numbers"))
     }
-    fn vec_or_empty(&self, key: &str) -> PyResult<Vec<f64>> {
-        match self.opt(key)? {
-            Some(_) => self.vec(key),
-            None => Ok(vec![]),
-        }
-    }
-    fn point(&self, key: &str) -> PyResult<[f64; 2]> {
-        let v = self.vec(key)?;
-        <[f64; 2]>::try_from(v.as_slice()).map_err(|_| input_error(self.d.py(), &self.field(key), format!("{v:?}"), "must have 2 components"))
-    }
-    fn body(&self, key: &str) -> PyResult<Option<usize>> {
-        match self.opt(key)? {
-            None => Ok(None),
-            Some(v) => v.extract::<usize>().map(Some).map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be a body index or None (ground)")),
-        }
-    }
     fn dict(&self, key: &str) -> PyResult<Bound<'py, PyDict>> {
         let v = self.any(key)?;
         v.cast_into::<PyDict>().map_err(|_| input_error(self.d.py(), &self.field(key), "<not a dict>", "must be a mapping"))
     }
-    fn list(&self, key: &str) -> PyResult<Vec<Bound<'py, PyDict>>> {
-        let Some(v) = self.opt(key)? else { return Ok(vec![]) };
-        let list = v.cast_into::<PyList>().map_err(|_| input_error(self.d.py(), &self.field(key), "<not a list>", "must be a list"))?;
-        list.iter()
-            .enumerate()
-            .map(|(k, item)| item.cast_into::<PyDict>().map_err(|_| input_error(list.py(), &format!("{}[{k}]", self.field(key)), "<not a dict>", "must be a mapping")))
-            .collect()
-    }
 }
 
-fn read_dry(r: &Reader) -> PyResult<DryDesc> {
-    let d = DryDesc::steel();
-    let law = match r.opt("normal_law")? {
-        None => d.normal_law,
-        Some(_) => match r.string("normal_law")?.as_str() {
-            "lankarani_nikravesh" => NormalLaw::LankaraniNikravesh,
-            "hertz" => NormalLaw::Hertz,
-            "hunt_crossley" => NormalLaw::HuntCrossley,
-            "flores" => NormalLaw::Flores,
-            other => {
-                return Err(input_error(r.d.py(), &r.field("normal_law"), other, "must be one of lankarani_nikravesh, hertz, hunt_crossley, flores"))
-            }
-        },
-    };
-    Ok(DryDesc {
-        normal_law: law,
-        youngs_bearing: r.f64_or("youngs_bearing", d.youngs_bearing)?,
-        youngs_journal: r.f64_or("youngs_journal", d.youngs_journal)?,
-        poisson_bearing: r.f64_or("poisson_bearing", d.poisson_bearing)?,
-        poisson_journal: r.f64_or("poisson_journal", d.poisson_journal)?,
-        restitution: r.f64_or("restitution", d.restitution)?,
-        exponent: r.f64_or("exponent", d.exponent)?,
-        stiffness: r.opt_f64("stiffness")?,
-        stiffness_paper_printed: r.bool_or("stiffness_paper_printed", false)?,
-        friction: r.f64_or("friction", d.friction)?,
-        v0: r.f64_or("v0", d.v0)?,
-        v1: r.f64_or("v1", d.v1)?,
-        impact_speed_floor: r.f64_or("impact_speed_floor", d.impact_speed_floor)?,
-    })
-}
-
-fn read_description(d: &Bound<'_, PyDict>) -> PyResult<MechanismDesc> {
+/// A description from Python: a JSON string, or plain data (dicts, lists, numbers, strings).
+/// Either way it enters the core through serde ([`crate::model::from_value`]), the one path.
+fn read_description(d: &Bound<'_, PyAny>) -> PyResult<MechanismDesc> {
     let py = d.py();
-    let r = Reader::new(d, "");
-    let mut desc = MechanismDesc::default();
-    if r.opt("gravity")?.is_some() {
-        desc.gravity = r.point("gravity")?;
+    let v = match d.extract::<String>() {
+        Ok(text) => return crate::model::from_json(&text).map_err(|e| to_pyerr(py, &e)),
+        Err(_) => plain_value(d, "", true)?,
+    };
+    crate::model::from_value(&v).map_err(|e| to_pyerr(py, &e))
+}
+
+/// Python plain data as a JSON value. A number that is not finite (JSON has no NaN) is an
+/// `InputError` naming its field the way validation does (`clearance joint 'B'.model.friction`).
+fn plain_value(obj: &Bound<'_, PyAny>, field: &str, top: bool) -> PyResult<serde_json::Value> {
+    use serde_json::Value;
+    let py = obj.py();
+    let key = |k: &str| if field.is_empty() { k.to_string() } else { format!("{field}.{k}") };
+    if obj.is_none() {
+        return Ok(Value::Null);
     }
-    if r.opt("baumgarte")?.is_some() {
-        desc.baumgarte = r.point("baumgarte")?;
+    if let Ok(b) = obj.cast::<pyo3::types::PyBool>() {
+        return Ok(Value::Bool(b.is_true()));
     }
-    for b in r.list("bodies")? {
-        let br = Reader::new(&b, "body");
-        let name = br.string("name")?;
-        let br = Reader::new(&b, format!("body '{name}'"));
-        let v = br.vec_or_empty("velocity")?;
-        desc.bodies.push(BodyDesc {
-            mass: br.f64("mass")?,
-            inertia: br.f64("inertia")?,
-            position: br.point("position")?,
-            angle: br.f64_or("angle", 0.0)?,
-            velocity: if v.is_empty() { [0.0; 3] } else { <[f64; 3]>::try_from(v.as_slice()).map_err(|_| input_error(py, &br.field("velocity"), format!("{v:?}"), "must have 3 components"))? },
-            name,
-        });
+    if let Ok(s) = obj.cast::<pyo3::types::PyString>() {
+        return Ok(Value::String(s.extract::<String>()?));
     }
-    for j in r.list("joints")? {
-        let jr = Reader::new(&j, "joint");
-        let name = jr.string("name")?;
-        let jr = Reader::new(&j, format!("joint '{name}'"));
-        desc.joints.push(match jr.string("kind")?.as_str() {
-            "revolute" => JointDesc::Revolute {
-                body_a: jr.body("body_a")?,
-                point_a: jr.point("point_a")?,
-                body_b: jr.body("body_b")?,
-                point_b: jr.point("point_b")?,
-                name,
-            },
-            "prismatic" => JointDesc::Prismatic {
-                body_a: jr.body("body_a")?,
-                point_a: jr.point("point_a")?,
-                axis: jr.point("axis")?,
-                body_b: jr.body("body_b")?.ok_or_else(|| input_error(py, &jr.field("body_b"), "ground", "the sliding body cannot be the ground"))?,
-                point_b: jr.point("point_b")?,
-                name,
-            },
-            other => return Err(input_error(py, &jr.field("kind"), other, "must be 'revolute' or 'prismatic'")),
-        });
+    if obj.cast::<pyo3::types::PyFloat>().is_err() {
+        if let Ok(i) = obj.extract::<i64>() {
+            return Ok(Value::from(i));
+        }
     }
-    for dr in r.list("drivers")? {
-        let rr = Reader::new(&dr, "driver");
-        let name = rr.string("name")?;
-        let rr = Reader::new(&dr, format!("driver '{name}'"));
-        let law = rr.dict("law")?;
-        let lr = Reader::new(&law, rr.field("law"));
-        let law = match lr.string("kind")?.as_str() {
-            "constant_speed" => AngleLaw::ConstantSpeed { angle0: lr.f64("angle0")?, omega: lr.f64("omega")? },
-            "polynomial" => AngleLaw::Polynomial { coefficients: lr.vec("coefficients")? },
-            "samples" => AngleLaw::Samples { times: lr.vec("times")?, angles: lr.vec("angles")? },
-            other => return Err(input_error(py, &lr.field("kind"), other, "must be constant_speed, polynomial or samples")),
-        };
-        let body = rr.body("body")?.ok_or_else(|| input_error(py, &rr.field("body"), "ground", "cannot drive the ground"))?;
-        desc.drivers.push(DriverDesc { name, body, law });
+    if let Ok(x) = obj.extract::<f64>() {
+        return serde_json::Number::from_f64(x)
+            .map(Value::Number)
+            .ok_or_else(|| input_error(py, if field.is_empty() { "description" } else { field }, x, "must be a finite number"));
     }
-    for c in r.list("clearance_joints")? {
-        let cr = Reader::new(&c, "clearance joint");
-        let name = cr.string("name")?;
-        let cr = Reader::new(&c, format!("clearance joint '{name}'"));
-        let m = cr.dict("model")?;
-        let mr = Reader::new(&m, cr.ctx.clone());
-        let model = match mr.string("kind")?.as_str() {
-            "dry" => ClearanceModelDesc::Dry(read_dry(&mr)?),
-            "lubricated" => {
-                let film = match mr.opt("film")? {
-                    None => FilmModel::LongBearing,
-                    Some(_) => match mr.string("film")?.as_str() {
-                        "long" => FilmModel::LongBearing,
-                        "short" => FilmModel::ShortBearing,
-                        "long_paper" => FilmModel::LongBearingPaperClosedForm,
-                        other => return Err(input_error(py, &mr.field("film"), other, "must be 'long', 'short' or 'long_paper'")),
-                    },
-                };
-                let dry = match mr.opt("dry")? {
-                    Some(_) => read_dry(&Reader::new(&mr.dict("dry")?, cr.ctx.clone()))?,
-                    None => DryDesc::steel(),
-                };
-                let clearance = cr.f64("clearance")?;
-                ClearanceModelDesc::Lubricated(LubricatedDesc {
-                    film,
-                    viscosity: mr.f64("viscosity")?,
-                    length: mr.f64("length")?,
-                    eps0: mr.f64_or("eps0", 2e-6)?,
-                    m: mr.f64_or("m", 0.5)?,
-                    e0: mr.f64_or("e0", 0.05 * clearance)?,
-                    eps_max: mr.f64_or("eps_max", 0.99)?,
-                    dry,
-                })
-            }
-            other => return Err(input_error(py, &mr.field("kind"), other, "must be 'dry' or 'lubricated'")),
-        };
-        desc.clearance_joints.push(ClearanceJointDesc {
-            bearing_body: cr.body("bearing_body")?,
-            bearing_point: cr.point("bearing_point")?,
-            journal_body: cr.body("journal_body")?,
-            journal_point: cr.point("journal_point")?,
-            journal_radius: cr.f64("journal_radius")?,
-            clearance: cr.f64("clearance")?,
-            initial_eccentricity: if cr.opt("initial_eccentricity")?.is_some() { cr.point("initial_eccentricity")? } else { [0.0; 2] },
-            model,
-            name,
-        });
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let mut map = serde_json::Map::with_capacity(d.len());
+        for (k, v) in d.iter() {
+            let k: String = k.extract().map_err(|_| input_error(py, field, &k, "keys must be strings"))?;
+            let list_of = if top { crate::model::ELEMENTS.iter().find(|(l, _)| *l == k).map(|(_, what)| *what) } else { None };
+            let value = match list_of {
+                Some(what) => {
+                    let mut items = Vec::new();
+                    for (i, item) in v.try_iter()?.enumerate() {
+                        let item = item?;
+                        let name = item.get_item("name").ok().and_then(|n| n.extract::<String>().ok());
+                        let f = name.map_or_else(|| format!("{k}[{i}]"), |n| format!("{what} '{n}'"));
+                        items.push(plain_value(&item, &f, false)?);
+                    }
+                    Value::Array(items)
+                }
+                None => plain_value(&v, &key(&k), false)?,
+            };
+            map.insert(k, value);
+        }
+        return Ok(Value::Object(map));
     }
-    Ok(desc)
+    if obj.hasattr("tolist")? && !obj.is_instance_of::<PyList>() {
+        return plain_value(&obj.call_method0("tolist")?, field, top); // numpy arrays and scalars
+    }
+    if let Ok(it) = obj.try_iter() {
+        let mut items = Vec::new();
+        for (i, item) in it.enumerate() {
+            items.push(plain_value(&item?, &format!("{field}[{i}]"), false)?);
+        }
+        return Ok(Value::Array(items));
+    }
+    Err(input_error(py, if field.is_empty() { "description" } else { field }, obj.repr()?, "must be plain data (dicts, lists, numbers, strings)"))
 }
 
 fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
@@ -342,6 +243,7 @@ fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
                 reactions: cr.bool_or("reactions", ch.reactions)?,
                 joints: cr.bool_or("joints", ch.joints)?,
                 violation: cr.bool_or("violation", ch.violation)?,
+                energy: cr.bool_or("energy", ch.energy)?,
             }
         }
     };
@@ -435,6 +337,9 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
     }
     if ch.violation {
         d.set_item("violation", array2(py, &rec.violation, 2)?)?;
+    }
+    if ch.energy {
+        d.set_item("energy", array2(py, &rec.energy, crate::energy::ENERGY_COLUMNS.len())?)?;
     }
     d.set_item("q0", PyArray1::from_slice(py, &out.q0))?;
     d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;
@@ -631,7 +536,7 @@ impl CompiledModel {
 
 /// Validate and compile a mechanism description (a dict).
 #[pyfunction]
-fn compile(py: Python<'_>, description: &Bound<'_, PyDict>) -> PyResult<CompiledModel> {
+fn compile(py: Python<'_>, description: &Bound<'_, PyAny>) -> PyResult<CompiledModel> {
     let desc = read_description(description)?;
     CompiledModel::build(py, desc)
 }
@@ -641,7 +546,7 @@ fn compile(py: Python<'_>, description: &Bound<'_, PyDict>) -> PyResult<Compiled
 /// or the exception that prevented that run.
 #[pyfunction]
 #[pyo3(signature = (descriptions, settings, threads=0))]
-fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyDict>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
+fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
     let settings: Vec<RunSettings> = if let Ok(d) = settings.cast::<PyDict>() {
         vec![read_settings(d)?]
@@ -674,6 +579,7 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyDict>>, set
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", crate::version())?;
     m.add("JOINT_COLUMNS", JOINT_COLUMNS.to_vec())?;
+    m.add("ENERGY_COLUMNS", crate::energy::ENERGY_COLUMNS.to_vec())?;
     m.add_class::<CompiledModel>()?;
     m.add_function(wrap_pyfunction!(compile, m)?)?;
     m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;

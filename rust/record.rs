@@ -16,11 +16,13 @@ pub struct Channels {
     pub joints: bool,
     /// ‖Φ‖ and ‖Φ̇‖.
     pub violation: bool,
+    /// Stored energies and work done ([`crate::energy::ENERGY_COLUMNS`]).
+    pub energy: bool,
 }
 
 impl Default for Channels {
     fn default() -> Self {
-        Channels { states: true, accelerations: true, reactions: false, joints: true, violation: true }
+        Channels { states: true, accelerations: true, reactions: false, joints: true, violation: true, energy: false }
     }
 }
 
@@ -44,6 +46,8 @@ pub struct Recording {
     pub joints: Vec<f64>,
     /// ‖Φ‖, ‖Φ̇‖.
     pub violation: Vec<f64>,
+    /// `ENERGY_COLUMNS.len()` per output time.
+    pub energy: Vec<f64>,
 }
 
 impl Recording {
@@ -59,12 +63,13 @@ impl Recording {
             lambda: cap(channels.reactions, model.rows),
             joints: cap(channels.joints, JOINT_COLUMNS.len() * model.clearance.len()),
             violation: cap(channels.violation, 2),
+            energy: cap(channels.energy, crate::energy::ENERGY_COLUMNS.len()),
         }
     }
 
     /// Whether an output needs a full right-hand-side evaluation.
     pub fn needs_evaluation(&self) -> bool {
-        self.channels.is_some_and(|c| c.accelerations || c.reactions || c.joints || c.violation)
+        self.channels.is_some_and(|c| c.accelerations || c.reactions || c.joints || c.violation || c.energy)
     }
 
     /// Store one output row from the state and the workspace of its evaluation.

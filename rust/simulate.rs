@@ -7,6 +7,7 @@ use crate::assembly::assemble;
 use crate::clearance::{ClearanceJoint, ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::error::{Error, Result};
+use crate::energy::{EnergyBook, Powers};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
 use crate::model::Model;
 use crate::monitor::{Monitor, MonitorResult, MonitorSpec, Quantity};
@@ -126,6 +127,8 @@ pub struct MechanismSystem<'a> {
     pub monitors: Vec<Monitor>,
     monitor_values: Vec<f64>,
     scratch2: Vec<f64>,
+    /// Work integrals, when the `energy` channel is recorded.
+    energy: Option<EnergyBook>,
     accepted: usize,
     scratch: Vec<f64>,
     /// Each clearance joint's kinematics at the last and the next sample of a step
@@ -155,6 +158,7 @@ impl<'a> MechanismSystem<'a> {
             monitors: Vec::new(),
             monitor_values: Vec::new(),
             scratch2: Vec::new(),
+            energy: channels.energy.then(|| EnergyBook::new(model)),
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -204,6 +208,27 @@ impl<'a> MechanismSystem<'a> {
     /// Feed the monitors the initial state.
     pub fn observe_start(&mut self, t: f64, y: &[f64]) -> Result<()> {
         self.observe(t, y)
+    }
+
+    /// The powers of [`EnergyBook::powers`] at (t, y) (a full evaluation).
+    fn powers(&mut self, t: f64, y: &[f64]) -> Result<Powers> {
+        self.ws.evaluate(self.model, &self.memory, t, y)?;
+        let n = 3 * self.model.n_bodies();
+        let mut book = self.energy.take().unwrap_or_default();
+        let p = book.powers(self.model, &self.ws, &self.memory, t, &y[n..2 * n]);
+        self.energy = Some(book);
+        Ok(p)
+    }
+
+    /// Start the work integrals at the initial state.
+    pub fn energy_start(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        if self.energy.is_some() {
+            let p = self.powers(t, y)?;
+            if let Some(b) = self.energy.as_mut() {
+                b.start(t, p);
+            }
+        }
+        Ok(())
     }
 
     /// Feed the monitors `samples_per_step` points of the accepted step (t0, t1], the last at
@@ -294,6 +319,41 @@ impl<'a> MechanismSystem<'a> {
             }
         }
         Ok(())
+    }
+
+    /// The first switch of a clearance joint in (t0, t1] (see [`OdeSystem::switching_point`]).
+    fn joint_switch(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<Option<f64>> {
+        let nj = self.memory.len();
+        for j in 0..nj {
+            self.switch_prev[j] = (t0, self.joint_kinematics(j, y0));
+        }
+        for i in 1..=SWITCH_SAMPLES {
+            let tb = if i == SWITCH_SAMPLES { t1 } else { t0 + (t1 - t0) * i as f64 / SWITCH_SAMPLES as f64 };
+            let mut s = std::mem::take(&mut self.scratch);
+            let yb: &[f64] = if i == SWITCH_SAMPLES {
+                y1
+            } else {
+                dense.eval(tb, &mut s);
+                &s
+            };
+            for j in 0..nj {
+                self.switch_next[j] = self.joint_kinematics(j, yb);
+            }
+            self.scratch = s;
+            // Sub-intervals are visited in time order: the first with a switch holds the earliest.
+            let mut first: Option<f64> = None;
+            for j in 0..nj {
+                let (a, b) = (self.switch_prev[j], (tb, self.switch_next[j]));
+                if let Some(ts) = self.first_switch_between(j, a, b, dense) {
+                    first = Some(first.map_or(ts, |f| f.min(ts)));
+                }
+                self.switch_prev[j] = b;
+            }
+            if first.is_some() {
+                return Ok(first);
+            }
+        }
+        Ok(None)
     }
 
     pub fn worst_joint(&self) -> Option<(usize, JointKinematics)> {
@@ -436,42 +496,34 @@ impl OdeSystem for MechanismSystem<'_> {
     /// whole short contact, a slip reversal through the friction ramp) is seen too; the first
     /// crossing is located in the first sub-interval that has one.
     fn switching_point(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<Option<f64>> {
-        let nj = self.memory.len();
-        for j in 0..nj {
-            self.switch_prev[j] = (t0, self.joint_kinematics(j, y0));
-        }
-        for i in 1..=SWITCH_SAMPLES {
-            let tb = if i == SWITCH_SAMPLES { t1 } else { t0 + (t1 - t0) * i as f64 / SWITCH_SAMPLES as f64 };
-            let mut s = std::mem::take(&mut self.scratch);
-            let yb: &[f64] = if i == SWITCH_SAMPLES {
-                y1
-            } else {
-                dense.eval(tb, &mut s);
-                &s
-            };
-            for j in 0..nj {
-                self.switch_next[j] = self.joint_kinematics(j, yb);
-            }
-            self.scratch = s;
-            // Sub-intervals are visited in time order: the first with a switch holds the earliest.
-            let mut first: Option<f64> = None;
-            for j in 0..nj {
-                let (a, b) = (self.switch_prev[j], (tb, self.switch_next[j]));
-                if let Some(ts) = self.first_switch_between(j, a, b, dense) {
-                    first = Some(first.map_or(ts, |f| f.min(ts)));
-                }
-                self.switch_prev[j] = b;
-            }
-            if first.is_some() {
-                return Ok(first);
-            }
-        }
-        Ok(None)
+        // Corners of time-tabulated loads (docs/physics.md §10.3) end a step like a switch.
+        let t_break = self.model.forces.iter().filter_map(|f| f.time_break_in(t0, t1)).reduce(f64::min);
+        let Some(tb) = t_break else {
+            return self.joint_switch(t0, y0, t1, y1, dense);
+        };
+        let mut end = std::mem::take(&mut self.scratch2);
+        end.resize(y0.len(), 0.0);
+        dense.eval(tb, &mut end);
+        let joint = self.joint_switch(t0, y0, tb, &end, dense);
+        self.scratch2 = end;
+        Ok(joint?.or(t_break))
     }
 
     /// Locate contact onsets inside the step and record δ̇⁽⁻⁾ there (spec §3, P3); clear the
     /// memory at separation.
     fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
+        if self.energy.is_some() {
+            // The step's powers with the impact memory it was integrated with (§10.5).
+            let tm = 0.5 * (t0 + t1);
+            let mut s = std::mem::take(&mut self.scratch);
+            dense.eval(tm, &mut s);
+            let pm = self.powers(tm, &s);
+            self.scratch = s;
+            let (pm, p1) = (pm?, self.powers(t1, y1)?);
+            if let Some(b) = self.energy.as_mut() {
+                b.step(t0, t1, pm, p1);
+            }
+        }
         let mut changed = false;
         for j in 0..self.memory.len() {
             let k1 = self.joint_kinematics(j, y1);
@@ -583,6 +635,11 @@ impl OdeSystem for MechanismSystem<'_> {
             self.ws.evaluate(self.model, &self.memory, t, y)?;
         }
         self.recording.push(t, y, &self.ws);
+        if let Some(book) = &self.energy {
+            let e = EnergyBook::stored(self.model, &self.ws);
+            let w = book.work_at(t);
+            self.recording.energy.extend_from_slice(&[e[0], e[1], e[2], w[0], w[1], w[2], w[3]]);
+        }
         Ok(())
     }
 }
@@ -637,6 +694,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;
     }
+    sys.energy_start(rs.t0, &y0)?;
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {

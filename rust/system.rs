@@ -119,6 +119,9 @@ impl Workspace {
             self.force[3 * b + 1] = m * model.gravity.y;
             self.force[3 * b + 2] = 0.0;
         }
+        for f in &model.forces {
+            f.apply(t, &self.kin, &mut self.force);
+        }
         for (j, joint) in model.clearance.iter().enumerate() {
             let k = joint.kinematics(&self.kin);
             let f = joint.force(&k, &memory[j]);

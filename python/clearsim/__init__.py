@@ -6,6 +6,7 @@ analyses the results. SI units throughout.
 
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError
+from .forces import Table
 from .joints import Dry, Lubricated
 from .mechanism import GROUND, Mechanism
 from .result import Result
@@ -27,6 +28,7 @@ __all__ = [
     "Result",
     "load_scene",
     "SimulationError",
+    "Table",
     "models",
     "monte_carlo",
     "reliability",

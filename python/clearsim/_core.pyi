@@ -7,6 +7,7 @@ import numpy.typing as npt
 
 __version__: str
 JOINT_COLUMNS: List[str]
+ENERGY_COLUMNS: List[str]
 
 class CompiledModel:
     """A validated, compiled mechanism."""
@@ -25,9 +26,11 @@ class CompiledModel:
     def simulate(self, settings: Dict[str, Any], progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
     def idealized(self) -> "CompiledModel": ...
 
-def compile(description: Dict[str, Any]) -> CompiledModel: ...
+def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
+    """Validate and compile a description (plain data or its JSON text), read by serde."""
+
 def run_batch(
-    descriptions: List[Dict[str, Any]],
+    descriptions: List[Union[str, Dict[str, Any]]],
     settings: Union[Dict[str, Any], List[Dict[str, Any]]],
     threads: int = 0,
 ) -> List[Union[Dict[str, Any], BaseException]]: ...

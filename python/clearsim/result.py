@@ -92,6 +92,20 @@ class Result:
         """(N, rows) Lagrange multipliers λ (needs ``outputs=[..., "reactions"]``)."""
         return self._channel("lambda", "reactions")
 
+    def energy(self) -> Dict[str, np.ndarray]:
+        """Energy bookkeeping [J] at each output (needs ``outputs=[..., "energy"]``;
+        docs/physics.md §10.5): stored energies ``kinetic``, ``gravity`` (−Σ m g·r),
+        ``elastic`` (springs), and the work done on the mechanism since t0 by ``work_loads``
+        (applied forces, torques, motors), ``work_dampers`` (≤ 0), ``work_drivers`` (the
+        prescribed-motion drivers) and ``work_joints`` (contact, friction and film forces of the
+        clearance joints). The work is integrated along every accepted step, not from the stored
+        outputs. ``balance`` = kinetic + gravity + elastic − Σ work stays constant up to the
+        integration error and the work of the constraint stabilisation."""
+        e = self._channel("energy", "energy")
+        out = {name: e[:, k] for k, name in enumerate(_core.ENERGY_COLUMNS)}
+        out["balance"] = e[:, :3].sum(axis=1) - e[:, 3:].sum(axis=1)
+        return out
+
     @property
     def constraint_violation(self) -> np.ndarray:
         """(N,) ‖Φ‖₂ of the constraint equations at each output [m, rad]."""

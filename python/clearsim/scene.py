@@ -59,6 +59,31 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
 
+    [[spring_damper]]                # force elements (docs/physics.md §10), all optional
+    bodies = ["ground", "slider"]    # between points[0] of bodies[0] and points[1] of bodies[1]
+    points = [[0.3, 0.0], [0.0, 0.0]]
+    stiffness = 2000.0               # N/m (or force_table = {x = [m], y = [N]}: tension of deflection)
+    damping = 5.0                    # N s/m
+    # free_length = 0.15             # m (default: the distance assembled at t = 0)
+    # name = "return-spring"
+
+    # [[rotational_spring_damper]]   # bodies = [a, b], stiffness [N m/rad], damping
+    #                                #   [N m s/rad], free_angle [rad] (default: assembled)
+
+    [[force]]                        # an applied force at a body point:
+    body = "slider"
+    point = [0.0, 0.0]               # body frame (default the centroid)
+    force = [-50.0, 0.0]             # N, constant; or direction = [dx, dy] with
+    # magnitude = 50.0               #   N, or a table of time or of a driver's angle:
+    # magnitude = { x = [0.0, 2.6, 2.8, 3.1], y = [0.0, 0.0, 400.0, 0.0], of = "crank-drive", period = 6.283185307179586 }
+    # frame = "body"                 # turn the direction with the body (default "global")
+
+    # [[torque]]                     # body, torque [N m] (a number or a table as above),
+    #                                #   reaction = "other body" (optional)
+    # [[motor]]                      # body, stall_torque [N m], no_load_speed [rad/s] or
+    #                                #   no_load_rpm, reaction (default "ground"): instead
+    #                                #   of a [[driver]] on that body
+
     [simulation]
     t_end = 0.4                      # s, or: cycles = 3 (× period [s], default 2π/|ω| of
                                      #   the first constant-speed driver; period = ... to set it)
@@ -111,6 +136,7 @@ import numpy as np
 
 from . import _core
 from .errors import InputError, SimulationError
+from .forces import Table
 from .joints import Dry, Lubricated
 from .mechanism import OUTPUTS, Mechanism
 from .result import Result
@@ -559,7 +585,18 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 
 
 # ====================================================================== reading a scene
-_TOP_KEYS = ("mechanism", "body", "joint", "driver", "clearance_joint", "simulation", "outputs", "reliability")
+_TOP_KEYS = (
+    "mechanism", "body", "joint", "driver", "clearance_joint", "spring_damper", "rotational_spring_damper", "force", "torque", "motor",
+    "simulation", "outputs", "reliability",
+)  # fmt: skip
+_FORCE_KEYS = {
+    "spring_damper": ("name", "bodies", "points", "stiffness", "damping", "free_length", "force_table"),
+    "rotational_spring_damper": ("name", "bodies", "stiffness", "damping", "free_angle"),
+    "force": ("name", "body", "point", "force", "direction", "magnitude", "frame"),
+    "torque": ("name", "body", "torque", "reaction"),
+    "motor": ("name", "body", "stall_torque", "no_load_speed", "no_load_rpm", "reaction"),
+}
+_TABLE_KEYS = ("x", "y", "of", "period")
 _MECHANISM_KEYS = ("name", "description", "gravity", "baumgarte")
 _BODY_KEYS = ("name", "mass", "inertia", "position", "angle", "ends", "velocity")
 _JOINT_KEYS = {"revolute": ("type", "name", "bodies", "points"), "prismatic": ("type", "name", "bodies", "points", "axis")}
@@ -644,7 +681,7 @@ class _Builder:
     def relocate(self, err: InputError, table: Optional[_Table]) -> InputError:
         """``err`` (raised by the builder or the Rust core) with the file and line."""
         fld = getattr(err, "field", "") or ""
-        m = re.match(r"^(body|clearance joint|joint|driver|revolute|prismatic) '([^']*)'\.(.+)$", fld)
+        m = re.match(r"^(body|clearance joint|joint|driver|revolute|prismatic|force) '([^']*)'\.(.+)$", fld)
         if m:
             kind = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint"}.get(m.group(1), m.group(1))
             table = self.entries.get((kind, m.group(2)), table)
@@ -668,7 +705,43 @@ class _Builder:
             self.driver(m, t)
         for t in top.array_of_tables("clearance_joint", _CLEARANCE_KEYS):
             self.clearance_joint(m, t)
+        for kind, keys in _FORCE_KEYS.items():
+            for t in top.array_of_tables(kind, keys):
+                self.force_element(m, kind, t)
         return m
+
+    def _load(self, t: _Table, key: str, default: Any = None) -> Any:
+        """A number, or an inline table {x, y, of, period} as a :class:`Table`."""
+        if key in t and isinstance(t.data[key], dict):
+            sub = t.table(key, _TABLE_KEYS)
+            assert sub is not None
+            return Table(x=sub.numbers("x"), y=sub.numbers("y"), of=sub.string("of", "time"), period=sub.number("period", None))
+        return t.number(key, default)
+
+    def force_element(self, m: Mechanism, kind: str, t: _Table) -> None:
+        name = t.string("name", None)
+        self._register("force", name, t)
+        if kind in ("spring_damper", "rotational_spring_damper"):
+            bodies = t.strings("bodies")
+            if len(bodies) != 2:
+                raise t.error("bodies", f"invalid {_dotted(t.where, 'bodies')} = {bodies!r}: must name two bodies", bodies)
+            common = dict(stiffness=t.number("stiffness", 0.0), damping=t.number("damping", 0.0), name=name)
+            if kind == "spring_damper":
+                (pa, pb) = t.points("points", 2)
+                self.call(t, m.spring_damper, bodies[0], pa, bodies[1], pb, free_length=t.number("free_length", None), force_table=self._load(t, "force_table"), **common)
+            else:
+                self.call(t, m.rotational_spring_damper, bodies[0], bodies[1], free_angle=t.number("free_angle", None), **common)
+        elif kind == "force":
+            force = t.point("force", None)
+            kwargs = dict(direction=t.point("direction", None), magnitude=self._load(t, "magnitude"), frame=t.string("frame", "global"), name=name)
+            self.call(t, m.force, t.string("body"), t.point("point", [0.0, 0.0]), force, **kwargs)
+        elif kind == "torque":
+            self.call(t, m.torque, t.string("body"), self._load(t, "torque", _REQUIRED), reaction=t.string("reaction", None), name=name)
+        else:
+            self.call(
+                t, m.motor, t.string("body"), stall_torque=t.number("stall_torque"), no_load_speed=t.number("no_load_speed", None),
+                no_load_rpm=t.number("no_load_rpm", None), reaction=t.string("reaction", "ground"), name=name,
+            )  # fmt: skip
 
     def _register(self, kind: str, name: Optional[str], table: _Table) -> None:
         if name is not None:

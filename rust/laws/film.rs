@@ -51,12 +51,13 @@ impl FilmState {
 }
 
 /// Which hydrodynamic film model a lubricated joint uses.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 pub enum FilmModel {
     /// Long (Pinkus–Sternlicht, infinitely long) bearing, pressure P12 corrected, Gümbel
     /// condition on the exact zeros of p (the paper's model; L/D > 2).
     #[cfg_attr(feature = "serde", serde(rename = "long"))]
+    #[default]
     LongBearing,
     /// Short (Ocvirk) bearing with wedge and squeeze, Gümbel condition (L/D < 1).
     #[cfg_attr(feature = "serde", serde(rename = "short"))]

@@ -61,8 +61,9 @@ pub struct DriverDesc {
     pub law: AngleLaw,
 }
 
-/// Parameters of a dry clearance joint (spec §3).
+/// Parameters of a dry clearance joint (spec §3); a missing field takes [`DryDesc::steel`]'s value.
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct DryDesc {
     pub normal_law: NormalLaw,
@@ -93,19 +94,25 @@ pub struct DryDesc {
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct LubricatedDesc {
+    #[cfg_attr(feature = "serde", serde(default))]
     pub film: FilmModel,
     /// Dynamic viscosity μ [Pa s].
     pub viscosity: f64,
     /// Bearing length L [m].
     pub length: f64,
-    /// Small-eccentricity threshold ε0 and exponent m (P15–P16).
+    /// Small-eccentricity threshold ε0 and exponent m (P15–P16); default 2e-6 and 0.5.
+    #[cfg_attr(feature = "serde", serde(default = "default_eps0"))]
     pub eps0: f64,
+    #[cfg_attr(feature = "serde", serde(default = "default_m"))]
     pub m: f64,
-    /// Transition band width e0 [m] (P18).
-    pub e0: f64,
-    /// The film is evaluated at min(ε, ε_max) inside the transition band.
+    /// Transition band width e0 [m] (P18); `None`: 5 % of the clearance.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub e0: Option<f64>,
+    /// The film is evaluated at min(ε, ε_max) inside the transition band; default 0.99.
+    #[cfg_attr(feature = "serde", serde(default = "default_eps_max"))]
     pub eps_max: f64,
-    /// The dry law used beyond e = c.
+    /// The dry law used beyond e = c (default: [`DryDesc::steel`]).
+    #[cfg_attr(feature = "serde", serde(default))]
     pub dry: DryDesc,
 }
 
@@ -136,14 +143,145 @@ pub struct ClearanceJointDesc {
     pub initial_eccentricity: [f64; 2],
 }
 
+/// What a [`Table`] is a function of.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
+#[derive(Debug, Clone, PartialEq)]
+pub enum TableArgument {
+    /// Time t [s].
+    Time,
+    /// The absolute angle θ [rad] of a body (a driven crank: the driver's angle).
+    Angle { body: usize },
+}
+
+/// A piecewise-linear function y(x) (x strictly increasing), held at its end values outside
+/// [x₀, x_last]; with a `period` the argument is first wrapped into [x₀, x₀ + period).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub period: Option<f64>,
+}
+
+/// A scalar load: constant, or a table of time or of a body's angle.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
+#[derive(Debug, Clone, PartialEq)]
+pub enum Profile {
+    Constant { value: f64 },
+    Table { argument: TableArgument, table: Table },
+}
+
+/// The frame a force's direction is given in.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Frame {
+    #[default]
+    Global,
+    Body,
+}
+
+/// A force element or load (docs/physics.md §10). Body references: `None` is the ground.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
+#[derive(Debug, Clone, PartialEq)]
+pub enum ForceDesc {
+    /// Translational spring-damper between two body points: tension
+    /// F = k (ℓ − ℓ₀) + c ℓ̇, or F = table(ℓ − ℓ₀) + c ℓ̇ [N].
+    SpringDamper {
+        name: String,
+        body_a: BodyRef,
+        point_a: [f64; 2],
+        body_b: BodyRef,
+        point_b: [f64; 2],
+        /// k [N/m].
+        #[cfg_attr(feature = "serde", serde(default))]
+        stiffness: f64,
+        /// c [N s/m].
+        #[cfg_attr(feature = "serde", serde(default))]
+        damping: f64,
+        /// ℓ₀ [m]; `None`: the assembled distance.
+        #[cfg_attr(feature = "serde", serde(default))]
+        free_length: Option<f64>,
+        /// Force–deflection table (deflection [m] → tension [N]) used instead of k.
+        #[cfg_attr(feature = "serde", serde(default))]
+        force_table: Option<Table>,
+    },
+    /// Rotational spring-damper: torque on b (and −torque on a)
+    /// T = −k (θ_b − θ_a − φ₀) − c (θ̇_b − θ̇_a) [N m].
+    RotationalSpringDamper {
+        name: String,
+        body_a: BodyRef,
+        body_b: BodyRef,
+        /// k [N m/rad].
+        #[cfg_attr(feature = "serde", serde(default))]
+        stiffness: f64,
+        /// c [N m s/rad].
+        #[cfg_attr(feature = "serde", serde(default))]
+        damping: f64,
+        /// φ₀ [rad]; `None`: the assembled relative angle.
+        #[cfg_attr(feature = "serde", serde(default))]
+        free_angle: Option<f64>,
+    },
+    /// A force F = magnitude · direction [N] at a body point (direction: unit vector in the
+    /// global or the body frame).
+    Force {
+        name: String,
+        body: usize,
+        point: [f64; 2],
+        direction: [f64; 2],
+        #[cfg_attr(feature = "serde", serde(default))]
+        frame: Frame,
+        magnitude: Profile,
+    },
+    /// A torque [N m] on `body` (counter-clockwise positive), reacted on `reaction` if given.
+    Torque {
+        name: String,
+        body: usize,
+        #[cfg_attr(feature = "serde", serde(default))]
+        reaction: BodyRef,
+        magnitude: Profile,
+    },
+    /// A motor with a linear speed–torque line on `body`, its stator on `reaction` (ground if
+    /// `None`): T = T_stall (1 − ω/ω₀) · sign(ω₀), ω the relative speed [rad/s].
+    Motor {
+        name: String,
+        body: usize,
+        #[cfg_attr(feature = "serde", serde(default))]
+        reaction: BodyRef,
+        /// Stall torque T_stall [N m] (> 0).
+        stall_torque: f64,
+        /// No-load speed ω₀ [rad/s] (≠ 0; its sign is the direction of rotation).
+        no_load_speed: f64,
+    },
+}
+
+impl ForceDesc {
+    pub fn name(&self) -> &str {
+        match self {
+            ForceDesc::SpringDamper { name, .. }
+            | ForceDesc::RotationalSpringDamper { name, .. }
+            | ForceDesc::Force { name, .. }
+            | ForceDesc::Torque { name, .. }
+            | ForceDesc::Motor { name, .. } => name,
+        }
+    }
+}
+
 /// Everything needed to compile a model.
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct MechanismDesc {
     pub bodies: Vec<BodyDesc>,
     pub joints: Vec<JointDesc>,
     pub drivers: Vec<DriverDesc>,
     pub clearance_joints: Vec<ClearanceJointDesc>,
+    /// Force elements and loads.
+    pub forces: Vec<ForceDesc>,
     /// Gravity [m/s²].
     pub gravity: [f64; 2],
     /// Baumgarte coefficients α, β (P26); default 50, 50.
@@ -157,9 +295,29 @@ impl Default for MechanismDesc {
             joints: vec![],
             drivers: vec![],
             clearance_joints: vec![],
+            forces: vec![],
             gravity: [0.0, -9.81],
             baumgarte: [50.0, 50.0],
         }
+    }
+}
+
+#[cfg(feature = "serde")]
+fn default_eps0() -> f64 {
+    2e-6
+}
+#[cfg(feature = "serde")]
+fn default_m() -> f64 {
+    0.5
+}
+#[cfg(feature = "serde")]
+fn default_eps_max() -> f64 {
+    0.99
+}
+
+impl Default for DryDesc {
+    fn default() -> Self {
+        DryDesc::steel()
     }
 }
 
@@ -182,4 +340,70 @@ impl DryDesc {
             impact_speed_floor: 1e-3,
         }
     }
+}
+
+/// The element lists of a description and what one element is called in messages.
+pub const ELEMENTS: [(&str, &str); 5] =
+    [("bodies", "body"), ("joints", "joint"), ("drivers", "driver"), ("clearance_joints", "clearance joint"), ("forces", "force")];
+
+/// Read a description from JSON (what the Python layer and scene files hand over). A bad
+/// entry is reported as an [`crate::error::Error::InvalidInput`] naming the element and the
+/// field: `body 'crank'.mass`, `driver 'drive1'.law`.
+#[cfg(feature = "serde")]
+pub fn from_json(text: &str) -> crate::error::Result<MechanismDesc> {
+    use crate::error::Error;
+    let v: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::invalid("description", "(JSON)", e.to_string()))?;
+    from_value(&v)
+}
+
+/// [`from_json`] for a parsed JSON value.
+#[cfg(feature = "serde")]
+pub fn from_value(v: &serde_json::Value) -> crate::error::Result<MechanismDesc> {
+    use crate::error::Error;
+    serde_path_to_error::deserialize::<_, MechanismDesc>(v).map_err(|e| {
+        let (field, value) = name_path(v, e.path());
+        Error::invalid(field, value, e.inner().to_string())
+    })
+}
+
+/// The field a deserialisation error points at, named the way validation names it, and the
+/// value found there (shortened).
+#[cfg(feature = "serde")]
+fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path) -> (String, String) {
+    use serde_path_to_error::Segment;
+    let mut field = String::new();
+    let mut at = Some(root);
+    let mut list: Option<&str> = None;
+    for seg in path.iter() {
+        match seg {
+            Segment::Seq { index } => {
+                let item = at.and_then(|v| v.get(*index));
+                let named = list.and_then(|l| ELEMENTS.iter().find(|(k, _)| *k == l)).and_then(|(_, what)| {
+                    item.and_then(|i| i.get("name")).and_then(|n| n.as_str()).map(|n| format!("{what} '{n}'"))
+                });
+                match named {
+                    Some(n) if field == list.unwrap_or_default() => field = n,
+                    _ => field.push_str(&format!("[{index}]")),
+                }
+                at = item;
+            }
+            Segment::Map { key } => {
+                if !field.is_empty() {
+                    field.push('.');
+                }
+                field.push_str(key);
+                list = if at.is_some_and(|a| std::ptr::eq(a, root)) { Some(key.as_str()) } else { None };
+                at = at.and_then(|v| v.get(key.as_str()));
+            }
+            Segment::Enum { .. } | Segment::Unknown => {}
+        }
+    }
+    if field.is_empty() {
+        field.push_str("description");
+    }
+    let mut value = at.map_or_else(|| "(missing)".to_string(), |v| v.to_string());
+    if value.chars().count() > 80 {
+        value = value.chars().take(77).collect::<String>() + "…";
+    }
+    (field, value)
 }

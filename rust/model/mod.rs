@@ -10,9 +10,14 @@ pub use description::*;
 use crate::clearance::{ClearanceJoint, Film};
 use crate::constraints::{CompiledAngleLaw, Constraint, V2};
 use crate::error::{Error, Result};
+use crate::forces::{Magnitude, PiecewiseLinear, ForceElement};
 use crate::laws::contact::{stiffness_internal, stiffness_paper_printed, ContactLaw};
 use crate::laws::film::BearingGeometry;
 use crate::laws::friction::ModifiedCoulomb;
+
+/// The transition band width e0 as a fraction of the clearance when a lubricated joint does
+/// not give one (P18).
+pub const DEFAULT_TRANSITION_WIDTH: f64 = 0.05;
 
 /// Everything the right-hand side needs, immutable during a run.
 #[derive(Debug, Clone)]
@@ -29,6 +34,9 @@ pub struct Model {
     /// Number of scalar constraint equations.
     pub rows: usize,
     pub clearance: Vec<ClearanceJoint>,
+    /// Force elements and loads (empty for a scene without any: nothing runs).
+    pub forces: Vec<ForceElement>,
+    pub force_names: Vec<String>,
     /// Approximate initial positions (x, y, θ per body) and velocity guesses.
     pub q_guess: Vec<f64>,
     pub qd_guess: Vec<f64>,
@@ -83,7 +91,7 @@ impl Model {
         }
         let clearance = desc.clearance_joints.iter().map(compile_clearance).collect::<Result<Vec<_>>>()?;
         let rows = constraints.iter().map(Constraint::rows).sum();
-        Ok(Model {
+        let mut model = Model {
             body_names: desc.bodies.iter().map(|b| b.name.clone()).collect(),
             mass,
             gravity: desc.gravity.into(),
@@ -101,10 +109,14 @@ impl Model {
             constraints,
             rows,
             clearance,
+            forces: Vec::new(),
+            force_names: desc.forces.iter().map(|f| f.name().to_string()).collect(),
             q_guess,
             qd_guess,
             initial_eccentricity: desc.clearance_joints.iter().map(|c| c.initial_eccentricity.into()).collect(),
-        })
+        };
+        model.forces = compile_forces(&model, desc)?;
+        Ok(model)
     }
 
     /// The name of the constraint that equation `row` belongs to (see `constraint_names`).
@@ -182,7 +194,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
                 },
                 eps0: l.eps0,
                 m: l.m,
-                e0: l.e0,
+                e0: l.e0.unwrap_or(DEFAULT_TRANSITION_WIDTH * c.clearance),
                 eps_max: l.eps_max,
             }),
         ),
@@ -204,4 +216,60 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
         friction: ModifiedCoulomb { friction_coefficient: dry.friction, v0: dry.v0, v1: dry.v1 },
         film,
     })
+}
+
+/// Compile the force elements. A spring without a free length (angle) takes the distance
+/// (relative angle) of the mechanism assembled at t = 0.
+fn compile_forces(model: &Model, desc: &MechanismDesc) -> Result<Vec<ForceElement>> {
+    if desc.forces.is_empty() {
+        return Ok(Vec::new());
+    }
+    let needs_pose = desc.forces.iter().any(|f| {
+        matches!(f, ForceDesc::SpringDamper { free_length: None, .. } | ForceDesc::RotationalSpringDamper { free_angle: None, .. })
+    });
+    let kin: Vec<crate::constraints::BodyKin> = if needs_pose {
+        let (q, qd) = crate::assembly::assemble(model, 0.0)?;
+        (0..model.n_bodies()).map(|b| crate::constraints::BodyKin::new(&q[3 * b..3 * b + 3], &qd[3 * b..3 * b + 3])).collect()
+    } else {
+        Vec::new()
+    };
+    let at = |b: &BodyRef| b.map_or(crate::constraints::BodyKin::GROUND, |i| kin[i]);
+    let idx = |b: &BodyRef| b.map(|i| i as u32);
+    Ok(desc
+        .forces
+        .iter()
+        .map(|f| match f {
+            ForceDesc::SpringDamper { body_a, point_a, body_b, point_b, stiffness, damping, free_length, force_table, .. } => ForceElement::SpringDamper {
+                a: idx(body_a),
+                sa: (*point_a).into(),
+                b: idx(body_b),
+                sb: (*point_b).into(),
+                stiffness: *stiffness,
+                damping: *damping,
+                free_length: free_length.unwrap_or_else(|| at(body_b).point((*point_b).into()).sub(at(body_a).point((*point_a).into())).norm()),
+                table: force_table.as_ref().map(PiecewiseLinear::new),
+            },
+            ForceDesc::RotationalSpringDamper { body_a, body_b, stiffness, damping, free_angle, .. } => ForceElement::RotationalSpringDamper {
+                a: idx(body_a),
+                b: idx(body_b),
+                stiffness: *stiffness,
+                damping: *damping,
+                free_angle: free_angle.unwrap_or_else(|| at(body_b).th - at(body_a).th),
+            },
+            ForceDesc::Force { body, point, direction, frame, magnitude, .. } => {
+                let d = V2::from(*direction);
+                ForceElement::Force {
+                    body: *body as u32,
+                    s: (*point).into(),
+                    direction: d.scale(1.0 / d.norm()),
+                    body_frame: *frame == Frame::Body,
+                    magnitude: Magnitude::new(magnitude),
+                }
+            }
+            ForceDesc::Torque { body, reaction, magnitude, .. } => ForceElement::Torque { body: *body as u32, reaction: idx(reaction), magnitude: Magnitude::new(magnitude) },
+            ForceDesc::Motor { body, reaction, stall_torque, no_load_speed, .. } => {
+                ForceElement::Motor { body: *body as u32, reaction: idx(reaction), stall_torque: *stall_torque, no_load_speed: *no_load_speed }
+            }
+        })
+        .collect())
 }

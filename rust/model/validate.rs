@@ -230,14 +230,128 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 positive(&format!("{f}.length"), l.length)?;
                 within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;
                 within(&format!("{f}.m"), l.m, 0.0, 1.0, true, true)?;
-                positive(&format!("{f}.e0"), l.e0)?;
+                if let Some(e0) = l.e0 {
+                    positive(&format!("{f}.e0"), e0)?;
+                }
                 within(&format!("{f}.eps_max"), l.eps_max, 0.0, 1.0, true, true)?;
                 validate_dry(&f, &l.dry)?;
             }
         }
     }
+    unique("force", desc.forces.iter().map(|f| match f {
+        ForceDesc::SpringDamper { name, .. }
+        | ForceDesc::RotationalSpringDamper { name, .. }
+        | ForceDesc::Force { name, .. }
+        | ForceDesc::Torque { name, .. }
+        | ForceDesc::Motor { name, .. } => name,
+    }))?;
+    for fd in &desc.forces {
+        validate_force(fd, nb)?;
+    }
     point("gravity", desc.gravity)?;
     non_negative("baumgarte.alpha", desc.baumgarte[0])?;
     non_negative("baumgarte.beta", desc.baumgarte[1])?;
+    Ok(())
+}
+
+fn validate_table(f: &str, t: &Table) -> Result<()> {
+    if t.x.len() < 2 || t.x.len() != t.y.len() {
+        return Err(Error::invalid(format!("{f}.x"), format!("{} points ({} values y)", t.x.len(), t.y.len()), "a table needs at least 2 points and as many y as x"));
+    }
+    for (k, (x, y)) in t.x.iter().zip(&t.y).enumerate() {
+        finite(&format!("{f}.x[{k}]"), *x)?;
+        finite(&format!("{f}.y[{k}]"), *y)?;
+    }
+    if let Some(k) = t.x.windows(2).position(|w| !(w[1] > w[0])) {
+        return Err(Error::invalid(format!("{f}.x[{}]", k + 1), num(t.x[k + 1]), format!("must exceed x[{k}] = {} (x increases strictly)", num(t.x[k]))));
+    }
+    if let Some(p) = t.period {
+        positive(&format!("{f}.period"), p)?;
+        let span = t.x[t.x.len() - 1] - t.x[0];
+        if span > p * (1.0 + 1e-12) {
+            return Err(Error::invalid(format!("{f}.period"), num(p), format!("must cover the table's span x_last − x₀ = {}", num(span))));
+        }
+    }
+    Ok(())
+}
+
+fn validate_profile(f: &str, p: &Profile, nb: usize) -> Result<()> {
+    match p {
+        Profile::Constant { value } => finite(f, *value),
+        Profile::Table { argument, table } => {
+            if let TableArgument::Angle { body } = argument {
+                body_ref(&format!("{f}.argument.body"), Some(*body), nb)?;
+            }
+            validate_table(f, table)
+        }
+    }
+}
+
+fn two_bodies(f: &str, a: BodyRef, b: BodyRef, nb: usize) -> Result<()> {
+    body_ref(&format!("{f}.body_a"), a, nb)?;
+    body_ref(&format!("{f}.body_b"), b, nb)?;
+    if a == b {
+        return Err(Error::invalid(format!("{f}.body_b"), format!("{b:?}"), "must differ from body_a (an element acts between two bodies, or a body and the ground)"));
+    }
+    Ok(())
+}
+
+fn validate_force(fd: &ForceDesc, nb: usize) -> Result<()> {
+    let f = format!("force '{}'", fd.name());
+    match fd {
+        ForceDesc::SpringDamper { body_a, point_a, body_b, point_b, stiffness, damping, free_length, force_table, .. } => {
+            two_bodies(&f, *body_a, *body_b, nb)?;
+            point(&format!("{f}.point_a"), *point_a)?;
+            point(&format!("{f}.point_b"), *point_b)?;
+            non_negative(&format!("{f}.stiffness"), *stiffness)?;
+            non_negative(&format!("{f}.damping"), *damping)?;
+            if let Some(l0) = free_length {
+                non_negative(&format!("{f}.free_length"), *l0)?;
+            }
+            if let Some(t) = force_table {
+                if *stiffness != 0.0 {
+                    return Err(Error::invalid(format!("{f}.stiffness"), num(*stiffness), "give either a stiffness or a force_table, not both"));
+                }
+                validate_table(&format!("{f}.force_table"), t)?;
+            }
+        }
+        ForceDesc::RotationalSpringDamper { body_a, body_b, stiffness, damping, free_angle, .. } => {
+            two_bodies(&f, *body_a, *body_b, nb)?;
+            non_negative(&format!("{f}.stiffness"), *stiffness)?;
+            non_negative(&format!("{f}.damping"), *damping)?;
+            if let Some(a) = free_angle {
+                finite(&format!("{f}.free_angle"), *a)?;
+            }
+        }
+        ForceDesc::Force { body, point: p, direction, magnitude, .. } => {
+            body_ref(&format!("{f}.body"), Some(*body), nb)?;
+            point(&format!("{f}.point"), *p)?;
+            point(&format!("{f}.direction"), *direction)?;
+            if direction[0].hypot(direction[1]) < 1e-12 {
+                return Err(Error::invalid(format!("{f}.direction"), format!("{direction:?}"), "must be a non-zero direction"));
+            }
+            validate_profile(&format!("{f}.magnitude"), magnitude, nb)?;
+        }
+        ForceDesc::Torque { body, reaction, magnitude, .. } => {
+            body_ref(&format!("{f}.body"), Some(*body), nb)?;
+            body_ref(&format!("{f}.reaction"), *reaction, nb)?;
+            if *reaction == Some(*body) {
+                return Err(Error::invalid(format!("{f}.reaction"), body, "must differ from the loaded body"));
+            }
+            validate_profile(&format!("{f}.magnitude"), magnitude, nb)?;
+        }
+        ForceDesc::Motor { body, reaction, stall_torque, no_load_speed, .. } => {
+            body_ref(&format!("{f}.body"), Some(*body), nb)?;
+            body_ref(&format!("{f}.reaction"), *reaction, nb)?;
+            if *reaction == Some(*body) {
+                return Err(Error::invalid(format!("{f}.reaction"), body, "must differ from the rotor body"));
+            }
+            positive(&format!("{f}.stall_torque"), *stall_torque)?;
+            finite(&format!("{f}.no_load_speed"), *no_load_speed)?;
+            if *no_load_speed == 0.0 {
+                return Err(Error::invalid(format!("{f}.no_load_speed"), 0, "must not be zero (its sign is the direction of rotation)"));
+            }
+        }
+    }
     Ok(())
 }

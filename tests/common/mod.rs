@@ -14,20 +14,11 @@ pub const NINE_BAR_CYCLE: f64 = 0.4;
 /// One crank cycle of the slider-crank at 5000 rpm [s].
 pub const SLIDER_CRANK_CYCLE: f64 = 0.012;
 
-/// The description in `tests/data/<name>.json`, with the defaults the Python glue fills in
-/// (`e0 = 0.05 c` of a lubricated joint) applied.
+/// The description in `tests/data/<name>.json`, read the way the Python layer hands it over.
 pub fn description(name: &str) -> MechanismDesc {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(format!("{name}.json"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e} (run python benches/fixtures.py)", path.display()));
-    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
-    for cj in v["clearance_joints"].as_array_mut().unwrap() {
-        let c = cj["clearance"].as_f64().unwrap();
-        let model = cj["model"].as_object_mut().unwrap();
-        if model["kind"] == "lubricated" && !model.contains_key("e0") {
-            model.insert("e0".into(), (0.05 * c).into());
-        }
-    }
-    serde_json::from_value(v).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    clearsim::model::from_json(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// The compiled model of fixture `name`.

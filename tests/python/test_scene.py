@@ -188,3 +188,49 @@ def test_reliability_limits_are_required(tmp_path):
     err = _error(path)
     assert "missing table [reliability.allowable]" in str(err) and "rad" in str(err)
     assert err.field == "reliability"
+
+
+LOADS = """
+[[spring_damper]]
+name = "return-spring"
+bodies = ["ground", "slider"]
+points = [[0.3, 0.0], [0.0, 0.0]]
+stiffness = 2000.0
+damping = 5.0
+
+[[force]]
+name = "stamp"
+body = "slider"
+direction = [1.0, 0.0]
+magnitude = { x = [0.0, 2.6, 2.8, 3.1], y = [0.0, 0.0, 400.0, 0.0], of = "crank-drive", period = 6.283185307179586 }
+
+[[torque]]
+body = "rod"
+torque = 0.5
+"""
+
+
+def test_scene_force_elements_are_the_python_ones(tmp_path):
+    path = tmp_path / "loaded.toml"
+    path.write_text((SCENES / "slider_crank.toml").read_text(encoding="utf-8") + LOADS, encoding="utf-8")
+    ref = models.slider_crank("dry")
+    ref.spring_damper("ground", (0.3, 0.0), "slider", (0.0, 0.0), stiffness=2000.0, damping=5.0, name="return-spring")
+    ref.force("slider", (0, 0), direction=(1, 0), name="stamp",
+              magnitude=clearsim.Table([0.0, 2.6, 2.8, 3.1], [0.0, 0.0, 400.0, 0.0], of="crank-drive", period=2 * math.pi))  # fmt: skip
+    ref.torque("rod", 0.5, name="torque1")
+    m = load_scene(path)
+    assert m.description() == ref.description()
+    assert _same_run(m, ref, 0.003, 0.003 / 100)
+
+
+def test_scene_force_element_error_is_located(tmp_path):
+    path, line = _edit(tmp_path, "stiffness = 2000.0", "stiffness = -2000.0", source=_with_loads(tmp_path))
+    _assert_located(_error(path), path, line, "stiffness", "-2000")
+    path, line = _edit(tmp_path, 'of = "crank-drive"', 'of = "crank-drve"', source=_with_loads(tmp_path))
+    _assert_located(_error(path), path, line, "crank-drve", "no such driver")
+
+
+def _with_loads(tmp_path: Path) -> Path:
+    src = tmp_path / "with_loads.toml"
+    src.write_text((SCENES / "slider_crank.toml").read_text(encoding="utf-8") + LOADS, encoding="utf-8")
+    return src

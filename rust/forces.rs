@@ -1,0 +1,345 @@
+//! Force elements and loads (docs/physics.md §10): translational and rotational
+//! spring-dampers, applied forces and torques (constant or tabulated in time or a body's
+//! angle) and motors with a linear speed–torque line. Compiled from
+//! [`crate::model::ForceDesc`]; a model without force elements carries an empty list and
+//! runs none of this code.
+
+use crate::constraints::{BodyKin, V2};
+use crate::model::{Profile, Table, TableArgument};
+
+/// A piecewise-linear table y(x), x strictly increasing, held at its end values outside
+/// [x₀, x_last]; with a period, x is first wrapped into [x₀, x₀ + period).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PiecewiseLinear {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    period: Option<f64>,
+}
+
+impl PiecewiseLinear {
+    pub fn new(t: &Table) -> Self {
+        PiecewiseLinear { x: t.x.clone(), y: t.y.clone(), period: t.period }
+    }
+
+    #[inline]
+    fn wrap(&self, x: f64) -> f64 {
+        match self.period {
+            Some(p) => self.x[0] + (x - self.x[0]).rem_euclid(p),
+            None => x,
+        }
+    }
+
+    /// y(x).
+    #[inline]
+    pub fn eval(&self, x: f64) -> f64 {
+        let x = self.wrap(x);
+        let n = self.x.len();
+        if x <= self.x[0] {
+            return self.y[0];
+        }
+        if x >= self.x[n - 1] {
+            return self.y[n - 1];
+        }
+        let i = self.x.partition_point(|&xi| xi <= x); // x[i-1] <= x < x[i]
+        let (x0, x1, y0, y1) = (self.x[i - 1], self.x[i], self.y[i - 1], self.y[i]);
+        y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+    }
+
+    /// The first breakpoint (a corner of y, repeated every period) strictly inside (a, b).
+    pub fn first_break_in(&self, a: f64, b: f64) -> Option<f64> {
+        let (x0, n) = (self.x[0], self.x.len());
+        match self.period {
+            None => self.x.iter().copied().find(|&x| x > a && x < b),
+            Some(p) => {
+                let base = x0 + ((a - x0) / p).floor() * p; // the period [base, base + p) holding a
+                let mut shift = base - x0;
+                while x0 + shift < b {
+                    if let Some(x) = self.x.iter().map(|x| x + shift).find(|&x| x > a && x < b) {
+                        return Some(x);
+                    }
+                    if self.x[n - 1] + shift >= b {
+                        return None;
+                    }
+                    shift += p;
+                }
+                None
+            }
+        }
+    }
+
+    /// ∫₀ˣ y(u) du (no period): the potential energy of a tabulated spring at deflection x.
+    pub fn integral_from_zero(&self, x: f64) -> f64 {
+        let prim = |x: f64| -> f64 {
+            // ∫ from x[0] to x, with the end values held outside the table.
+            let n = self.x.len();
+            let mut s = 0.0;
+            if x <= self.x[0] {
+                return self.y[0] * (x - self.x[0]);
+            }
+            for i in 1..n {
+                let (a, b) = (self.x[i - 1], self.x[i].min(x));
+                if b <= a {
+                    break;
+                }
+                let (ya, yb) = (self.y[i - 1], self.eval(b));
+                s += 0.5 * (ya + yb) * (b - a);
+            }
+            if x > self.x[n - 1] {
+                s += self.y[n - 1] * (x - self.x[n - 1]);
+            }
+            s
+        };
+        prim(x) - prim(0.0)
+    }
+}
+
+/// A scalar load, constant or tabulated.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Magnitude {
+    Constant(f64),
+    OfTime(PiecewiseLinear),
+    OfAngle(u32, PiecewiseLinear),
+}
+
+impl Magnitude {
+    /// The first corner of a time table strictly inside (t0, t1): the integrator ends a step
+    /// there, as at a contact switch, so the kink costs no accuracy.
+    pub fn time_break_in(&self, t0: f64, t1: f64) -> Option<f64> {
+        match self {
+            Magnitude::OfTime(tab) => tab.first_break_in(t0, t1),
+            _ => None,
+        }
+    }
+
+    pub fn new(p: &Profile) -> Self {
+        match p {
+            Profile::Constant { value } => Magnitude::Constant(*value),
+            Profile::Table { argument: TableArgument::Time, table } => Magnitude::OfTime(PiecewiseLinear::new(table)),
+            Profile::Table { argument: TableArgument::Angle { body }, table } => Magnitude::OfAngle(*body as u32, PiecewiseLinear::new(table)),
+        }
+    }
+
+    #[inline]
+    pub fn eval(&self, t: f64, kin: &[BodyKin]) -> f64 {
+        match self {
+            Magnitude::Constant(v) => *v,
+            Magnitude::OfTime(tab) => tab.eval(t),
+            Magnitude::OfAngle(b, tab) => tab.eval(kin[*b as usize].th),
+        }
+    }
+}
+
+/// A compiled force element. Body indices are `None` for the ground.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ForceElement {
+    /// Tension F = k (ℓ − ℓ₀) + c ℓ̇ (or table(ℓ − ℓ₀) + c ℓ̇) along the line from a to b (§10.1).
+    SpringDamper { a: Option<u32>, sa: V2, b: Option<u32>, sb: V2, stiffness: f64, damping: f64, free_length: f64, table: Option<PiecewiseLinear> },
+    /// Torque on b T = −k (θ_b − θ_a − φ₀) − c (θ̇_b − θ̇_a), −T on a (§10.2).
+    RotationalSpringDamper { a: Option<u32>, b: Option<u32>, stiffness: f64, damping: f64, free_angle: f64 },
+    /// F = magnitude · direction at body point s (direction in the global or body frame) (§10.3).
+    Force { body: u32, s: V2, direction: V2, body_frame: bool, magnitude: Magnitude },
+    /// Torque on `body`, reacted on `reaction` (§10.3).
+    Torque { body: u32, reaction: Option<u32>, magnitude: Magnitude },
+    /// T = T_stall (1 − ω/ω₀) sign(ω₀) with ω the speed of `body` relative to `reaction` (§10.4).
+    Motor { body: u32, reaction: Option<u32>, stall_torque: f64, no_load_speed: f64 },
+}
+
+#[inline]
+fn get(kin: &[BodyKin], b: Option<u32>) -> BodyKin {
+    b.map_or(BodyKin::GROUND, |i| kin[i as usize])
+}
+
+#[inline]
+fn add(g: &mut [f64], b: Option<u32>, f: V2, torque: f64) {
+    if let Some(b) = b {
+        let o = 3 * b as usize;
+        g[o] += f.x;
+        g[o + 1] += f.y;
+        g[o + 2] += torque;
+    }
+}
+
+/// Geometry of a spring-damper: unit vector from a's point to b's, length and its rate.
+#[inline]
+fn spring_line(ka: &BodyKin, sa: V2, kb: &BodyKin, sb: V2) -> (V2, V2, V2, f64, f64) {
+    let (pa, pb) = (ka.point(sa), kb.point(sb));
+    let d = pb.sub(pa);
+    let len = d.norm();
+    let u = if len > 0.0 { d.scale(1.0 / len) } else { V2::new(0.0, 0.0) };
+    let rate = kb.point_velocity(sb).sub(ka.point_velocity(sa)).dot(u);
+    (pa, pb, u, len, rate)
+}
+
+impl ForceElement {
+    /// The first corner of this element's time table strictly inside (t0, t1), if any.
+    pub fn time_break_in(&self, t0: f64, t1: f64) -> Option<f64> {
+        match self {
+            ForceElement::Force { magnitude, .. } | ForceElement::Torque { magnitude, .. } => magnitude.time_break_in(t0, t1),
+            _ => None,
+        }
+    }
+
+    /// The spring-damper's tension [N] (positive pulls the points together), or the rotational
+    /// element's torque on b [N m]; the applied load's magnitude otherwise.
+    pub fn value(&self, t: f64, kin: &[BodyKin]) -> f64 {
+        match self {
+            ForceElement::SpringDamper { a, sa, b, sb, stiffness, damping, free_length, table } => {
+                let (_, _, _, len, rate) = spring_line(&get(kin, *a), *sa, &get(kin, *b), *sb);
+                let delta = len - free_length;
+                table.as_ref().map_or(stiffness * delta, |tab| tab.eval(delta)) + damping * rate
+            }
+            ForceElement::RotationalSpringDamper { a, b, stiffness, damping, free_angle } => {
+                let (ka, kb) = (get(kin, *a), get(kin, *b));
+                -stiffness * (kb.th - ka.th - free_angle) - damping * (kb.w - ka.w)
+            }
+            ForceElement::Force { magnitude, .. } | ForceElement::Torque { magnitude, .. } => magnitude.eval(t, kin),
+            ForceElement::Motor { body, reaction, stall_torque, no_load_speed } => {
+                let w = kin[*body as usize].w - get(kin, *reaction).w;
+                stall_torque * no_load_speed.signum() * (1.0 - w / no_load_speed)
+            }
+        }
+    }
+
+    /// Add this element's generalised forces to `g` (3 per body).
+    #[inline]
+    pub fn apply(&self, t: f64, kin: &[BodyKin], g: &mut [f64]) {
+        match self {
+            ForceElement::SpringDamper { a, sa, b, sb, .. } => {
+                let (ka, kb) = (get(kin, *a), get(kin, *b));
+                let (_, _, u, _, _) = spring_line(&ka, *sa, &kb, *sb);
+                let f = u.scale(self.value(t, kin)); // on a, towards b
+                add(g, *a, f, ka.rot(*sa).cross(f));
+                let fb = f.scale(-1.0);
+                add(g, *b, fb, kb.rot(*sb).cross(fb));
+            }
+            ForceElement::RotationalSpringDamper { a, b, .. } => {
+                let tq = self.value(t, kin);
+                add(g, *b, V2::new(0.0, 0.0), tq);
+                add(g, *a, V2::new(0.0, 0.0), -tq);
+            }
+            ForceElement::Force { body, s, direction, body_frame, magnitude } => {
+                let k = kin[*body as usize];
+                let dir = if *body_frame { k.rot(*direction) } else { *direction };
+                let f = dir.scale(magnitude.eval(t, kin));
+                add(g, Some(*body), f, k.rot(*s).cross(f));
+            }
+            ForceElement::Torque { body, reaction, .. } | ForceElement::Motor { body, reaction, .. } => {
+                let tq = self.value(t, kin);
+                add(g, Some(*body), V2::new(0.0, 0.0), tq);
+                add(g, *reaction, V2::new(0.0, 0.0), -tq);
+            }
+        }
+    }
+
+    /// Power [W] this element feeds into the mechanism that is not the rate of a potential:
+    /// the damper part of a spring-damper (≤ 0), the applied loads and motors. A spring's
+    /// elastic part is counted in [`ForceElement::potential`] instead.
+    pub fn power(&self, t: f64, kin: &[BodyKin]) -> f64 {
+        match self {
+            ForceElement::SpringDamper { a, sa, b, sb, damping, .. } => {
+                let (_, _, _, _, rate) = spring_line(&get(kin, *a), *sa, &get(kin, *b), *sb);
+                -damping * rate * rate
+            }
+            ForceElement::RotationalSpringDamper { a, b, damping, .. } => {
+                let w = get(kin, *b).w - get(kin, *a).w;
+                -damping * w * w
+            }
+            ForceElement::Force { body, s, direction, body_frame, magnitude } => {
+                let k = kin[*body as usize];
+                let dir = if *body_frame { k.rot(*direction) } else { *direction };
+                dir.scale(magnitude.eval(t, kin)).dot(k.point_velocity(*s))
+            }
+            ForceElement::Torque { body, reaction, .. } | ForceElement::Motor { body, reaction, .. } => {
+                self.value(t, kin) * (kin[*body as usize].w - get(kin, *reaction).w)
+            }
+        }
+    }
+
+    /// Elastic energy [J] stored in a spring; 0 for the other elements.
+    pub fn potential(&self, kin: &[BodyKin]) -> f64 {
+        match self {
+            ForceElement::SpringDamper { a, sa, b, sb, stiffness, free_length, table, .. } => {
+                let (_, _, _, len, _) = spring_line(&get(kin, *a), *sa, &get(kin, *b), *sb);
+                let delta = len - free_length;
+                table.as_ref().map_or(0.5 * stiffness * delta * delta, |tab| tab.integral_from_zero(delta))
+            }
+            ForceElement::RotationalSpringDamper { a, b, stiffness, free_angle, .. } => {
+                let d = get(kin, *b).th - get(kin, *a).th - free_angle;
+                0.5 * stiffness * d * d
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// Whether the element's work is dissipated (dampers) rather than supplied (loads, motors).
+    pub fn is_damper(&self) -> bool {
+        matches!(self, ForceElement::SpringDamper { .. } | ForceElement::RotationalSpringDamper { .. })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tab(x: &[f64], y: &[f64], period: Option<f64>) -> PiecewiseLinear {
+        PiecewiseLinear::new(&Table { x: x.to_vec(), y: y.to_vec(), period })
+    }
+
+    #[test]
+    fn table_interpolates_holds_and_wraps() {
+        let t = tab(&[0.0, 1.0, 3.0], &[0.0, 10.0, 30.0], None);
+        assert_eq!(t.eval(0.5), 5.0);
+        assert_eq!(t.eval(2.0), 20.0);
+        assert_eq!(t.eval(-1.0), 0.0);
+        assert_eq!(t.eval(7.0), 30.0);
+        let p = tab(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0], Some(2.0));
+        assert!((p.eval(2.5) - 0.5).abs() < 1e-15);
+        assert!((p.eval(-0.5) - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn breakpoints_inside_an_interval_repeat_with_the_period() {
+        let t = tab(&[0.0, 1.0, 3.0], &[0.0, 10.0, 30.0], None);
+        assert_eq!(t.first_break_in(0.0, 2.0), Some(1.0));
+        assert_eq!(t.first_break_in(1.0, 2.0), None);
+        assert_eq!(t.first_break_in(3.0, 9.0), None);
+        let p = tab(&[0.0, 0.5, 1.0], &[0.0, 1.0, 0.0], Some(2.0));
+        assert_eq!(p.first_break_in(1.2, 2.7), Some(2.0));
+        assert_eq!(p.first_break_in(2.0, 2.4), None);
+        assert_eq!(p.first_break_in(-1.9, -1.2), Some(-1.5));
+    }
+
+    #[test]
+    fn table_integral_is_the_area_under_a_linear_spring() {
+        // F = 3 δ tabulated on [-1, 2]: energy 1.5 δ² inside, end force held outside.
+        let t = tab(&[-1.0, 2.0], &[-3.0, 6.0], None);
+        for d in [-0.7, 0.0, 0.4, 1.9] {
+            assert!((t.integral_from_zero(d) - 1.5 * d * d).abs() < 1e-12, "{d}");
+        }
+        assert!((t.integral_from_zero(3.0) - (1.5 * 4.0 + 6.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn spring_force_pulls_points_together_and_its_power_is_minus_the_energy_rate() {
+        // Ground point at the origin, body point at (0.3, 0.4) moving at (1, 2): ℓ = 0.5, ℓ̇ = 2.2.
+        let e = ForceElement::SpringDamper { a: None, sa: V2::new(0.0, 0.0), b: Some(0), sb: V2::new(0.0, 0.0), stiffness: 100.0, damping: 2.0, free_length: 0.4, table: None };
+        let kin = [BodyKin::new(&[0.3, 0.4, 0.0], &[1.0, 2.0, 0.0])];
+        let tension = 100.0 * 0.1 + 2.0 * 2.2;
+        assert!((e.value(0.0, &kin) - tension).abs() < 1e-12);
+        let mut g = [0.0; 3];
+        e.apply(0.0, &kin, &mut g);
+        assert!((g[0] + tension * 0.6).abs() < 1e-12 && (g[1] + tension * 0.8).abs() < 1e-12);
+        assert!((e.power(0.0, &kin) + 2.0 * 2.2 * 2.2).abs() < 1e-12);
+        assert!((e.potential(&kin) - 0.5 * 100.0 * 0.01).abs() < 1e-12);
+    }
+
+    #[test]
+    fn motor_torque_line() {
+        let m = ForceElement::Motor { body: 0, reaction: None, stall_torque: 10.0, no_load_speed: -100.0 };
+        let at = |w: f64| m.value(0.0, &[BodyKin::new(&[0.0; 3], &[0.0, 0.0, w])]);
+        assert_eq!(at(0.0), -10.0);
+        assert!((at(-50.0) + 5.0).abs() < 1e-12);
+        assert!(at(-100.0).abs() < 1e-12);
+        assert!(at(-150.0) > 0.0); // above no-load speed it brakes
+    }
+}
