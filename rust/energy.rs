@@ -11,10 +11,13 @@ use crate::model::Model;
 use crate::system::Workspace;
 
 /// Columns of the `energy` channel [J].
-pub const ENERGY_COLUMNS: [&str; 7] = ["kinetic", "gravity", "elastic", "work_loads", "work_dampers", "work_drivers", "work_joints"];
+pub const ENERGY_COLUMNS: [&str; 9] = ["kinetic", "gravity", "spring", "load", "motor", "driver", "damper", "contact", "friction"];
+
+/// How many of [`ENERGY_COLUMNS`] are stored energies; the rest are work done on the mechanism.
+pub const STORED: usize = 3;
 
 /// Powers [W] fed into the mechanism, in the order of the work columns.
-pub type Powers = [f64; 4];
+pub type Powers = [f64; 6];
 
 /// The work integrals of a run and the current step's quadrature data.
 #[derive(Debug, Clone, Default)]
@@ -60,7 +63,7 @@ impl EnergyBook {
         }
         let s = ((t - self.t0) / self.h).clamp(0.0, 1.0);
         let mut w = self.w0;
-        for k in 0..4 {
+        for k in 0..w.len() {
             let (a, m, b) = (self.p0[k], self.pm[k], self.p1[k]);
             let c1 = -3.0 * a + 4.0 * m - b;
             let c2 = 2.0 * a - 4.0 * m + 2.0 * b;
@@ -70,13 +73,13 @@ impl EnergyBook {
     }
 
     /// The powers at the state of the last full evaluation of `ws` (constraints, forces,
-    /// KKT): loads and motors, dampers, drivers (−λ Φq q̇ of each driving row) and clearance
-    /// joints (their generalised forces times q̇).
+    /// KKT): loads, motors, drivers (−λ Φq q̇ of each driving row), dampers, and the clearance
+    /// joints (their generalised forces times q̇), split into friction (w_dry F_t times the
+    /// slip speed) and the rest (normal contact and film).
     pub fn powers(&mut self, model: &Model, ws: &Workspace, memory: &[ImpactMemory], t: f64, qd: &[f64]) -> Powers {
-        let mut p = [0.0; 4];
+        let mut p = [0.0; 6];
         for f in &model.forces {
-            let k = if f.is_damper() { 1 } else { 0 };
-            p[k] += f.power(t, &ws.kin);
+            p[f.work_column()] += f.power(t, &ws.kin);
         }
         let mut r = 0;
         for c in &model.constraints {
@@ -90,7 +93,10 @@ impl EnergyBook {
             let f = joint.force(&ws.joint_kin[j], &memory[j]);
             self.g.fill(0.0);
             joint.apply(&ws.kin, &ws.joint_kin[j], &f, &mut self.g);
-            p[3] += self.g.iter().zip(qd).map(|(g, v)| g * v).sum::<f64>();
+            let total = self.g.iter().zip(qd).map(|(g, v)| g * v).sum::<f64>();
+            let friction = f.w_dry * f.tangential * ws.joint_kin[j].slip;
+            p[4] += total - friction;
+            p[5] += friction;
         }
         p
     }

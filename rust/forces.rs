@@ -136,8 +136,8 @@ pub enum ForceElement {
     SpringDamper { a: Option<u32>, sa: V2, b: Option<u32>, sb: V2, stiffness: f64, damping: f64, free_length: f64, table: Option<PiecewiseLinear> },
     /// Torque on b T = −k (θ_b − θ_a − φ₀) − c (θ̇_b − θ̇_a), −T on a (§10.2).
     RotationalSpringDamper { a: Option<u32>, b: Option<u32>, stiffness: f64, damping: f64, free_angle: f64 },
-    /// F = magnitude · direction at body point s (direction in the global or body frame) (§10.3).
-    Force { body: u32, s: V2, direction: V2, body_frame: bool, magnitude: Magnitude },
+    /// (F_x, F_y) at body point s, components in the global or the body frame (§10.3).
+    Force { body: u32, s: V2, body_frame: bool, fx: Magnitude, fy: Magnitude },
     /// Torque on `body`, reacted on `reaction` (§10.3).
     Torque { body: u32, reaction: Option<u32>, magnitude: Magnitude },
     /// T = T_stall (1 − ω/ω₀) sign(ω₀) with ω the speed of `body` relative to `reaction` (§10.4).
@@ -174,7 +174,11 @@ impl ForceElement {
     /// The first corner of this element's time table strictly inside (t0, t1), if any.
     pub fn time_break_in(&self, t0: f64, t1: f64) -> Option<f64> {
         match self {
-            ForceElement::Force { magnitude, .. } | ForceElement::Torque { magnitude, .. } => magnitude.time_break_in(t0, t1),
+            ForceElement::Force { fx, fy, .. } => match (fx.time_break_in(t0, t1), fy.time_break_in(t0, t1)) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            },
+            ForceElement::Torque { magnitude, .. } => magnitude.time_break_in(t0, t1),
             _ => None,
         }
     }
@@ -192,11 +196,28 @@ impl ForceElement {
                 let (ka, kb) = (get(kin, *a), get(kin, *b));
                 -stiffness * (kb.th - ka.th - free_angle) - damping * (kb.w - ka.w)
             }
-            ForceElement::Force { magnitude, .. } | ForceElement::Torque { magnitude, .. } => magnitude.eval(t, kin),
+            ForceElement::Force { fx, fy, .. } => fx.eval(t, kin).hypot(fy.eval(t, kin)),
+            ForceElement::Torque { magnitude, .. } => magnitude.eval(t, kin),
             ForceElement::Motor { body, reaction, stall_torque, no_load_speed } => {
                 let w = kin[*body as usize].w - get(kin, *reaction).w;
                 stall_torque * no_load_speed.signum() * (1.0 - w / no_load_speed)
             }
+        }
+    }
+
+    /// An applied force's global vector [N] (zero for the other elements).
+    #[inline]
+    fn applied(&self, t: f64, kin: &[BodyKin]) -> V2 {
+        match self {
+            ForceElement::Force { body, body_frame, fx, fy, .. } => {
+                let f = V2::new(fx.eval(t, kin), fy.eval(t, kin));
+                if *body_frame {
+                    kin[*body as usize].rot(f)
+                } else {
+                    f
+                }
+            }
+            _ => V2::new(0.0, 0.0),
         }
     }
 
@@ -217,10 +238,9 @@ impl ForceElement {
                 add(g, *b, V2::new(0.0, 0.0), tq);
                 add(g, *a, V2::new(0.0, 0.0), -tq);
             }
-            ForceElement::Force { body, s, direction, body_frame, magnitude } => {
+            ForceElement::Force { body, s, .. } => {
                 let k = kin[*body as usize];
-                let dir = if *body_frame { k.rot(*direction) } else { *direction };
-                let f = dir.scale(magnitude.eval(t, kin));
+                let f = self.applied(t, kin);
                 add(g, Some(*body), f, k.rot(*s).cross(f));
             }
             ForceElement::Torque { body, reaction, .. } | ForceElement::Motor { body, reaction, .. } => {
@@ -244,11 +264,7 @@ impl ForceElement {
                 let w = get(kin, *b).w - get(kin, *a).w;
                 -damping * w * w
             }
-            ForceElement::Force { body, s, direction, body_frame, magnitude } => {
-                let k = kin[*body as usize];
-                let dir = if *body_frame { k.rot(*direction) } else { *direction };
-                dir.scale(magnitude.eval(t, kin)).dot(k.point_velocity(*s))
-            }
+            ForceElement::Force { body, s, .. } => self.applied(t, kin).dot(kin[*body as usize].point_velocity(*s)),
             ForceElement::Torque { body, reaction, .. } | ForceElement::Motor { body, reaction, .. } => {
                 self.value(t, kin) * (kin[*body as usize].w - get(kin, *reaction).w)
             }
@@ -271,9 +287,14 @@ impl ForceElement {
         }
     }
 
-    /// Whether the element's work is dissipated (dampers) rather than supplied (loads, motors).
-    pub fn is_damper(&self) -> bool {
-        matches!(self, ForceElement::SpringDamper { .. } | ForceElement::RotationalSpringDamper { .. })
+    /// Which work column of [`crate::energy::ENERGY_COLUMNS`] this element's power goes to:
+    /// 0 loads (forces, torques), 1 motors, 3 dampers.
+    pub fn work_column(&self) -> usize {
+        match self {
+            ForceElement::SpringDamper { .. } | ForceElement::RotationalSpringDamper { .. } => 3,
+            ForceElement::Motor { .. } => 1,
+            ForceElement::Force { .. } | ForceElement::Torque { .. } => 0,
+        }
     }
 }
 

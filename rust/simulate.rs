@@ -637,8 +637,8 @@ impl OdeSystem for MechanismSystem<'_> {
         self.recording.push(t, y, &self.ws);
         if let Some(book) = &self.energy {
             let e = EnergyBook::stored(self.model, &self.ws);
-            let w = book.work_at(t);
-            self.recording.energy.extend_from_slice(&[e[0], e[1], e[2], w[0], w[1], w[2], w[3]]);
+            self.recording.energy.extend_from_slice(&e);
+            self.recording.energy.extend_from_slice(&book.work_at(t));
         }
         Ok(())
     }

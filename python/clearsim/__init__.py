@@ -6,7 +6,6 @@ analyses the results. SI units throughout.
 
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError
-from .forces import Table
 from .joints import Dry, Lubricated
 from .mechanism import GROUND, Mechanism
 from .result import Result
@@ -28,7 +27,6 @@ __all__ = [
     "Result",
     "load_scene",
     "SimulationError",
-    "Table",
     "models",
     "monte_carlo",
     "reliability",

@@ -1,109 +1,122 @@
 """Force elements and loads (docs/physics.md §10): what a mechanism carries besides gravity.
 
 Each function here checks its inputs and returns the plain-data entry of the description's
-``"forces"`` list; the :class:`~clearsim.Mechanism` methods ``spring_damper``,
-``rotational_spring_damper``, ``force``, ``torque`` and ``motor`` call them. Everything is
-evaluated in the Rust core (tables too), so a load costs a few nanoseconds a step. SI units:
-N, N m, N/m, N s/m, rad, rad/s.
+``"forces"`` list; the :class:`~clearsim.Mechanism` methods ``spring``, ``rotational_spring``,
+``force``, ``torque`` and ``motor`` call them. Everything is evaluated in the Rust core (tables
+too), so a load costs nanoseconds a step. SI units: N, N m, N/m, N s/m, rad, rad/s.
+
+Load tables
+-----------
+A load that varies is a dict of equally long lists, piecewise linear between the points and held
+at its end values outside them:
+
+- in time: ``{"t": [s...], "fx": [N...], "fy": [N...]}`` (a torque: ``"torque": [N m...]``);
+- in a driver's angle: ``{"driver": "drive1", "angle": [rad...], "fx": [...], "fy": [...]}``,
+  the absolute angle θ of the body that driver (or motor) turns;
+- ``"period"`` (optional) repeats the table every period of its variable, e.g. ``2π`` for a
+  load that comes back each crank revolution (``4π`` for a four-stroke engine's gas force),
+  whichever way the crank turns. Without it, a crank-angle table covers one revolution only.
+
+A component left out of a force table is zero.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from .errors import InputError, check_finite, check_positive
 
-#: The independent variable of a load table: time, or the angle of a body or driver.
-TIME = "time"
+#: A load: a constant, or a table (see the module docstring).
+Load = Union[float, Sequence[float], Mapping[str, Any]]
+#: Resolves a driver's (or motor's) name to the index of the body it turns.
+DriverBody = Callable[[str, str], int]
 
 
-@dataclass(frozen=True)
-class Table:
-    """A piecewise-linear function y(x), for loads and nonlinear springs.
-
-    Parameters
-    ----------
-    x, y:
-        Sample points (x strictly increasing) and values. Between points y is interpolated
-        linearly; outside [x₀, x_last] it keeps its end value.
-    of:
-        What x is: ``"time"`` [s] (default), or the name of a driver or a body, whose absolute
-        angle θ [rad] is then x (an engine's gas force over the crank angle, a stamping load over
-        part of the stroke). Ignored for a spring's force–deflection table (x is the deflection
-        ℓ − ℓ₀ [m]).
-    period:
-        If given, x is wrapped into [x₀, x₀ + period) first: ``period=2*math.pi`` repeats a load
-        every crank revolution (``4*math.pi`` for a four-stroke engine), whichever way the crank
-        turns.
-
-    Example
-    -------
-    >>> stroke = Table(x=np.radians([0, 150, 180, 210, 360]), y=[0, 0, -2000, 0, 0],
-    ...                of="drive1", period=2 * math.pi)
-    """
-
-    x: Sequence[float]
-    y: Sequence[float]
-    of: str = TIME
-    period: Optional[float] = None
-
-    def plain(self, field: str) -> Dict[str, Any]:
-        """The table's checked plain data (``x``, ``y``, ``period``)."""
-        x = [check_finite(f"{field}.x[{k}]", v) for k, v in enumerate(np.asarray(self.x, dtype=float).ravel())]
-        y = [check_finite(f"{field}.y[{k}]", v) for k, v in enumerate(np.asarray(self.y, dtype=float).ravel())]
-        if len(x) < 2 or len(x) != len(y):
-            raise InputError(
-                f"invalid {field} = Table with {len(x)} x and {len(y)} y: needs at least 2 points and as many y as x",
-                field=f"{field}.x",
-                value=len(x),
-            )
-        for k in range(1, len(x)):
-            if not x[k] > x[k - 1]:
-                raise InputError(f"invalid {field}.x[{k}] = {x[k]!r}: x must increase strictly (x[{k - 1}] = {x[k - 1]!r})", field=f"{field}.x", value=x[k])
-        out: Dict[str, Any] = {"x": x, "y": y, "period": None}
-        if self.period is not None:
-            p = check_positive(f"{field}.period", self.period)
-            if x[-1] - x[0] > p * (1 + 1e-12):
-                raise InputError(f"invalid {field}.period = {p!r}: must cover the table's span {x[-1] - x[0]!r}", field=f"{field}.period", value=p)
-            out["period"] = p
-        return out
+def _numbers(field: str, values: Any) -> List[float]:
+    try:
+        arr = np.asarray(values, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"invalid {field} = {values!r}: must be a list of numbers", field=field, value=values) from None
+    return [check_finite(f"{field}[{k}]", v) for k, v in enumerate(arr)]
 
 
-def _profile(field: str, value: Union[float, Table], angle_body: Callable[[str, str], int]) -> Dict[str, Any]:
-    """A constant or a table, as the core's ``Profile``."""
-    if isinstance(value, Table):
-        if value.of == TIME:
-            argument: Dict[str, Any] = {"kind": "time"}
-        else:
-            argument = {"kind": "angle", "body": angle_body(f"{field}.of", value.of)}
-        return {"kind": "table", "argument": argument, "table": value.plain(field)}
-    return {"kind": "constant", "value": check_finite(field, value)}
+def _table(field: str, value: Mapping[str, Any], columns: Sequence[str], driver_body: DriverBody) -> Tuple[Dict[str, Any], Dict[str, List[float]]]:
+    """The argument and the checked columns of a load table."""
+    keys = set(value)
+    if "t" in keys and "driver" not in keys:
+        argument: Dict[str, Any] = {"kind": "time"}
+        xs = _numbers(f"{field}.t", value["t"])
+        xkey = "t"
+    elif "driver" in keys and "angle" in keys and "t" not in keys:
+        argument = {"kind": "angle", "body": driver_body(f"{field}.driver", value["driver"])}
+        xs = _numbers(f"{field}.angle", value["angle"])
+        xkey = "angle"
+    else:
+        raise InputError(
+            f"invalid {field} = {dict(value)!r}: a table is {{'t': [...], ...}} in time or {{'driver': name, 'angle': [...], ...}} in a driver's angle",
+            field=field,
+            value=dict(value),
+        )
+    allowed = {xkey, "driver", "period", *columns}
+    unknown = sorted(keys - allowed)
+    if unknown:
+        raise InputError(f"invalid {field}: unknown key {unknown[0]!r} (known: {', '.join(sorted(allowed - {'driver'} if xkey == 't' else allowed))})", field=f"{field}.{unknown[0]}", value=unknown[0])
+    if not any(c in keys for c in columns):
+        raise InputError(f"invalid {field}: gives no values (expected {' and/or '.join(columns)})", field=field, value=dict(value))
+    if len(xs) < 2:
+        raise InputError(f"invalid {field}.{xkey} = {xs!r}: a table needs at least 2 points", field=f"{field}.{xkey}", value=xs)
+    for k in range(1, len(xs)):
+        if not xs[k] > xs[k - 1]:
+            raise InputError(f"invalid {field}.{xkey}[{k}] = {xs[k]!r}: must increase strictly (after {xs[k - 1]!r})", field=f"{field}.{xkey}", value=xs[k])
+    period = None
+    if value.get("period") is not None:
+        period = check_positive(f"{field}.period", value["period"])
+        if xs[-1] - xs[0] > period * (1 + 1e-12):
+            raise InputError(f"invalid {field}.period = {period!r}: must cover the table's span {xs[-1] - xs[0]!r}", field=f"{field}.period", value=period)
+    cols: Dict[str, List[float]] = {}
+    for c in columns:
+        ys = _numbers(f"{field}.{c}", value[c]) if c in value else [0.0] * len(xs)
+        if len(ys) != len(xs):
+            raise InputError(f"invalid {field}.{c}: has {len(ys)} values for {len(xs)} points of {xkey!r}", field=f"{field}.{c}", value=len(ys))
+        cols[c] = ys
+    return {"argument": argument, "x": xs, "period": period}, cols
 
 
-def spring_damper(
+def _profile(head: Dict[str, Any], ys: List[float]) -> Dict[str, Any]:
+    return {"kind": "table", "argument": head["argument"], "table": {"x": head["x"], "y": ys, "period": head["period"]}}
+
+
+def _constant(field: str, v: Any) -> Dict[str, Any]:
+    return {"kind": "constant", "value": check_finite(field, v)}
+
+
+def spring(
     name: str, body_a: Optional[int], point_a: List[float], body_b: Optional[int], point_b: List[float],
-    stiffness: float, damping: float, free_length: Optional[float], force_table: Optional[Union[Table, Sequence[Sequence[float]]]],
+    stiffness: Optional[float], damping: float, free_length: Optional[float], force_table: Optional[Mapping[str, Any]],
 ) -> Dict[str, Any]:  # fmt: skip
-    """The entry of a translational spring-damper (see :meth:`Mechanism.spring_damper`)."""
+    """The entry of a translational spring-damper (see :meth:`Mechanism.spring`)."""
     table = None
     if force_table is not None:
-        if not isinstance(force_table, Table):
-            try:
-                xs, ys = force_table  # type: ignore[misc]
-            except (TypeError, ValueError):
-                raise InputError(
-                    f"invalid force_table = {force_table!r}: give a Table(x=deflection, y=force) or a pair (deflections, forces)",
-                    field="force_table",
-                    value=force_table,
-                ) from None
-            force_table = Table(xs, ys)
-        if stiffness != 0.0:
+        if stiffness not in (None, 0.0):
             raise InputError(f"invalid stiffness = {stiffness!r}: give either a stiffness or a force_table, not both", field="stiffness", value=stiffness)
-        table = force_table.plain("force_table")
+        if not isinstance(force_table, Mapping) or set(force_table) != {"deflection", "force"}:
+            raise InputError(
+                f"invalid force_table = {force_table!r}: must be {{'deflection': [m...], 'force': [N...]}}", field="force_table", value=force_table
+            )
+        x = _numbers("force_table.deflection", force_table["deflection"])
+        y = _numbers("force_table.force", force_table["force"])
+        if len(x) < 2 or len(x) != len(y) or any(not b > a for a, b in zip(x, x[1:])):
+            raise InputError(
+                f"invalid force_table.deflection = {x!r}: needs at least 2 strictly increasing points, one force each",
+                field="force_table.deflection",
+                value=x,
+            )
+        table = {"x": x, "y": y, "period": None}
+        stiffness = 0.0
+    elif stiffness is None:
+        raise InputError("invalid stiffness = None: give a stiffness [N/m] or a force_table", field="stiffness", value=None)
     return {
         "kind": "spring_damper", "name": name, "body_a": body_a, "point_a": point_a, "body_b": body_b, "point_b": point_b,
         "stiffness": _non_negative("stiffness", stiffness), "damping": _non_negative("damping", damping),
@@ -111,46 +124,39 @@ def spring_damper(
     }  # fmt: skip
 
 
-def rotational_spring_damper(name: str, body_a: Optional[int], body_b: Optional[int], stiffness: float, damping: float, free_angle: Optional[float]) -> Dict[str, Any]:
-    """The entry of a rotational spring-damper (see :meth:`Mechanism.rotational_spring_damper`)."""
+def rotational_spring(name: str, body_a: Optional[int], body_b: Optional[int], stiffness: float, damping: float, angle0: Optional[float]) -> Dict[str, Any]:
+    """The entry of a rotational spring-damper (see :meth:`Mechanism.rotational_spring`)."""
     return {
         "kind": "rotational_spring_damper", "name": name, "body_a": body_a, "body_b": body_b,
         "stiffness": _non_negative("stiffness", stiffness), "damping": _non_negative("damping", damping),
-        "free_angle": None if free_angle is None else check_finite("free_angle", free_angle),
+        "free_angle": None if angle0 is None else check_finite("angle0", angle0),
     }  # fmt: skip
 
 
-def applied_force(
-    name: str, body: int, point: List[float], force: Optional[Sequence[float]], direction: Optional[Sequence[float]],
-    magnitude: Optional[Union[float, Table]], frame: str, angle_body: Callable[[str, str], int],
-) -> Dict[str, Any]:  # fmt: skip
+def applied_force(name: str, body: int, point: List[float], value: Load, frame: str, driver_body: DriverBody) -> Dict[str, Any]:
     """The entry of an applied force (see :meth:`Mechanism.force`)."""
     if frame not in ("global", "body"):
         raise InputError(f"invalid frame = {frame!r}: must be 'global' or 'body'", field="frame", value=frame)
-    if (force is None) == (direction is None and magnitude is None):
-        raise InputError(
-            "invalid force: give either force=(Fx, Fy) [N], or direction=(dx, dy) with magnitude= [N] (a number or a Table)",
-            field="force",
-            value=force,
-        )
-    if force is not None:
-        fx, fy = (check_finite("force[0]", force[0]), check_finite("force[1]", force[1]))
-        size = math.hypot(fx, fy)
-        d = [fx / size, fy / size] if size > 0 else [1.0, 0.0]
-        prof = {"kind": "constant", "value": size}
+    if isinstance(value, Mapping):
+        head, cols = _table("value", value, ("fx", "fy"), driver_body)
+        fx, fy = _profile(head, cols["fx"]), _profile(head, cols["fy"])
     else:
-        if direction is None or magnitude is None:
-            raise InputError("invalid force: direction and magnitude go together", field="direction", value=direction)
-        d = [check_finite("direction[0]", direction[0]), check_finite("direction[1]", direction[1])]
-        if math.hypot(*d) == 0.0:
-            raise InputError(f"invalid direction = {direction!r}: must be a non-zero vector", field="direction", value=direction)
-        prof = _profile("magnitude", magnitude, angle_body)
-    return {"kind": "force", "name": name, "body": body, "point": point, "direction": d, "frame": frame, "magnitude": prof}
+        try:
+            vx, vy = value  # type: ignore[misc]
+        except (TypeError, ValueError):
+            raise InputError(f"invalid value = {value!r}: must be (fx, fy) [N] or a load table", field="value", value=value) from None
+        fx, fy = _constant("value[0]", vx), _constant("value[1]", vy)
+    return {"kind": "force", "name": name, "body": body, "point": point, "frame": frame, "fx": fx, "fy": fy}
 
 
-def applied_torque(name: str, body: int, torque: Union[float, Table], reaction: Optional[int], angle_body: Callable[[str, str], int]) -> Dict[str, Any]:
+def applied_torque(name: str, body: int, value: Load, reaction: Optional[int], driver_body: DriverBody) -> Dict[str, Any]:
     """The entry of an applied torque (see :meth:`Mechanism.torque`)."""
-    return {"kind": "torque", "name": name, "body": body, "reaction": reaction, "magnitude": _profile("torque", torque, angle_body)}
+    if isinstance(value, Mapping):
+        head, cols = _table("value", value, ("torque",), driver_body)
+        magnitude = _profile(head, cols["torque"])
+    else:
+        magnitude = _constant("value", value)
+    return {"kind": "torque", "name": name, "body": body, "reaction": reaction, "magnitude": magnitude}
 
 
 def motor(name: str, body: int, reaction: Optional[int], stall_torque: float, no_load_speed: float) -> Dict[str, Any]:
@@ -161,7 +167,7 @@ def motor(name: str, body: int, reaction: Optional[int], stall_torque: float, no
     return {"kind": "motor", "name": name, "body": body, "reaction": reaction, "stall_torque": check_positive("stall_torque", stall_torque), "no_load_speed": w0}
 
 
-def _non_negative(field: str, value: float) -> float:
+def _non_negative(field: str, value: Any) -> float:
     v = check_finite(field, value)
     if v < 0:
         raise InputError(f"invalid {field} = {v!r}: must not be negative", field=field, value=v)

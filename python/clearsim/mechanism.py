@@ -332,127 +332,120 @@ class Mechanism:
         return self
 
     # ------------------------------------------------------------------ force elements (docs/physics.md §10)
-    def _angle_body(self, field: str, name: str) -> int:
-        """The body whose angle a load table follows: a driver's body, or a body by name."""
+    def _driver_body(self, field: str, name: str) -> int:
+        """The body a driver or motor turns (for load tables in a driver's angle)."""
         for d in self._drivers:
             if d["name"] == name:
                 return int(d["body"])
         for f in self._forces:
             if f["name"] == name and f["kind"] == "motor":
                 return int(f["body"])
-        if name in self._index:
-            return self._index[name]
-        known = ", ".join([d["name"] for d in self._drivers] + list(self._index)) or "none yet"
-        raise InputError(f"invalid {field} = {name!r}: no such driver, motor or body (known: {known}; or 'time')", field=field, value=name)
+        known = ", ".join([d["name"] for d in self._drivers] + [f["name"] for f in self._forces if f["kind"] == "motor"]) or "none yet"
+        raise InputError(f"invalid {field} = {name!r}: no such driver or motor (known: {known})", field=field, value=name)
 
     def _add_force(self, entry: Dict[str, Any]) -> "Mechanism":
         self._forces.append(entry)
         self._compiled = None
         return self
 
-    def spring_damper(
+    def _pair(self, body_a: str, body_b: str) -> Tuple[Optional[int], Optional[int]]:
+        a, b = self._body("body_a", body_a), self._body("body_b", body_b)
+        if a == b:
+            raise InputError(f"invalid body_b = {body_b!r}: a spring acts between two different bodies", field="body_b", value=body_b)
+        return a, b
+
+    def spring(
         self,
         body_a: str,
         point_a: Point,
         body_b: str,
         point_b: Point,
-        *,
-        stiffness: float = 0.0,
+        stiffness: Optional[float] = None,
         damping: float = 0.0,
         free_length: Optional[float] = None,
-        force_table: Optional[Any] = None,
         name: Optional[str] = None,
+        *,
+        force_table: Optional[Dict[str, Sequence[float]]] = None,
     ) -> "Mechanism":
         """A translational spring-damper between ``point_a`` of ``body_a`` and ``point_b`` of
         ``body_b`` (either may be ``"ground"``; points in the body's frame [m]).
 
         Tension F = k (ℓ − ℓ₀) + c ℓ̇ [N] pulls the points together: ``stiffness`` k [N/m],
         ``damping`` c [N s/m], ``free_length`` ℓ₀ [m] (default: the distance in the mechanism
-        assembled at t = 0, i.e. no preload). A nonlinear spring gives ``force_table`` instead of
-        k: a :class:`clearsim.Table` (or a pair of sequences) of deflection ℓ − ℓ₀ [m] → tension [N].
+        assembled at t = 0, so no preload). A nonlinear spring gives
+        ``force_table={"deflection": [m...], "force": [N...]}`` (tension against ℓ − ℓ₀,
+        piecewise linear, held at the end values) instead of k.
         """
-        a, b = self._body("body_a", body_a), self._body("body_b", body_b)
-        if a == b:
-            raise InputError(f"invalid body_b = {body_b!r}: a spring-damper needs two different bodies", field="body_b", value=body_b)
+        a, b = self._pair(body_a, body_b)
         pa, pb = _point("point_a", point_a), _point("point_b", point_b)
-        return self._add_force(_forces.spring_damper(self._new_name("spring", name), a, pa, b, pb, stiffness, damping, free_length, force_table))
+        return self._add_force(_forces.spring(self._new_name("spring", name), a, pa, b, pb, stiffness, damping, free_length, force_table))
 
-    def rotational_spring_damper(
+    def rotational_spring(
         self,
         body_a: str,
         body_b: str,
-        *,
-        stiffness: float = 0.0,
+        stiffness: float,
         damping: float = 0.0,
-        free_angle: Optional[float] = None,
+        angle0: Optional[float] = None,
         name: Optional[str] = None,
     ) -> "Mechanism":
         """A rotational spring-damper between two bodies (or a body and ``"ground"``): torque on
         ``body_b`` T = −k (θ_b − θ_a − φ₀) − c (θ̇_b − θ̇_a) [N m], −T on ``body_a``.
-        ``stiffness`` k [N m/rad], ``damping`` c [N m s/rad], ``free_angle`` φ₀ [rad] (default:
-        the relative angle assembled at t = 0)."""
-        a, b = self._body("body_a", body_a), self._body("body_b", body_b)
-        if a == b:
-            raise InputError(f"invalid body_b = {body_b!r}: a spring-damper needs two different bodies", field="body_b", value=body_b)
-        return self._add_force(_forces.rotational_spring_damper(self._new_name("rotational_spring", name), a, b, stiffness, damping, free_angle))
+        ``stiffness`` k [N m/rad], ``damping`` c [N m s/rad], ``angle0`` φ₀ [rad], the unloaded
+        relative angle (default: the one assembled at t = 0)."""
+        a, b = self._pair(body_a, body_b)
+        return self._add_force(_forces.rotational_spring(self._new_name("rotational_spring", name), a, b, stiffness, damping, angle0))
 
-    def force(
-        self,
-        body: str,
-        point: Point = (0.0, 0.0),
-        force: Optional[Point] = None,
-        *,
-        direction: Optional[Point] = None,
-        magnitude: Optional[Union[float, "_forces.Table"]] = None,
-        frame: str = "global",
-        name: Optional[str] = None,
-    ) -> "Mechanism":
-        """An applied force at ``point`` of ``body`` (body frame [m], default the centroid).
+    def force(self, body: str, point: Point, value: "_forces.Load", frame: str = "global", name: Optional[str] = None) -> "Mechanism":
+        """An applied force at ``point`` of ``body`` (body frame [m]).
 
-        Either ``force=(F_x, F_y)`` [N], constant, or ``direction=(d_x, d_y)`` (normalised)
-        with ``magnitude`` [N]: a number or a :class:`clearsim.Table` of time or of a driver's
-        (or body's) angle, e.g. a stamping load over part of the stroke. ``frame="body"`` turns
-        the direction with the body (a follower force)."""
+        ``value``: ``(F_x, F_y)`` [N], constant, or a load table in time or in a driver's angle
+        (``{"t": [...], "fx": [...], "fy": [...]}``, ``{"driver": "drive1", "angle": [...],
+        "fy": [...], "period": 2π}``; see :mod:`clearsim.forces`), e.g. a stamping load over
+        part of the stroke. ``frame="body"``: the components turn with the body (a follower
+        force)."""
         b = self._body("body", body, allow_ground=False)
         assert b is not None
         p = _point("point", point)
-        return self._add_force(_forces.applied_force(self._new_name("force", name), b, p, force, direction, magnitude, frame, self._angle_body))
+        return self._add_force(_forces.applied_force(self._new_name("force", name), b, p, value, frame, self._driver_body))
 
-    def torque(self, body: str, torque: Union[float, "_forces.Table"], *, reaction: Optional[str] = None, name: Optional[str] = None) -> "Mechanism":
-        """An applied torque [N m] on ``body`` (counter-clockwise positive): a number or a
-        :class:`clearsim.Table` of time or of a driver's angle. With ``reaction``, the opposite
-        torque acts on that body."""
+    def torque(self, body: str, value: "_forces.Load", name: Optional[str] = None, *, reaction: Optional[str] = None) -> "Mechanism":
+        """An applied torque [N m] on ``body`` (counter-clockwise positive): a number or a load
+        table (``{"t": [...], "torque": [...]}`` or ``{"driver": ..., "angle": [...], "torque":
+        [...]}``, see :mod:`clearsim.forces`). With ``reaction``, the opposite torque acts on
+        that body."""
         b = self._body("body", body, allow_ground=False)
         assert b is not None
         r = None if reaction is None else self._body("reaction", reaction)
         if r == b:
             raise InputError(f"invalid reaction = {reaction!r}: must differ from the loaded body", field="reaction", value=reaction)
-        return self._add_force(_forces.applied_torque(self._new_name("torque", name), b, torque, r, self._angle_body))
+        return self._add_force(_forces.applied_torque(self._new_name("torque", name), b, value, r, self._driver_body))
 
     def motor(
         self,
         body: str,
-        *,
         stall_torque: float,
-        no_load_speed: Optional[float] = None,
-        no_load_rpm: Optional[float] = None,
-        reaction: str = GROUND,
+        no_load_speed: float,
+        angle0: Optional[float] = None,
         name: Optional[str] = None,
+        *,
+        reaction: str = GROUND,
     ) -> "Mechanism":
-        """A motor driving ``body`` by torque, its stator on ``reaction`` (default the ground):
-        a linear speed–torque line T = T_stall (1 − ω/ω₀), from ``stall_torque`` T_stall > 0
-        [N m] at rest to zero at ``no_load_speed`` ω₀ [rad/s] (or ``no_load_rpm``; its sign is
-        the direction of rotation). Unlike :meth:`driver` it leaves the speed free, so the crank
-        slows at each impact. Give the body a starting speed with ``add_body(velocity=...)``."""
+        """A motor turning ``body`` by torque, its stator on ``reaction`` (default the ground):
+        a linear speed–torque line T = T_stall (1 − ω/ω₀) from ``stall_torque`` T_stall > 0
+        [N m] at rest to zero at ``no_load_speed`` ω₀ [rad/s] (its sign is the direction of
+        rotation; above it the motor brakes). ``angle0`` [rad]: the body's angle at the start
+        (default: as added). Unlike :meth:`driver` it leaves the speed free, so the crank slows
+        at each impact; it starts from the body's ``velocity`` (default at rest). A load table
+        can follow its angle: ``{"driver": <motor name>, "angle": ...}``."""
         b = self._body("body", body, allow_ground=False)
         assert b is not None
         r = self._body("reaction", reaction)
         if r == b:
             raise InputError(f"invalid reaction = {reaction!r}: must differ from the rotor body", field="reaction", value=reaction)
-        if (no_load_speed is None) == (no_load_rpm is None):
-            raise InputError("invalid motor: give no_load_speed [rad/s] or no_load_rpm, exactly one", field="no_load_speed", value=no_load_speed)
-        w0 = no_load_speed if no_load_speed is not None else check_finite("no_load_rpm", no_load_rpm) * 2 * math.pi / 60.0
-        return self._add_force(_forces.motor(self._new_name("motor", name), b, r, stall_torque, w0))
+        if angle0 is not None:
+            self._bodies[b]["angle"] = check_finite("angle0", angle0)
+        return self._add_force(_forces.motor(self._new_name("motor", name), b, r, stall_torque, no_load_speed))
 
     # ------------------------------------------------------------------ queries
     @property

@@ -94,15 +94,19 @@ class Result:
 
     def energy(self) -> Dict[str, np.ndarray]:
         """Energy bookkeeping [J] at each output (needs ``outputs=[..., "energy"]``;
-        docs/physics.md §10.5): stored energies ``kinetic``, ``gravity`` (−Σ m g·r),
-        ``elastic`` (springs), and the work done on the mechanism since t0 by ``work_loads``
-        (applied forces, torques, motors), ``work_dampers`` (≤ 0), ``work_drivers`` (the
-        prescribed-motion drivers) and ``work_joints`` (contact, friction and film forces of the
-        clearance joints). The work is integrated along every accepted step, not from the stored
-        outputs. ``balance`` = kinetic + gravity + elastic − Σ work stays constant up to the
-        integration error and the work of the constraint stabilisation."""
+        docs/physics.md §10.5).
+
+        Stored: ``kinetic``, ``gravity`` (−Σ m g·r), ``spring`` (elastic energy of the springs).
+        Work done on the mechanism since t0, integrated along every accepted step (not from the
+        stored outputs): ``load`` (applied forces and torques), ``motor``, ``driver`` (the
+        prescribed-motion drivers), ``damper`` (≤ 0), ``contact`` (normal contact and film
+        forces of the clearance joints) and ``friction`` (≤ 0). Derived: ``dissipated``
+        = −(damper + contact + friction) and ``balance`` = kinetic + gravity + spring − Σ work,
+        constant up to the integration error and the work of the constraint stabilisation.
+        """
         e = self._channel("energy", "energy")
         out = {name: e[:, k] for k, name in enumerate(_core.ENERGY_COLUMNS)}
+        out["dissipated"] = -(out["damper"] + out["contact"] + out["friction"])
         out["balance"] = e[:, :3].sum(axis=1) - e[:, 3:].sum(axis=1)
         return out
 

@@ -59,30 +59,29 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
 
-    [[spring_damper]]                # force elements (docs/physics.md §10), all optional
-    bodies = ["ground", "slider"]    # between points[0] of bodies[0] and points[1] of bodies[1]
-    points = [[0.3, 0.0], [0.0, 0.0]]
-    stiffness = 2000.0               # N/m (or force_table = {x = [m], y = [N]}: tension of deflection)
-    damping = 5.0                    # N s/m
+    [[force]]                        # force elements and loads (docs/physics.md §10); type =
+    type = "spring"                  #   spring | rotational_spring | force | torque | motor
+    name = "return-spring"           # optional (default spring1, force1, ...)
+    body_a = "ground"                # spring: between point_a of body_a and point_b of body_b
+    point_a = [0.3, 0.0]
+    body_b = "slider"
+    point_b = [0.0, 0.0]
+    stiffness = 2000.0               # N/m (or force_table = {deflection = [m], force = [N]})
+    damping = 5.0                    # N s/m (default 0)
     # free_length = 0.15             # m (default: the distance assembled at t = 0)
-    # name = "return-spring"
+    # rotational_spring: body_a, body_b, stiffness [N m/rad], damping [N m s/rad], angle0 [rad]
 
-    # [[rotational_spring_damper]]   # bodies = [a, b], stiffness [N m/rad], damping
-    #                                #   [N m s/rad], free_angle [rad] (default: assembled)
-
-    [[force]]                        # an applied force at a body point:
+    [[force]]
+    type = "force"                   # an applied force at point (body frame) of body:
     body = "slider"
-    point = [0.0, 0.0]               # body frame (default the centroid)
-    force = [-50.0, 0.0]             # N, constant; or direction = [dx, dy] with
-    # magnitude = 50.0               #   N, or a table of time or of a driver's angle:
-    # magnitude = { x = [0.0, 2.6, 2.8, 3.1], y = [0.0, 0.0, 400.0, 0.0], of = "crank-drive", period = 6.283185307179586 }
-    # frame = "body"                 # turn the direction with the body (default "global")
-
-    # [[torque]]                     # body, torque [N m] (a number or a table as above),
-    #                                #   reaction = "other body" (optional)
-    # [[motor]]                      # body, stall_torque [N m], no_load_speed [rad/s] or
-    #                                #   no_load_rpm, reaction (default "ground"): instead
-    #                                #   of a [[driver]] on that body
+    point = [0.0, 0.0]
+    value = [-50.0, 0.0]             # N (fx, fy), constant, or a table in time or a driver's angle:
+    # value = { driver = "crank-drive", angle = [0.0, 2.6, 2.8, 3.1], fx = [0.0, 0.0, -400.0, 0.0], period = 6.283185307179586 }
+    # value = { t = [0.0, 0.01], fy = [0.0, 100.0] }
+    # frame = "body"                 # components turn with the body (default "global")
+    # torque: body, value [N m] (number or table with torque = [...]), reaction (optional body)
+    # motor: body, stall_torque [N m], no_load_speed [rad/s], angle0 [rad], reaction
+    #   (default "ground"): turns the body by torque, instead of a [[driver]]
 
     [simulation]
     t_end = 0.4                      # s, or: cycles = 3 (× period [s], default 2π/|ω| of
@@ -136,7 +135,6 @@ import numpy as np
 
 from . import _core
 from .errors import InputError, SimulationError
-from .forces import Table
 from .joints import Dry, Lubricated
 from .mechanism import OUTPUTS, Mechanism
 from .result import Result
@@ -586,17 +584,15 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 
 # ====================================================================== reading a scene
 _TOP_KEYS = (
-    "mechanism", "body", "joint", "driver", "clearance_joint", "spring_damper", "rotational_spring_damper", "force", "torque", "motor",
-    "simulation", "outputs", "reliability",
+    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability",
 )  # fmt: skip
 _FORCE_KEYS = {
-    "spring_damper": ("name", "bodies", "points", "stiffness", "damping", "free_length", "force_table"),
-    "rotational_spring_damper": ("name", "bodies", "stiffness", "damping", "free_angle"),
-    "force": ("name", "body", "point", "force", "direction", "magnitude", "frame"),
-    "torque": ("name", "body", "torque", "reaction"),
-    "motor": ("name", "body", "stall_torque", "no_load_speed", "no_load_rpm", "reaction"),
+    "spring": ("type", "name", "body_a", "point_a", "body_b", "point_b", "stiffness", "damping", "free_length", "force_table"),
+    "rotational_spring": ("type", "name", "body_a", "body_b", "stiffness", "damping", "angle0"),
+    "force": ("type", "name", "body", "point", "value", "frame"),
+    "torque": ("type", "name", "body", "value", "reaction"),
+    "motor": ("type", "name", "body", "stall_torque", "no_load_speed", "angle0", "reaction"),
 }
-_TABLE_KEYS = ("x", "y", "of", "period")
 _MECHANISM_KEYS = ("name", "description", "gravity", "baumgarte")
 _BODY_KEYS = ("name", "mass", "inertia", "position", "angle", "ends", "velocity")
 _JOINT_KEYS = {"revolute": ("type", "name", "bodies", "points"), "prismatic": ("type", "name", "bodies", "points", "axis")}
@@ -686,7 +682,9 @@ class _Builder:
             kind = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint"}.get(m.group(1), m.group(1))
             table = self.entries.get((kind, m.group(2)), table)
             fld = m.group(3)
-        key = re.sub(r"\[\d+\]$", "", fld.split(".")[-1]) if fld else None
+        parts = [re.sub(r"\[\d+\]$", "", p) for p in fld.split(".")] if fld else []
+        # The deepest part that is a key of the table (value.driver → value), else the last.
+        key = next((p for p in reversed(parts) if table is not None and p in table.data), parts[-1] if parts else None)
         key = _FIELD_KEYS.get(key, key) if key else None
         if table is None:
             return InputError(f"{self.src.path}: {err.reason}", field=err.field, value=err.value, file=str(self.src.path), line=None)
@@ -705,42 +703,52 @@ class _Builder:
             self.driver(m, t)
         for t in top.array_of_tables("clearance_joint", _CLEARANCE_KEYS):
             self.clearance_joint(m, t)
-        for kind, keys in _FORCE_KEYS.items():
-            for t in top.array_of_tables(kind, keys):
-                self.force_element(m, kind, t)
+        all_keys = sorted({k for keys in _FORCE_KEYS.values() for k in keys})
+        for t in top.array_of_tables("force", all_keys):
+            self.force_element(m, t)
         return m
 
-    def _load(self, t: _Table, key: str, default: Any = None) -> Any:
-        """A number, or an inline table {x, y, of, period} as a :class:`Table`."""
-        if key in t and isinstance(t.data[key], dict):
-            sub = t.table(key, _TABLE_KEYS)
+    def _load(self, t: _Table, key: str, columns: Sequence[str]) -> Any:
+        """A load: a number, a pair, or an inline table (see :mod:`clearsim.forces`)."""
+        value = t._get(key, _REQUIRED)
+        if isinstance(value, dict):
+            sub = t.table(key, ("t", "driver", "angle", "period", *columns))
             assert sub is not None
-            return Table(x=sub.numbers("x"), y=sub.numbers("y"), of=sub.string("of", "time"), period=sub.number("period", None))
-        return t.number(key, default)
+            out: Dict[str, Any] = {k: sub.numbers(k) for k in ("t", "angle", *columns) if k in sub}
+            if "driver" in sub:
+                out["driver"] = sub.string("driver")
+            if "period" in sub:
+                out["period"] = sub.number("period")
+            return out
+        return t.number(key) if columns == ("torque",) else t.point(key)
 
-    def force_element(self, m: Mechanism, kind: str, t: _Table) -> None:
+    def force_element(self, m: Mechanism, t: _Table) -> None:
+        kind = t.string("type", choices=tuple(_FORCE_KEYS))
+        for key in t.data:
+            if key not in _FORCE_KEYS[kind]:
+                raise t.error(key, f"unknown key '{key}' in a {kind} [[force]] (known: {', '.join(_FORCE_KEYS[kind])})", t.data[key])
         name = t.string("name", None)
         self._register("force", name, t)
-        if kind in ("spring_damper", "rotational_spring_damper"):
-            bodies = t.strings("bodies")
-            if len(bodies) != 2:
-                raise t.error("bodies", f"invalid {_dotted(t.where, 'bodies')} = {bodies!r}: must name two bodies", bodies)
-            common = dict(stiffness=t.number("stiffness", 0.0), damping=t.number("damping", 0.0), name=name)
-            if kind == "spring_damper":
-                (pa, pb) = t.points("points", 2)
-                self.call(t, m.spring_damper, bodies[0], pa, bodies[1], pb, free_length=t.number("free_length", None), force_table=self._load(t, "force_table"), **common)
-            else:
-                self.call(t, m.rotational_spring_damper, bodies[0], bodies[1], free_angle=t.number("free_angle", None), **common)
+        if kind == "spring":
+            table = None
+            if "force_table" in t:
+                sub = t.table("force_table", ("deflection", "force"))
+                assert sub is not None
+                table = {"deflection": sub.numbers("deflection"), "force": sub.numbers("force")}
+            self.call(
+                t, m.spring, t.string("body_a"), t.point("point_a"), t.string("body_b"), t.point("point_b"),
+                t.number("stiffness", None), t.number("damping", 0.0), t.number("free_length", None), name, force_table=table,
+            )  # fmt: skip
+        elif kind == "rotational_spring":
+            self.call(t, m.rotational_spring, t.string("body_a"), t.string("body_b"), t.number("stiffness"), t.number("damping", 0.0), t.number("angle0", None), name)
         elif kind == "force":
-            force = t.point("force", None)
-            kwargs = dict(direction=t.point("direction", None), magnitude=self._load(t, "magnitude"), frame=t.string("frame", "global"), name=name)
-            self.call(t, m.force, t.string("body"), t.point("point", [0.0, 0.0]), force, **kwargs)
+            self.call(t, m.force, t.string("body"), t.point("point", [0.0, 0.0]), self._load(t, "value", ("fx", "fy")), t.string("frame", "global"), name)
         elif kind == "torque":
-            self.call(t, m.torque, t.string("body"), self._load(t, "torque", _REQUIRED), reaction=t.string("reaction", None), name=name)
+            self.call(t, m.torque, t.string("body"), self._load(t, "value", ("torque",)), name, reaction=t.string("reaction", None))
         else:
             self.call(
-                t, m.motor, t.string("body"), stall_torque=t.number("stall_torque"), no_load_speed=t.number("no_load_speed", None),
-                no_load_rpm=t.number("no_load_rpm", None), reaction=t.string("reaction", "ground"), name=name,
+                t, m.motor, t.string("body"), t.number("stall_torque"), t.number("no_load_speed"), t.number("angle0", None), name,
+                reaction=t.string("reaction", "ground"),
             )  # fmt: skip
 
     def _register(self, kind: str, name: Optional[str], table: _Table) -> None:

@@ -226,16 +226,15 @@ pub enum ForceDesc {
         #[cfg_attr(feature = "serde", serde(default))]
         free_angle: Option<f64>,
     },
-    /// A force F = magnitude · direction [N] at a body point (direction: unit vector in the
-    /// global or the body frame).
+    /// A force (F_x, F_y) [N] at a body point, its components in the global or the body frame.
     Force {
         name: String,
         body: usize,
         point: [f64; 2],
-        direction: [f64; 2],
         #[cfg_attr(feature = "serde", serde(default))]
         frame: Frame,
-        magnitude: Profile,
+        fx: Profile,
+        fy: Profile,
     },
     /// A torque [N m] on `body` (counter-clockwise positive), reacted on `reaction` if given.
     Torque {

@@ -256,16 +256,13 @@ fn compile_forces(model: &Model, desc: &MechanismDesc) -> Result<Vec<ForceElemen
                 damping: *damping,
                 free_angle: free_angle.unwrap_or_else(|| at(body_b).th - at(body_a).th),
             },
-            ForceDesc::Force { body, point, direction, frame, magnitude, .. } => {
-                let d = V2::from(*direction);
-                ForceElement::Force {
-                    body: *body as u32,
-                    s: (*point).into(),
-                    direction: d.scale(1.0 / d.norm()),
-                    body_frame: *frame == Frame::Body,
-                    magnitude: Magnitude::new(magnitude),
-                }
-            }
+            ForceDesc::Force { body, point, frame, fx, fy, .. } => ForceElement::Force {
+                body: *body as u32,
+                s: (*point).into(),
+                body_frame: *frame == Frame::Body,
+                fx: Magnitude::new(fx),
+                fy: Magnitude::new(fy),
+            },
             ForceDesc::Torque { body, reaction, magnitude, .. } => ForceElement::Torque { body: *body as u32, reaction: idx(reaction), magnitude: Magnitude::new(magnitude) },
             ForceDesc::Motor { body, reaction, stall_torque, no_load_speed, .. } => {
                 ForceElement::Motor { body: *body as u32, reaction: idx(reaction), stall_torque: *stall_torque, no_load_speed: *no_load_speed }

@@ -323,14 +323,11 @@ fn validate_force(fd: &ForceDesc, nb: usize) -> Result<()> {
                 finite(&format!("{f}.free_angle"), *a)?;
             }
         }
-        ForceDesc::Force { body, point: p, direction, magnitude, .. } => {
+        ForceDesc::Force { body, point: p, fx, fy, .. } => {
             body_ref(&format!("{f}.body"), Some(*body), nb)?;
             point(&format!("{f}.point"), *p)?;
-            point(&format!("{f}.direction"), *direction)?;
-            if direction[0].hypot(direction[1]) < 1e-12 {
-                return Err(Error::invalid(format!("{f}.direction"), format!("{direction:?}"), "must be a non-zero direction"));
-            }
-            validate_profile(&format!("{f}.magnitude"), magnitude, nb)?;
+            validate_profile(&format!("{f}.fx"), fx, nb)?;
+            validate_profile(&format!("{f}.fy"), fy, nb)?;
         }
         ForceDesc::Torque { body, reaction, magnitude, .. } => {
             body_ref(&format!("{f}.body"), Some(*body), nb)?;

@@ -191,22 +191,26 @@ def test_reliability_limits_are_required(tmp_path):
 
 
 LOADS = """
-[[spring_damper]]
+[[force]]
+type = "spring"
 name = "return-spring"
-bodies = ["ground", "slider"]
-points = [[0.3, 0.0], [0.0, 0.0]]
+body_a = "ground"
+point_a = [0.3, 0.0]
+body_b = "slider"
+point_b = [0.0, 0.0]
 stiffness = 2000.0
 damping = 5.0
 
 [[force]]
+type = "force"
 name = "stamp"
 body = "slider"
-direction = [1.0, 0.0]
-magnitude = { x = [0.0, 2.6, 2.8, 3.1], y = [0.0, 0.0, 400.0, 0.0], of = "crank-drive", period = 6.283185307179586 }
+value = { driver = "crank-drive", angle = [0.0, 2.6, 2.8, 3.1], fx = [0.0, 0.0, 400.0, 0.0], period = 6.283185307179586 }
 
-[[torque]]
+[[force]]
+type = "torque"
 body = "rod"
-torque = 0.5
+value = 0.5
 """
 
 
@@ -214,9 +218,8 @@ def test_scene_force_elements_are_the_python_ones(tmp_path):
     path = tmp_path / "loaded.toml"
     path.write_text((SCENES / "slider_crank.toml").read_text(encoding="utf-8") + LOADS, encoding="utf-8")
     ref = models.slider_crank("dry")
-    ref.spring_damper("ground", (0.3, 0.0), "slider", (0.0, 0.0), stiffness=2000.0, damping=5.0, name="return-spring")
-    ref.force("slider", (0, 0), direction=(1, 0), name="stamp",
-              magnitude=clearsim.Table([0.0, 2.6, 2.8, 3.1], [0.0, 0.0, 400.0, 0.0], of="crank-drive", period=2 * math.pi))  # fmt: skip
+    ref.spring("ground", (0.3, 0.0), "slider", (0.0, 0.0), 2000.0, damping=5.0, name="return-spring")
+    ref.force("slider", (0, 0), {"driver": "crank-drive", "angle": [0.0, 2.6, 2.8, 3.1], "fx": [0.0, 0.0, 400.0, 0.0], "period": 2 * math.pi}, name="stamp")
     ref.torque("rod", 0.5, name="torque1")
     m = load_scene(path)
     assert m.description() == ref.description()
@@ -226,8 +229,10 @@ def test_scene_force_elements_are_the_python_ones(tmp_path):
 def test_scene_force_element_error_is_located(tmp_path):
     path, line = _edit(tmp_path, "stiffness = 2000.0", "stiffness = -2000.0", source=_with_loads(tmp_path))
     _assert_located(_error(path), path, line, "stiffness", "-2000")
-    path, line = _edit(tmp_path, 'of = "crank-drive"', 'of = "crank-drve"', source=_with_loads(tmp_path))
+    path, line = _edit(tmp_path, 'driver = "crank-drive"', 'driver = "crank-drve"', source=_with_loads(tmp_path))
     _assert_located(_error(path), path, line, "crank-drve", "no such driver")
+    path, line = _edit(tmp_path, 'type = "torque"', 'type = "torsion"', source=_with_loads(tmp_path))
+    _assert_located(_error(path), path, line, "torsion", "spring")
 
 
 def _with_loads(tmp_path: Path) -> Path:
