@@ -211,3 +211,46 @@ def test_descriptions_enter_the_core_through_one_checked_path():
     bad["forces"][0]["kind"] = "bungee"
     with pytest.raises(InputError, match="unknown variant `bungee`"):
         _core.compile(bad)
+
+
+def test_undriven_spring_and_gravity_four_bar_conserves_energy():
+    """An undriven crank-rocker (Grashof: 0.06 + 0.22 < 0.2 + 0.15, no singular pose) with
+    ideal joints under gravity and a spring: kinetic + gravity + spring energy stays constant,
+    and the drift falls with the tolerance (no load, damper or driver)."""
+    a, d, r1, r2 = np.array([0.0, 0.06]), np.array([0.22, 0.0]), 0.2, 0.15
+    dist = np.linalg.norm(d - a)
+    along = (r1**2 - r2**2 + dist**2) / (2 * dist)
+    b = a + along * (d - a) / dist + math.sqrt(r1**2 - along**2) * np.array([a[1] - d[1], d[0] - a[0]]) / dist
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("crank", mass=0.5, inertia=2e-3, position=(0.0, 0.03), angle=math.pi / 2)
+    m.add_body("coupler", mass=0.8, inertia=6e-3, position=tuple((a + b) / 2), angle=math.atan2(*(b - a)[::-1]))
+    m.add_body("rocker", mass=0.6, inertia=4e-3, position=tuple((b + d) / 2), angle=math.atan2(*(b - d)[::-1]))
+    m.revolute("ground", (0.0, 0.0), "crank", (-0.03, 0.0))
+    m.revolute("crank", (0.03, 0.0), "coupler", (-0.1, 0.0))
+    m.revolute("coupler", (0.1, 0.0), "rocker", (0.075, 0.0))
+    m.revolute("rocker", (-0.075, 0.0), "ground", (0.22, 0.0))
+    m.spring("ground", (0.1, -0.1), "coupler", (0.0, 0.0), 400.0, free_length=0.15)
+    for rtol, bound in ((1e-6, 1e-5), (1e-8, 1e-7), (1e-10, 1e-9)):  # measured: 6e-7, 3e-9, 3e-11
+        res = m.simulate(1.0, dt_out=1e-2, rtol=rtol, atol=rtol * 1e-3, outputs=["states", "energy"], progress=False)
+        e = res.energy()
+        scale = np.max(e["kinetic"]) + np.ptp(e["gravity"]) + np.max(e["spring"])
+        assert np.max(e["kinetic"]) > 1.0
+        assert np.ptp(e["balance"]) < bound * scale, (rtol, np.ptp(e["balance"]) / scale)
+
+
+def test_motor_driven_flywheel_settles_at_the_closed_form_speed_under_a_load_torque():
+    """T_s (1 − ω/ω₀) = T_L: ω* = ω₀ (1 − T_L/T_s), approached as ω* (1 − e^(−t/τ)), τ = J ω₀/T_s."""
+    inertia, ts, w0, tl = 0.05, 4.0, 150.0, 1.0
+    m = clearsim.Mechanism(gravity=(0, 0))
+    m.add_body("flywheel", mass=3.0, inertia=inertia, position=(0, 0))
+    m.revolute("ground", (0, 0), "flywheel", (0, 0))
+    m.motor("flywheel", ts, w0)
+    m.torque("flywheel", -tl)
+    res = m.simulate(30.0, dt_out=0.1, rtol=1e-10, atol=1e-12, progress=False, outputs=["states", "energy"])  # 16 τ
+    w_star, tau = w0 * (1 - tl / ts), inertia * w0 / ts
+    w = res.velocity("flywheel")[:, 2]
+    assert np.max(np.abs(w - w_star * (1 - np.exp(-res.t / tau)))) < 1e-7 * w_star
+    assert w[-1] == pytest.approx(w_star, rel=1e-6)
+    e = res.energy()
+    assert e["motor"][-1] > 0 > e["load"][-1]
+    assert np.ptp(e["balance"]) < 1e-6 * e["motor"][-1]
