@@ -2,7 +2,6 @@
 //! approximate poses (clearance journals placed at their initial eccentricity), then the
 //! consistent velocities Φq q̇ = −Φt. Both corrections are minimum-norm (unit weights).
 
-use crate::constraints::Constraint;
 use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::system::Workspace;
@@ -11,18 +10,12 @@ const MAX_ITERATIONS: usize = 60;
 
 /// The positions and velocities (q0, q̇0) of a consistent initial state.
 pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
-    // The clearance joints become revolute joints with the initial eccentricity as offset.
+    // Revolute clearance joints are held at their initial eccentricity, prismatic ones centred.
     let mut ideal = model.clone();
-    for (c, e) in model.clearance.iter().zip(&model.initial_eccentricity) {
-        ideal.constraint_names.push(format!("clearance joint '{}' (held at its initial eccentricity)", c.name));
-        ideal.constraints.push(Constraint::Revolute {
-            a: c.journal,
-            sa: c.journal_point,
-            b: c.bearing,
-            sb: c.bearing_point,
-            offset: *e,
-        });
-        ideal.rows += 2;
+    for (name, c) in &model.assembly {
+        ideal.constraint_names.push(name.clone());
+        ideal.rows += c.rows();
+        ideal.constraints.push(c.clone());
     }
     ideal.clearance.clear();
     let n = 3 * model.n_bodies();

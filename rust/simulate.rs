@@ -28,6 +28,7 @@ pub fn max_penetration(clearance: f64, journal_radius: f64) -> f64 {
     clearance.max(0.05 * journal_radius)
 }
 
+
 /// What to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
@@ -528,7 +529,7 @@ impl OdeSystem for MechanismSystem<'_> {
         for j in 0..self.memory.len() {
             let k1 = self.joint_kinematics(j, y1);
             let cj = &self.model.clearance[j];
-            let limit = max_penetration(cj.clearance, cj.journal_radius);
+            let limit = cj.penetration_limit;
             if k1.delta > limit {
                 // The diagnosis (worst joint, its ε) describes the state that went too deep.
                 self.last_t = t1;

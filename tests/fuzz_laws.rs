@@ -167,6 +167,8 @@ fn joint(lubricated: bool, law: NormalLaw, film: FilmModel, c: f64, r_j: f64, ce
             e0: 0.05 * c,
             eps_max: 0.99,
         }),
+        guide_normal: None,
+        penetration_limit: c.max(0.05 * r_j),
     }
 }
 
@@ -293,6 +295,7 @@ fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> M
             model,
             initial_eccentricity: [0.0, 0.0],
         }],
+        prismatic_clearance_joints: vec![],
         forces: vec![],
         gravity: [0.0, -9.81],
         baumgarte: [50.0, 50.0],

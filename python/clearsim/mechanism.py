@@ -77,6 +77,7 @@ class Mechanism:
         self._drivers: List[Dict[str, Any]] = []
         self._clearance: List[Dict[str, Any]] = []
         self._forces: List[Dict[str, Any]] = []
+        self._prismatic_clearance: List[Dict[str, Any]] = []
         self._names: set = set()
         self._compiled: Any = None
 
@@ -96,6 +97,7 @@ class Mechanism:
 
     def __setstate__(self, state: Dict[str, Any]) -> None:
         state.setdefault("_forces", [])
+        state.setdefault("_prismatic_clearance", [])
         self.__dict__.update(state)
 
     # ------------------------------------------------------------------ building
@@ -331,6 +333,53 @@ class Mechanism:
         )
         return self
 
+    def prismatic_clearance(
+        self,
+        guide_body: str,
+        guide_point: Point,
+        slider_body: str,
+        axis: Point,
+        clearance: float,
+        slider_length: float,
+        model: Optional[Dry] = None,
+        name: Optional[str] = None,
+        *,
+        corner_radius: float = 1e-3,
+    ) -> "Mechanism":
+        """A prismatic (translational) joint with clearance (docs/physics.md §11).
+
+        The slider (``slider_body``, centred on its centroid) moves in a guide along the line
+        through ``guide_point`` of ``guide_body`` (may be ``"ground"``) with direction ``axis``
+        (guide frame). ``clearance`` [m] is the guide gap minus the slider's thickness: centred,
+        the slider can move ±clearance/2 sideways. Its two ends, ``slider_length`` [m] apart
+        and rounded with ``corner_radius`` [m], hit either guide surface with the dry law
+        ``model`` (:class:`Dry`; its stiffness defaults to Hertz sphere-on-plane with the corner
+        radius), with friction along the guide. Free flight, one-end and two-end contact follow.
+        The joint's results are two contacts, ``"<name> front"`` (+axis end) and
+        ``"<name> rear"``. It starts centred and aligned with the guide.
+        """
+        g = self._body("guide_body", guide_body)
+        s = self._body("slider_body", slider_body, allow_ground=False)
+        if g == s:
+            raise InputError(f"invalid slider_body = {slider_body!r}: guide and slider must be different bodies", field="slider_body", value=slider_body)
+        ax = _point("axis", axis)
+        if math.hypot(*ax) == 0.0:
+            raise InputError(f"invalid axis = {axis!r}: must be a non-zero direction", field="axis", value=axis)
+        model = Dry() if model is None else model
+        if not isinstance(model, Dry):
+            raise InputError(f"invalid model = {model!r}: a prismatic clearance joint is dry: clearsim.Dry(...)", field="model", value=model)
+        jname = self._new_name("prismatic_clearance", name)
+        self._prismatic_clearance.append(
+            {
+                "name": jname, "guide_body": g, "guide_point": _point("guide_point", guide_point), "slider_body": s, "axis": ax,
+                "clearance": check_positive(f"clearance joint '{jname}'.clearance", clearance),
+                "slider_length": check_positive(f"clearance joint '{jname}'.slider_length", slider_length),
+                "corner_radius": check_positive(f"clearance joint '{jname}'.corner_radius", corner_radius),
+                "model": model._as_dict(),
+            }
+        )  # fmt: skip
+        return self
+
     # ------------------------------------------------------------------ force elements (docs/physics.md §10)
     def _driver_body(self, field: str, name: str) -> int:
         """The body a driver or motor turns (for load tables in a driver's angle)."""
@@ -454,7 +503,11 @@ class Mechanism:
 
     @property
     def clearance_joint_names(self) -> List[str]:
-        return [c["name"] for c in self._clearance]
+        """The clearance contacts in the order of the results' joint channels: each revolute
+        clearance joint, then the two slider ends ``"<name> front"``, ``"<name> rear"`` of each
+        prismatic one."""
+        ends = [f"{p['name']} {end}" for p in self._prismatic_clearance for end in ("front", "rear")]
+        return [c["name"] for c in self._clearance] + ends
 
     def description(self) -> Dict[str, Any]:
         """The plain-data description handed to the Rust core (a deep copy)."""
@@ -466,6 +519,7 @@ class Mechanism:
                 "joints": self._joints,
                 "drivers": self._drivers,
                 "clearance_joints": self._clearance,
+                "prismatic_clearance_joints": self._prismatic_clearance,
                 "forces": self._forces,
             }
         )
@@ -488,7 +542,13 @@ class Mechanism:
                     "point_b": c["journal_point"],
                 }
             )
+        for p in m._prismatic_clearance:
+            m._joints.append(
+                {"kind": "prismatic", "name": p["name"], "body_a": p["guide_body"], "point_a": p["guide_point"],
+                 "axis": p["axis"], "body_b": p["slider_body"], "point_b": [0.0, 0.0]}
+            )  # fmt: skip
         m._clearance = []
+        m._prismatic_clearance = []
         m._compiled = None
         return m
 

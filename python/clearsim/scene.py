@@ -44,6 +44,10 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     name = "crank-drive"             # optional
 
     [[clearance_joint]]              # revolute joint with radial clearance (spec §2)
+    type = "revolute"                # default; or "prismatic" (docs/physics.md §11): name,
+                                     #   guide_body, guide_point, slider_body, axis, clearance
+                                     #   (gap − slider thickness) [m], slider_length [m],
+                                     #   corner_radius [m] (default 1e-3), [clearance_joint.dry]
     name = "rod-slider"
     bearing_body = "slider"          # the hole, radius journal_radius + clearance
     bearing_point = [0.0, 0.0]
@@ -597,8 +601,11 @@ _MECHANISM_KEYS = ("name", "description", "gravity", "baumgarte")
 _BODY_KEYS = ("name", "mass", "inertia", "position", "angle", "ends", "velocity")
 _JOINT_KEYS = {"revolute": ("type", "name", "bodies", "points"), "prismatic": ("type", "name", "bodies", "points", "axis")}
 _DRIVER_KEYS = ("name", "body", "omega", "rpm", "angle0", "polynomial", "times", "angles")
+_PRISMATIC_CLEARANCE_KEYS = (
+    "type", "name", "guide_body", "guide_point", "slider_body", "axis", "clearance", "slider_length", "corner_radius", "model", "dry",
+)  # fmt: skip
 _CLEARANCE_KEYS = (
-    "name", "bearing_body", "bearing_point", "journal_body", "journal_point",
+    "type", "name", "bearing_body", "bearing_point", "journal_body", "journal_point",
     "journal_radius", "clearance", "initial_eccentricity", "model", "dry", "lubricated",
 )  # fmt: skip
 _SIM_KEYS = (
@@ -701,7 +708,7 @@ class _Builder:
             self.joint(m, t)
         for t in top.array_of_tables("driver", _DRIVER_KEYS):
             self.driver(m, t)
-        for t in top.array_of_tables("clearance_joint", _CLEARANCE_KEYS):
+        for t in top.array_of_tables("clearance_joint", sorted(set(_CLEARANCE_KEYS) | set(_PRISMATIC_CLEARANCE_KEYS))):
             self.clearance_joint(m, t)
         all_keys = sorted({k for keys in _FORCE_KEYS.values() for k in keys})
         for t in top.array_of_tables("force", all_keys):
@@ -805,8 +812,22 @@ class _Builder:
         self.call(t, m.driver, body, **kwargs)
 
     def clearance_joint(self, m: Mechanism, t: _Table) -> None:
+        kind = t.string("type", "revolute", choices=("revolute", "prismatic"))
+        known = _CLEARANCE_KEYS if kind == "revolute" else _PRISMATIC_CLEARANCE_KEYS
+        for key in t.data:
+            if key not in known:
+                raise t.error(key, f"unknown key '{key}' in a {kind} [[clearance_joint]] (known: {', '.join(known)})", t.data[key])
         name = t.string("name")
         self._register("clearance_joint", name, t)
+        if kind == "prismatic":
+            t.string("model", "dry", choices=("dry",))
+            sub = t.table("dry", _model_fields(Dry))
+            model = Dry() if sub is None else _read_model(sub, Dry)
+            self.call(
+                t, m.prismatic_clearance, t.string("guide_body"), t.point("guide_point"), t.string("slider_body"), t.point("axis"),
+                t.number("clearance"), t.number("slider_length"), model, name, corner_radius=t.number("corner_radius", 1e-3),
+            )  # fmt: skip
+            return
         kind = t.string("model", "dry", choices=("dry", "lubricated"))
         other = "lubricated" if kind == "dry" else "dry"
         if other in t:

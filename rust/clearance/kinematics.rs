@@ -28,6 +28,36 @@ pub struct JointKinematics {
 }
 
 impl JointKinematics {
+    /// A slider end in a guide (docs/physics.md §11): `e` is the end's lateral offset d n_g
+    /// from the guide line (guide point `sg`, unit normal `normal_g` in the guide's frame), ė
+    /// the end's velocity relative to the guide's material point under it, `half_gap` the
+    /// free lateral travel; δ = |d| − half_gap, δ̇ = n·ė, slip = t·ė, no whirl or wedge.
+    #[inline]
+    pub fn in_guide(guide: &BodyKin, sg: V2, normal_g: V2, slider: &BodyKin, ss: V2, half_gap: f64) -> Self {
+        let p = slider.point(ss);
+        let n_g = guide.rot(normal_g);
+        let d = n_g.dot(p.sub(guide.point(sg)));
+        // Velocity of the guide's material point at p: v_g + θ̇_g (p − r_g)⊥.
+        let e_dot = slider.point_velocity(ss).sub(guide.v().add(p.sub(guide.r()).perp().scale(guide.w)));
+        let n = if d < 0.0 { n_g.scale(-1.0) } else { n_g };
+        let t = n.perp();
+        let delta_dot = n.dot(e_dot);
+        JointKinematics {
+            e_vec: n_g.scale(d),
+            e_dot,
+            e: d.abs(),
+            n,
+            t,
+            eps: d.abs() / half_gap,
+            eps_dot: delta_dot / half_gap,
+            delta: d.abs() - half_gap,
+            delta_dot,
+            slip: t.dot(e_dot),
+            gamma_dot: 0.0,
+            wedge: 0.0,
+        }
+    }
+
     #[allow(clippy::too_many_arguments)]
     #[inline]
     pub fn new(bearing: &BodyKin, sb: V2, journal: &BodyKin, sj: V2, r_j: f64, r_b: f64, c: f64) -> Self {

@@ -41,6 +41,12 @@ pub struct ClearanceJoint {
     pub friction: ModifiedCoulomb,
     /// `None` for a dry joint: no film code runs.
     pub film: Option<Film>,
+    /// A slider end in a guide (docs/physics.md §11): the guide's unit normal in the guide
+    /// body's frame. The "bearing" is then the guide (its point on the guide line), the
+    /// "journal" the slider (its end point), `clearance` half the lateral play and the radii 0.
+    pub guide_normal: Option<V2>,
+    /// Penetration [m] beyond which the run stops ([`crate::error::Error::PenetrationTooDeep`]).
+    pub penetration_limit: f64,
 }
 
 /// What the joint's law produced at one instant.
@@ -71,6 +77,9 @@ impl ClearanceJoint {
     /// The same, with the bodies' kinematics supplied by `body` (`None` is the ground).
     #[inline]
     pub fn kinematics_with(&self, body: impl Fn(Option<u32>) -> BodyKin) -> JointKinematics {
+        if let Some(normal) = self.guide_normal {
+            return JointKinematics::in_guide(&body(self.bearing), self.bearing_point, normal, &body(self.journal), self.journal_point, self.clearance);
+        }
         JointKinematics::new(
             &body(self.bearing),
             self.bearing_point,
@@ -135,7 +144,11 @@ impl ClearanceJoint {
         }
         if let Some(i) = self.bearing {
             let ki = kin[i as usize];
-            let arm = ki.rot(self.bearing_point);
+            // A guide takes the reaction where the slider end touches it, not at its point.
+            let arm = match (self.guide_normal, self.journal) {
+                (Some(_), Some(j)) => kin[j as usize].point(self.journal_point).sub(ki.r()),
+                _ => ki.rot(self.bearing_point),
+            };
             let o = 3 * i as usize;
             g[o] -= f.total.x;
             g[o + 1] -= f.total.y;

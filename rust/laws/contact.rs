@@ -47,6 +47,13 @@ pub fn stiffness_internal(r_bearing: f64, r_journal: f64, e_bearing: f64, nu_bea
     4.0 / (3.0 * sigma) * (r_bearing * r_journal / (r_bearing - r_journal)).sqrt()
 }
 
+/// Hertz stiffness [N/m^1.5] of a sphere (or rounded corner) of radius `r` on a plane:
+/// K = 4/(3σ) √r, the slider ends of a prismatic clearance joint (docs/physics.md §11).
+pub fn stiffness_sphere_plane(r: f64, e_plane: f64, nu_plane: f64, e_sphere: f64, nu_sphere: f64) -> f64 {
+    let sigma = compliance(e_plane, nu_plane) + compliance(e_sphere, nu_sphere);
+    4.0 / (3.0 * sigma) * r.sqrt()
+}
+
 /// The stiffness as printed in the paper's Eq. (4), with `R_b + R_j` in the denominator of the
 /// effective radius (the form for two convex bodies, wrong for a journal in a bearing; kept as a
 /// labelled option). Same units as [`stiffness_internal`].

@@ -143,6 +143,35 @@ pub struct ClearanceJointDesc {
     pub initial_eccentricity: [f64; 2],
 }
 
+/// A prismatic (translational) joint with clearance (docs/physics.md §11): a slider of length
+/// `slider_length` centred on the slider body's centroid moves in a guide through `guide_point`
+/// of the guide body along `axis` (guide frame), with a total lateral play `clearance`. Its two
+/// ends (rounded with `corner_radius`) contact either guide surface with the dry law.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrismaticClearanceDesc {
+    pub name: String,
+    pub guide_body: BodyRef,
+    pub guide_point: [f64; 2],
+    pub slider_body: usize,
+    pub axis: [f64; 2],
+    /// Guide gap minus slider thickness [m] (the slider can move ±clearance/2 sideways).
+    pub clearance: f64,
+    /// Distance between the slider's two contact ends [m].
+    pub slider_length: f64,
+    /// Radius of the slider's rounded corners [m]: the Hertz sphere-on-plane contact stiffness
+    /// uses it when the dry law gives no stiffness.
+    #[cfg_attr(feature = "serde", serde(default = "default_corner_radius"))]
+    pub corner_radius: f64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub model: DryDesc,
+}
+
+#[cfg(feature = "serde")]
+fn default_corner_radius() -> f64 {
+    1e-3
+}
+
 /// What a [`Table`] is a function of.
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
@@ -279,6 +308,8 @@ pub struct MechanismDesc {
     pub joints: Vec<JointDesc>,
     pub drivers: Vec<DriverDesc>,
     pub clearance_joints: Vec<ClearanceJointDesc>,
+    /// Prismatic joints with clearance.
+    pub prismatic_clearance_joints: Vec<PrismaticClearanceDesc>,
     /// Force elements and loads.
     pub forces: Vec<ForceDesc>,
     /// Gravity [m/s²].
@@ -294,6 +325,7 @@ impl Default for MechanismDesc {
             joints: vec![],
             drivers: vec![],
             clearance_joints: vec![],
+            prismatic_clearance_joints: vec![],
             forces: vec![],
             gravity: [0.0, -9.81],
             baumgarte: [50.0, 50.0],
@@ -342,8 +374,14 @@ impl DryDesc {
 }
 
 /// The element lists of a description and what one element is called in messages.
-pub const ELEMENTS: [(&str, &str); 5] =
-    [("bodies", "body"), ("joints", "joint"), ("drivers", "driver"), ("clearance_joints", "clearance joint"), ("forces", "force")];
+pub const ELEMENTS: [(&str, &str); 6] = [
+    ("bodies", "body"),
+    ("joints", "joint"),
+    ("drivers", "driver"),
+    ("clearance_joints", "clearance joint"),
+    ("prismatic_clearance_joints", "clearance joint"),
+    ("forces", "force"),
+];
 
 /// Read a description from JSON (what the Python layer and scene files hand over). A bad
 /// entry is reported as an [`crate::error::Error::InvalidInput`] naming the element and the

@@ -40,8 +40,9 @@ pub struct Model {
     /// Approximate initial positions (x, y, θ per body) and velocity guesses.
     pub q_guess: Vec<f64>,
     pub qd_guess: Vec<f64>,
-    /// Initial eccentricity vector of each clearance joint [m].
-    pub initial_eccentricity: Vec<V2>,
+    /// What holds each clearance joint during the kinematic assembly: a revolute joint with
+    /// the initial eccentricity as offset, or a prismatic joint (slider centred and aligned).
+    pub assembly: Vec<(String, Constraint)>,
 }
 
 impl Model {
@@ -113,8 +114,19 @@ impl Model {
             force_names: desc.forces.iter().map(|f| f.name().to_string()).collect(),
             q_guess,
             qd_guess,
-            initial_eccentricity: desc.clearance_joints.iter().map(|c| c.initial_eccentricity.into()).collect(),
+            assembly: Vec::new(),
         };
+        for c in &desc.clearance_joints {
+            model.assembly.push((
+                format!("clearance joint '{}' (held at its initial eccentricity)", c.name),
+                Constraint::Revolute { a: idx(&c.journal_body), sa: c.journal_point.into(), b: idx(&c.bearing_body), sb: c.bearing_point.into(), offset: c.initial_eccentricity.into() },
+            ));
+        }
+        for p in &desc.prismatic_clearance_joints {
+            let (guide, ends) = compile_prismatic_clearance(p, desc)?;
+            model.clearance.extend(ends);
+            model.assembly.push((format!("clearance joint '{}' (held centred in its guide)", p.name), guide));
+        }
         model.forces = compile_forces(&model, desc)?;
         Ok(model)
     }
@@ -159,6 +171,9 @@ impl MechanismDesc {
                 body_b: c.journal_body,
                 point_b: c.journal_point,
             });
+        }
+        for p in d.prismatic_clearance_joints.drain(..) {
+            d.joints.push(JointDesc::Prismatic { name: p.name, body_a: p.guide_body, point_a: p.guide_point, axis: p.axis, body_b: p.slider_body, point_b: [0.0, 0.0] });
         }
         d
     }
@@ -215,6 +230,8 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
         contact,
         friction: ModifiedCoulomb { friction_coefficient: dry.friction, v0: dry.v0, v1: dry.v1 },
         film,
+        guide_normal: None,
+        penetration_limit: crate::simulate::max_penetration(c.clearance, c.journal_radius),
     })
 }
 
@@ -269,4 +286,37 @@ fn compile_forces(model: &Model, desc: &MechanismDesc) -> Result<Vec<ForceElemen
             }
         })
         .collect())
+}
+
+/// The two slider-end contacts of a prismatic clearance joint (docs/physics.md §11) and the
+/// prismatic constraint that holds the slider centred and aligned during the assembly.
+fn compile_prismatic_clearance(p: &PrismaticClearanceDesc, desc: &MechanismDesc) -> Result<(Constraint, [ClearanceJoint; 2])> {
+    let u = V2::from(p.axis);
+    let u = u.scale(1.0 / u.norm());
+    let th_g = p.guide_body.map_or(0.0, |g| desc.bodies[g].angle);
+    let th_s = desc.bodies[p.slider_body].angle;
+    // The slider's axis in its own frame, aligned with the guide's at the described pose.
+    let (s, c) = (th_g - th_s).sin_cos();
+    let u_s = V2::new(c * u.x - s * u.y, s * u.x + c * u.y);
+    let d = &p.model;
+    let k = d.stiffness.unwrap_or_else(|| crate::laws::contact::stiffness_sphere_plane(p.corner_radius, d.youngs_bearing, d.poisson_bearing, d.youngs_journal, d.poisson_journal));
+    let contact = ContactLaw { law: d.normal_law, stiffness: k, exponent: d.exponent, restitution: d.restitution, impact_speed_floor: d.impact_speed_floor };
+    let half = 0.5 * p.clearance;
+    let end = |sign: f64, label: &str| ClearanceJoint {
+        name: format!("{} {label}", p.name),
+        bearing: p.guide_body.map(|i| i as u32),
+        bearing_point: p.guide_point.into(),
+        journal: Some(p.slider_body as u32),
+        journal_point: u_s.scale(sign * 0.5 * p.slider_length),
+        journal_radius: 0.0,
+        bearing_radius: 0.0,
+        clearance: half,
+        contact,
+        friction: ModifiedCoulomb { friction_coefficient: d.friction, v0: d.v0, v1: d.v1 },
+        film: None,
+        guide_normal: Some(u.perp()),
+        penetration_limit: crate::simulate::max_penetration(half, p.corner_radius),
+    };
+    let guide = Constraint::Prismatic { a: p.guide_body.map(|i| i as u32), sa: p.guide_point.into(), u_perp: u.perp(), b: p.slider_body as u32, sb: V2::default(), theta0: th_s - th_g };
+    Ok((guide, [end(1.0, "front"), end(-1.0, "rear")]))
 }

@@ -120,6 +120,7 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 JointDesc::Revolute { name, .. } | JointDesc::Prismatic { name, .. } => name,
             })
             .chain(desc.clearance_joints.iter().map(|c| &c.name))
+            .chain(desc.prismatic_clearance_joints.iter().map(|c| &c.name))
             .chain(desc.drivers.iter().map(|d| &d.name)),
     )?;
     for b in &desc.bodies {
@@ -237,6 +238,23 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 validate_dry(&f, &l.dry)?;
             }
         }
+    }
+    for p in &desc.prismatic_clearance_joints {
+        let f = format!("clearance joint '{}'", p.name);
+        body_ref(&format!("{f}.guide_body"), p.guide_body, nb)?;
+        body_ref(&format!("{f}.slider_body"), Some(p.slider_body), nb)?;
+        if p.guide_body == Some(p.slider_body) {
+            return Err(Error::invalid(format!("{f}.slider_body"), p.slider_body, "guide and slider must be different bodies"));
+        }
+        point(&format!("{f}.guide_point"), p.guide_point)?;
+        point(&format!("{f}.axis"), p.axis)?;
+        if p.axis[0].hypot(p.axis[1]) < 1e-12 {
+            return Err(Error::invalid(format!("{f}.axis"), format!("{:?}", p.axis), "must be a non-zero direction"));
+        }
+        positive(&format!("{f}.clearance"), p.clearance)?;
+        positive(&format!("{f}.slider_length"), p.slider_length)?;
+        positive(&format!("{f}.corner_radius"), p.corner_radius)?;
+        validate_dry(&f, &p.model)?;
     }
     unique("force", desc.forces.iter().map(|f| match f {
         ForceDesc::SpringDamper { name, .. }

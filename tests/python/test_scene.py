@@ -239,3 +239,30 @@ def _with_loads(tmp_path: Path) -> Path:
     src = tmp_path / "with_loads.toml"
     src.write_text((SCENES / "slider_crank.toml").read_text(encoding="utf-8") + LOADS, encoding="utf-8")
     return src
+
+
+def test_scene_prismatic_clearance_joint_is_the_python_one(tmp_path):
+    text = (SCENES / "slider_crank.toml").read_text(encoding="utf-8")
+    start = text.index('[[joint]]\ntype = "prismatic"')  # the ideal slider guide
+    end = text.index("\n[[", start + 5) + 1
+    text = text[:start] + text[end:] + """
+[[clearance_joint]]
+type = "prismatic"
+name = "guide"
+guide_body = "ground"
+guide_point = [0.0, 0.0]
+slider_body = "slider"
+axis = [1.0, 0.0]
+clearance = 0.2e-3
+slider_length = 0.05
+corner_radius = 0.01
+[clearance_joint.dry]
+friction = 0.05
+"""
+    path = tmp_path / "guide.toml"
+    path.write_text(text, encoding="utf-8")
+    m = load_scene(path)
+    assert m.clearance_joint_names == ["rod-slider", "guide front", "guide rear"]
+    d = m.description()["prismatic_clearance_joints"][0]
+    assert d["clearance"] == 0.2e-3 and d["model"]["friction"] == 0.05 and d["slider_length"] == 0.05 and d["corner_radius"] == 0.01
+    assert m.simulate(0.002, progress=False).completed
