@@ -21,6 +21,7 @@ pub mod monitor;
 pub mod record;
 pub mod simulate;
 pub mod system;
+pub mod wear;
 
 #[cfg(feature = "python")]
 mod python;

@@ -361,6 +361,22 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
     if !out.monitors.is_empty() {
         d.set_item("monitors", monitors)?;
     }
+    if out.wear.iter().any(Option::is_some) {
+        let wear = PyList::empty(py);
+        for w in &out.wear {
+            match w {
+                None => wear.append(py.None())?,
+                Some(w) => {
+                    let wd = PyDict::new(py);
+                    wd.set_item("bearing", PyArray1::from_slice(py, &w.bearing))?;
+                    wd.set_item("journal", PyArray1::from_slice(py, &w.journal))?;
+                    wd.set_item("volume", w.volume)?;
+                    wear.append(wd)?;
+                }
+            }
+        }
+        d.set_item("wear", wear)?;
+    }
     let s = PyDict::new(py);
     s.set_item("steps", out.stats.steps_accepted)?;
     s.set_item("rejected_steps", out.stats.steps_rejected)?;

@@ -8,6 +8,7 @@ use crate::clearance::{ClearanceJoint, ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::error::{Error, Result};
 use crate::energy::{EnergyBook, Powers};
+use crate::wear::{WearBook, WearRate};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
 use crate::model::Model;
 use crate::monitor::{Monitor, MonitorResult, MonitorSpec, Quantity};
@@ -112,6 +113,8 @@ pub struct RunOutput {
     pub failure_joint: Option<(String, f64)>,
     /// What each monitor found (over the part of the run completed).
     pub monitors: Vec<MonitorResult>,
+    /// Wear per clearance joint (`None` where it is not modelled).
+    pub wear: Vec<Option<WearBook>>,
 }
 
 /// The model as an [`OdeSystem`].
@@ -130,6 +133,8 @@ pub struct MechanismSystem<'a> {
     scratch2: Vec<f64>,
     /// Work integrals, when the `energy` channel is recorded.
     energy: Option<EnergyBook>,
+    /// Wear of each clearance joint that models it.
+    pub wear: Vec<Option<WearBook>>,
     accepted: usize,
     scratch: Vec<f64>,
     /// Each clearance joint's kinematics at the last and the next sample of a step
@@ -160,6 +165,7 @@ impl<'a> MechanismSystem<'a> {
             monitor_values: Vec::new(),
             scratch2: Vec::new(),
             energy: channels.energy.then(|| EnergyBook::new(model)),
+            wear: model.clearance.iter().map(|c| c.wear.map(|law| WearBook::new(law, c))).collect(),
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -219,6 +225,28 @@ impl<'a> MechanismSystem<'a> {
         let p = book.powers(self.model, &self.ws, &self.memory, t, &y[n..2 * n]);
         self.energy = Some(book);
         Ok(p)
+    }
+
+    /// Joint `j`'s wear rate at state `y` (its law; no KKT solve).
+    fn wear_rate(&self, j: usize, y: &[f64]) -> WearRate {
+        let joint = &self.model.clearance[j];
+        let Some(law) = joint.wear else { return WearRate::default() };
+        let k = self.joint_kinematics(j, y);
+        let f = joint.force(&k, &self.memory[j]);
+        let th = |b: Option<u32>| b.map_or(0.0, |i| y[3 * i as usize + 2]);
+        WearRate::new(&law, &k, &f, th(joint.bearing), th(joint.journal))
+    }
+
+    /// Start the wear books at the initial state.
+    pub fn wear_start(&mut self, y: &[f64]) {
+        for j in 0..self.wear.len() {
+            if self.wear[j].is_some() {
+                let r = self.wear_rate(j, y);
+                if let Some(w) = self.wear[j].as_mut() {
+                    w.start(r);
+                }
+            }
+        }
     }
 
     /// Start the work integrals at the initial state.
@@ -525,6 +553,20 @@ impl OdeSystem for MechanismSystem<'_> {
                 b.step(t0, t1, pm, p1);
             }
         }
+        if self.wear.iter().any(Option::is_some) {
+            // Wear of the step, with the impact memory it was integrated with (§12).
+            let mut s = std::mem::take(&mut self.scratch);
+            dense.eval(0.5 * (t0 + t1), &mut s);
+            for j in 0..self.wear.len() {
+                if self.wear[j].is_some() {
+                    let (mid, end) = (self.wear_rate(j, &s), self.wear_rate(j, y1));
+                    if let Some(w) = self.wear[j].as_mut() {
+                        w.step(t1 - t0, mid, end);
+                    }
+                }
+            }
+            self.scratch = s;
+        }
         let mut changed = false;
         for j in 0..self.memory.len() {
             let k1 = self.joint_kinematics(j, y1);
@@ -675,6 +717,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
                 wall_time: start.elapsed().as_secs_f64(),
                 failure_joint: None,
                 monitors: Vec::new(),
+                wear: Vec::new(),
             })
         }
     };
@@ -696,6 +739,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         sys.observe_start(rs.t0, &y0)?;
     }
     sys.energy_start(rs.t0, &y0)?;
+    sys.wear_start(&y0);
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
@@ -722,5 +766,6 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         wall_time: start.elapsed().as_secs_f64(),
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
+        wear: sys.wear,
     })
 }

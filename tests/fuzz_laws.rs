@@ -169,6 +169,7 @@ fn joint(lubricated: bool, law: NormalLaw, film: FilmModel, c: f64, r_j: f64, ce
         }),
         guide_normal: None,
         penetration_limit: c.max(0.05 * r_j),
+        wear: None,
     }
 }
 

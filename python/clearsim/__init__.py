@@ -6,7 +6,7 @@ analyses the results. SI units throughout.
 
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError
-from .joints import Dry, Lubricated
+from .joints import Archard, Dry, Lubricated
 from .mechanism import GROUND, Mechanism
 from .result import Result
 from . import models, reliability
@@ -16,6 +16,7 @@ from .scene import load_scene
 __version__ = _core.__version__
 
 __all__ = [
+    "Archard",
     "AssemblyError",
     "ClearsimError",
     "Dry",

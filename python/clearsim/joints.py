@@ -31,6 +31,35 @@ FILM_MODELS = ("long", "short", "long_paper")
 
 
 @dataclass(frozen=True)
+class Archard:
+    """Archard wear at a dry revolute clearance contact (docs/physics.md §12): worn volume
+    V = k ∫ F_N |v_slip| dt / H, laid down as a depth around the bearing and the journal where
+    they touch (see :meth:`Result.wear`).
+
+    Parameters
+    ----------
+    coefficient:
+        Dimensionless wear coefficient k (e.g. 1e-4 … 1e-3 for unlubricated steel on steel).
+    hardness:
+        Hardness H of the worn surface [Pa] (e.g. 2e9 Pa for a soft steel).
+    length:
+        Bearing length L [m], over which the volume spreads axially.
+    """
+
+    coefficient: float
+    hardness: float
+    length: float
+
+    def __post_init__(self) -> None:
+        check_positive("wear.coefficient", self.coefficient)
+        check_positive("wear.hardness", self.hardness)
+        check_positive("wear.length", self.length)
+
+    def _as_dict(self) -> Dict[str, Any]:
+        return {"coefficient": float(self.coefficient), "hardness": float(self.hardness), "length": float(self.length)}
+
+
+@dataclass(frozen=True)
 class Dry:
     """Dry clearance: impact with a continuous contact law and modified Coulomb friction.
 
@@ -57,6 +86,8 @@ class Dry:
         Modified-Coulomb slip-speed limits [m/s] (P5), v0 < v1.
     impact_speed_floor:
         Floor for the recorded impact speed δ̇⁽⁻⁾ [m/s], guarding resting contact.
+    wear:
+        :class:`Archard` to accumulate wear (revolute clearance joints), or ``None``.
     """
 
     normal_law: str = "lankarani_nikravesh"
@@ -72,8 +103,11 @@ class Dry:
     v0: float = 1e-4
     v1: float = 1e-2
     impact_speed_floor: float = 1e-3
+    wear: Optional[Archard] = None
 
     def __post_init__(self) -> None:
+        if self.wear is not None and not isinstance(self.wear, Archard):
+            raise InputError(f"invalid wear = {self.wear!r}: must be clearsim.Archard(...) or None", field="wear", value=self.wear)
         if self.normal_law not in NORMAL_LAWS:
             raise InputError(
                 f"invalid normal_law = {self.normal_law!r}: must be one of {', '.join(NORMAL_LAWS)}",
@@ -121,6 +155,7 @@ class Dry:
             "v0": self.v0,
             "v1": self.v1,
             "impact_speed_floor": self.impact_speed_floor,
+            "wear": None if self.wear is None else self.wear._as_dict(),
         }
 
 

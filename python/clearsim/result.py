@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -109,6 +109,27 @@ class Result:
         out["dissipated"] = -(out["damper"] + out["contact"] + out["friction"])
         out["balance"] = e[:, :3].sum(axis=1) - e[:, 3:].sum(axis=1)
         return out
+
+    def wear(self, joint: str, surface: str = "bearing") -> Tuple[np.ndarray, np.ndarray]:
+        """Archard wear of a clearance joint whose :class:`Dry` law has ``wear=Archard(...)``
+        (docs/physics.md §12): ``(angle, depth)``, the bin centres [rad] counter-clockwise from
+        the ``surface``'s body x axis (``"bearing"`` or ``"journal"``) and the worn depth [m]
+        there, accumulated over the run (integrated along every step, not from the outputs)."""
+        if surface not in ("bearing", "journal"):
+            raise InputError(f"invalid surface = {surface!r}: must be 'bearing' or 'journal'", field="surface", value=surface)
+        k = self._joint(joint)
+        books = self._raw.get("wear") or []
+        book = books[k] if k < len(books) else None
+        if book is None:
+            raise InputError(f"invalid joint = {joint!r}: its dry law models no wear (give Dry(wear=clearsim.Archard(...)))", field="joint", value=joint)
+        depth = np.asarray(book[surface])
+        angle = (np.arange(len(depth)) + 0.5) * (2 * np.pi / len(depth))
+        return angle, depth
+
+    def wear_volume(self, joint: str) -> float:
+        """Total worn volume of a joint [m³] (see :meth:`wear`)."""
+        self.wear(joint)
+        return float(self._raw["wear"][self._joint(joint)]["volume"])
 
     @property
     def constraint_violation(self) -> np.ndarray:

@@ -47,6 +47,8 @@ pub struct ClearanceJoint {
     pub guide_normal: Option<V2>,
     /// Penetration [m] beyond which the run stops ([`crate::error::Error::PenetrationTooDeep`]).
     pub penetration_limit: f64,
+    /// Archard wear, when asked for (docs/physics.md §12).
+    pub wear: Option<crate::wear::Archard>,
 }
 
 /// What the joint's law produced at one instant.

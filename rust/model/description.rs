@@ -88,6 +88,20 @@ pub struct DryDesc {
     pub v1: f64,
     /// Floor for the impact speed δ̇⁽⁻⁾ [m/s] (guards resting contact).
     pub impact_speed_floor: f64,
+    /// Archard wear of the contact (docs/physics.md §12); `None`: no wear is computed.
+    pub wear: Option<WearDesc>,
+}
+
+/// Archard's wear law: worn volume = coefficient × normal force × sliding distance / hardness.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WearDesc {
+    /// Dimensionless wear coefficient k.
+    pub coefficient: f64,
+    /// Hardness H of the softer surface [Pa].
+    pub hardness: f64,
+    /// Bearing (contact) length L [m] over which the volume spreads.
+    pub length: f64,
 }
 
 /// Parameters of a lubricated clearance joint (spec §4).
@@ -369,6 +383,7 @@ impl DryDesc {
             v0: 1e-4,
             v1: 1e-2,
             impact_speed_floor: 1e-3,
+            wear: None,
         }
     }
 }

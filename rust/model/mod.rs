@@ -232,6 +232,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
         film,
         guide_normal: None,
         penetration_limit: crate::simulate::max_penetration(c.clearance, c.journal_radius),
+        wear: dry.wear.map(|w| crate::wear::Archard { k_over_h: w.coefficient / w.hardness, length: w.length }),
     })
 }
 
@@ -316,6 +317,7 @@ fn compile_prismatic_clearance(p: &PrismaticClearanceDesc, desc: &MechanismDesc)
         film: None,
         guide_normal: Some(u.perp()),
         penetration_limit: crate::simulate::max_penetration(half, p.corner_radius),
+        wear: None,
     };
     let guide = Constraint::Prismatic { a: p.guide_body.map(|i| i as u32), sa: p.guide_point.into(), u_perp: u.perp(), b: p.slider_body as u32, sb: V2::default(), theta0: th_s - th_g };
     Ok((guide, [end(1.0, "front"), end(-1.0, "rear")]))

@@ -98,7 +98,13 @@ pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
     if d.v1 <= d.v0 {
         return Err(Error::invalid(format!("{f}.v1"), num(d.v1), format!("must exceed v0 = {}", num(d.v0))));
     }
-    positive(&format!("{f}.impact_speed_floor"), d.impact_speed_floor)
+    positive(&format!("{f}.impact_speed_floor"), d.impact_speed_floor)?;
+    if let Some(w) = &d.wear {
+        positive(&format!("{f}.wear.coefficient"), w.coefficient)?;
+        positive(&format!("{f}.wear.hardness"), w.hardness)?;
+        positive(&format!("{f}.wear.length"), w.length)?;
+    }
+    Ok(())
 }
 
 /// The largest radial clearance of a lubricated joint, as a fraction of the journal radius:
@@ -255,6 +261,9 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
         positive(&format!("{f}.slider_length"), p.slider_length)?;
         positive(&format!("{f}.corner_radius"), p.corner_radius)?;
         validate_dry(&f, &p.model)?;
+        if p.model.wear.is_some() {
+            return Err(Error::invalid(format!("{f}.wear"), "Archard(...)", "wear is modelled for revolute clearance joints only"));
+        }
     }
     unique("force", desc.forces.iter().map(|f| match f {
         ForceDesc::SpringDamper { name, .. }
