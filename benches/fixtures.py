@@ -16,7 +16,7 @@ from clearsim.models import nine_bar, slider_crank
 
 DATA = Path(__file__).resolve().parent.parent / "tests" / "data"
 
-#: fixture name -> builder of the Python model (spec §7, §8).
+#: fixture name -> builder of the Python model (docs/physics.md §7, §8).
 MODELS: Dict[str, Callable[[], Any]] = {
     "nine_bar_ideal": lambda: nine_bar("ideal"),
     "nine_bar_dry": lambda: nine_bar("dry", clearance=0.5e-3),

@@ -1,4 +1,4 @@
-//! Initial conditions (spec §1): Newton assembly of the ideal mechanism at t0 from the user's
+//! Initial conditions (docs/physics.md §1): Newton assembly of the ideal mechanism at t0 from the user's
 //! approximate poses (clearance journals placed at their initial eccentricity), then the
 //! consistent velocities Φq q̇ = −Φt. Both corrections are minimum-norm (unit weights).
 

@@ -1,4 +1,4 @@
-//! The Baumgarte-stabilised KKT solve of spec §1 (P25–P26):
+//! The Baumgarte-stabilised KKT solve of docs/physics.md §1 (P25–P26):
 //!
 //! ```text
 //! [M  Φqᵀ] [q̈]   [g                ]

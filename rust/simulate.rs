@@ -1,5 +1,5 @@
 //! One simulation run: assembly, integration with impact-onset location, recording, and a
-//! diagnosis when the run cannot go on (spec §1, §3; issue: failures keep what was computed).
+//! diagnosis when the run cannot go on (docs/physics.md §1, §3; issue: failures keep what was computed).
 
 use std::time::Instant;
 
@@ -538,7 +538,7 @@ impl OdeSystem for MechanismSystem<'_> {
         Ok(joint?.or(t_break))
     }
 
-    /// Locate contact onsets inside the step and record δ̇⁽⁻⁾ there (spec §3, P3); clear the
+    /// Locate contact onsets inside the step and record δ̇⁽⁻⁾ there (docs/physics.md §3, P3); clear the
     /// memory at separation.
     fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
         if self.energy.is_some() {

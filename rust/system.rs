@@ -1,4 +1,4 @@
-//! The right-hand side ẏ = f(t, y) of a compiled model (spec §1): y = (q, q̇), q̈ from the
+//! The right-hand side ẏ = f(t, y) of a compiled model (docs/physics.md §1): y = (q, q̇), q̈ from the
 //! Baumgarte-stabilised KKT solve with gravity and clearance-joint forces.
 
 use crate::clearance::{ImpactMemory, JointForce, JointKinematics};

@@ -259,7 +259,7 @@ proptest! {
 
 // ------------------------------------------------------------------ full right-hand side
 
-/// The spec §8 slider-crank with a clearance joint between rod and slider.
+/// The docs/physics.md §8 slider-crank with a clearance joint between rod and slider.
 fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> MechanismDesc {
     let dry = DryDesc { normal_law: law, restitution: ce, friction: cf, ..DryDesc::steel() };
     let model = if lubricated {

@@ -172,7 +172,7 @@ def _figures(run: SceneRun, out_dir: Path) -> List[Path]:
 
 
 def _transition_band(joint: Dict[str, Any]) -> float:
-    """Width e0 [m] of a lubricated joint's film-to-contact band (default 5 % of c, spec §4)."""
+    """Width e0 [m] of a lubricated joint's film-to-contact band (default 5 % of c, docs/physics.md §4)."""
     e0 = joint["model"].get("e0")
     return 0.05 * float(joint["clearance"]) if e0 is None else float(e0)
 
@@ -406,7 +406,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar, no summary on stdout")
     run.set_defaults(func=_cmd_run)
 
-    paper = sub.add_parser("paper", help="reproduce the paper's study", description="Reproduce the paper's study (spec §7).")
+    paper = sub.add_parser("paper", help="reproduce the paper's study", description="Reproduce the paper's study (docs/physics.md §7).")
     paper.add_argument("-o", "--output", metavar="OUTDIR", default="clearsim-paper", help="output directory (default clearsim-paper)")
     paper.add_argument("--quick", action="store_true", help="coarser, faster runs (a smoke test)")
     paper.add_argument("--cycles", type=_positive_int, default=3, metavar="N", help="crank cycles per run (default 3)")

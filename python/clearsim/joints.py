@@ -1,4 +1,4 @@
-"""Clearance-joint models: the parameters of a dry or lubricated revolute clearance (spec §3–§4).
+"""Clearance-joint models: the parameters of a dry or lubricated revolute clearance (docs/physics.md §3–§4).
 
 All quantities in SI units.
 """
@@ -78,7 +78,7 @@ class Dry:
     stiffness:
         Contact stiffness K [N/m^n]; ``None`` computes it from the materials (P4).
     stiffness_form:
-        ``"internal"`` (default: R_b R_j / (R_b − R_j), journal inside bearing, spec erratum)
+        ``"internal"`` (default: R_b R_j / (R_b − R_j), journal inside bearing, docs/physics.md erratum)
         or ``"paper_printed"`` (R_b R_j / (R_b + R_j), as printed in the paper's Eq. 4).
     friction:
         Sliding friction coefficient c_f [-].

@@ -266,7 +266,7 @@ class Mechanism:
         model: Union[Dry, Lubricated, None] = None,
         initial_eccentricity: Point = (0.0, 0.0),
     ) -> "Mechanism":
-        """A revolute joint with radial clearance (spec §2).
+        """A revolute joint with radial clearance (docs/physics.md §2).
 
         The bearing (hole, radius R_j + c) is centred at ``bearing_point`` of ``bearing_body``;
         the journal (pin, radius ``journal_radius`` R_j [m]) at ``journal_point`` of
@@ -525,7 +525,7 @@ class Mechanism:
         )
 
     def idealized(self) -> "Mechanism":
-        """A copy with every clearance joint replaced by an ideal revolute joint (spec §5)."""
+        """A copy with every clearance joint replaced by an ideal revolute joint (docs/physics.md §5)."""
         compiled, self._compiled = self._compiled, None  # the compiled model is not copyable
         try:
             m = copy.deepcopy(self)
@@ -737,7 +737,7 @@ class Mechanism:
     def simulate_with_ideal(self, t_end: float, **kwargs: Any) -> Tuple[Result, Result]:
         """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
         settings on the same output grid, in parallel in the Rust core. Returns
-        ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (spec §5)."""
+        ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (docs/physics.md §5)."""
         settings = self.run_settings(t_end, **kwargs)
         ideal = self.idealized()
         # ``integrator="auto"`` resolves per mechanism: the ideal one has no film.

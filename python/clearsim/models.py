@@ -1,4 +1,4 @@
-"""Ready-made mechanisms with the spec's parameters (``shared/spec`` §7 and §8)."""
+"""Ready-made mechanisms with the parameters (``docs/physics.md`` §7 and §8)."""
 
 from __future__ import annotations
 
@@ -74,11 +74,11 @@ def slider_crank(
     lubricated: Optional[Lubricated] = None,
     gravity: Tuple[float, float] = (0.0, 0.0),
 ) -> Mechanism:
-    """Slider-crank after Flores et al. (spec §8), crank at constant ``rpm``, zero offset, the
+    """Slider-crank after Flores et al. (docs/physics.md §8), crank at constant ``rpm``, zero offset, the
     slider on the x axis, starting at top dead centre (θ = 0).
 
     Bodies ``crank``, ``rod``, ``slider``. ``joints="dry"`` or ``"lubricated"`` puts a clearance
-    joint named ``"rod-slider"`` (bearing in the slider, journal on the rod) with the spec's
+    joint named ``"rod-slider"`` (bearing in the slider, journal on the rod) with the
     R_j = 9.5 mm and c = 0.5 mm (R_b = 10 mm); lubricated default μ = 0.4 Pa s, L = 40 mm.
     """
     kind = _kind(joints)
@@ -96,7 +96,7 @@ def slider_crank(
     return m
 
 
-#: Nine-bar geometry of spec §7 at t = 0 (assembly refines it).
+#: Nine-bar geometry of docs/physics.md §7 at t = 0 (assembly refines it).
 NINE_BAR_POINTS: Dict[str, Tuple[float, float]] = {
     "O1": (0.0, 0.0),
     "O4": (0.0, -0.40),
@@ -108,7 +108,7 @@ NINE_BAR_POINTS: Dict[str, Tuple[float, float]] = {
     "B": (0.59, -0.4570),  # slider pin: clearance joint B
 }
 
-#: (mass [kg], inertia [kg m²]) of spec §7.
+#: (mass [kg], inertia [kg m²]) of docs/physics.md §7.
 NINE_BAR_INERTIA: Dict[str, Tuple[float, float]] = {
     "crank1": (0.20, 1.667e-4),
     "rod2": (0.50, 3.750e-3),
@@ -131,7 +131,7 @@ def nine_bar(
     lubricated: Optional[Lubricated] = None,
     gravity: Tuple[float, float] = (0.0, -9.81),
 ) -> Mechanism:
-    """The paper's 2-DOF nine-bar press mechanism (spec §7).
+    """The paper's 2-DOF nine-bar press mechanism (docs/physics.md §7).
 
     Cranks 1 and 4 turn at ``omega`` [rad/s] from θ1 = 0 and θ4 = π/2. Bodies ``crank1, rod2,
     rod3, crank4, rocker6, rod7, rod8, slider9``; the slider moves on the vertical guide
@@ -155,7 +155,7 @@ def nine_bar(
     }.items():
         length = _link(m, name, I[name][0], I[name][1], P[a], P[b])
         half[name] = length / 2
-    # Nominal lengths of spec §7 (the points above are rounded to 0.1 mm).
+    # Nominal lengths of docs/physics.md §7 (the points above are rounded to 0.1 mm).
     half.update(crank1=0.05, rod2=0.15, rod3=0.15, crank4=0.05, rocker6=0.175, rod7=0.20, rod8=0.175)
     m.add_body("slider9", mass=I["slider9"][0], inertia=I["slider9"][1], position=P["B"])
 

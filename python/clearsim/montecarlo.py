@@ -1,4 +1,4 @@
-"""Monte Carlo dynamic-accuracy reliability (spec §6, beyond the paper).
+"""Monte Carlo dynamic-accuracy reliability (docs/physics.md §6, beyond the paper).
 
 Random inputs (clearance sizes, lengths, drive speed, friction, viscosity …) are sampled, each
 sample's mechanism and its ideal counterpart are simulated — in parallel inside the Rust core

@@ -1,4 +1,4 @@
-"""Dynamic-accuracy reliability of a mechanism output (spec §6, paper section 4).
+"""Dynamic-accuracy reliability of a mechanism output (docs/physics.md §6, paper section 4).
 
 First-order second moment (FOSM) method, paper Eqs. (27)–(32)
 ----------------------------------------------------------------
@@ -11,7 +11,7 @@ reliability is ``R = P(Δ − δ > 0)`` (P27). With the allowable range ``[Δv, 
     R   = Φ(β)                               (P29–P30)
 
 where ``μ_s, σ_s`` are the mean and standard deviation of the actual error. The paper does not
-say how ``μ_s, σ_s`` are formed; ours (spec §6) is: per crank-angle bin (default 18°), the mean
+say how ``μ_s, σ_s`` are formed; ours (docs/physics.md §6) is: per crank-angle bin (default 18°), the mean
 and the population standard deviation of |error| over all samples of the analysed cycles that
 fall in that bin (crank angle taken modulo 360°).
 
@@ -283,7 +283,7 @@ def _binned_moments(values: np.ndarray, index: np.ndarray, n_bins: int, ddof: in
 
 @dataclass
 class FosmResult:
-    """FOSM dynamic-accuracy reliability per crank-angle bin (P27–P32, spec §6).
+    """FOSM dynamic-accuracy reliability per crank-angle bin (P27–P32, docs/physics.md §6).
 
     Angles in degrees; ``mu_s``, ``sigma_s``, ``mu_S``, ``sigma_S`` in the unit of the error
     (m, m/s or m/s²). Empty bins (no sample) have ``count`` 0 and NaN statistics and are ignored
@@ -428,7 +428,7 @@ def fosm(
     per_cycle: bool = False,
     ddof: int = 0,
 ) -> FosmResult:
-    """FOSM reliability of one output per crank-angle bin (P27–P32, spec §6).
+    """FOSM reliability of one output per crank-angle bin (P27–P32, docs/physics.md §6).
 
     Parameters
     ----------

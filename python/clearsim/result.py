@@ -179,7 +179,7 @@ class Result:
 
     def error(self, ideal: "Result", body: str, quantity: str = "displacement") -> np.ndarray:
         """Error of a body's motion against the ideal mechanism's run on the same output grid
-        (spec §5): (N, 3) array of this response minus the ideal one for
+        (docs/physics.md §5): (N, 3) array of this response minus the ideal one for
         ``quantity`` = ``"displacement"`` [m, m, rad], ``"velocity"`` [m/s, m/s, rad/s] or
         ``"acceleration"`` [m/s², m/s², rad/s²]."""
         getters = {"displacement": Result.position, "velocity": Result.velocity, "acceleration": Result.acceleration}

@@ -43,7 +43,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # times = [...], angles = [...]  # samples [s], [rad] through a natural cubic spline
     name = "crank-drive"             # optional
 
-    [[clearance_joint]]              # revolute joint with radial clearance (spec §2)
+    [[clearance_joint]]              # revolute joint with radial clearance (docs/physics.md §2)
     type = "revolute"                # default; or "prismatic" (docs/physics.md §11): name,
                                      #   guide_body, guide_point, slider_body, axis, clearance
                                      #   (gap − slider thickness) [m], slider_length [m],
@@ -110,7 +110,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     csv = true                       # default true
     plots = true                     # default true
 
-    [reliability]                    # optional: FOSM dynamic-accuracy reliability (spec §6)
+    [reliability]                    # optional: FOSM dynamic-accuracy reliability (docs/physics.md §6)
     body = "slider"
     component = "x"                  # x | y | theta
     bin_width = 18.0                 # deg
@@ -457,7 +457,7 @@ class OutputSettings:
 
 @dataclass
 class ReliabilitySettings:
-    """The ``[reliability]`` table: FOSM reliability of one body coordinate (spec §6).
+    """The ``[reliability]`` table: FOSM reliability of one body coordinate (docs/physics.md §6).
 
     ``allowable`` maps ``displacement`` / ``velocity`` / ``acceleration`` to the allowable
     error range (Δv, Δu) [m, m/s, m/s² (rad… for ``theta``)]; ``omega`` [rad/s] gives the crank

@@ -1,4 +1,4 @@
-//! Kinematics of a journal inside its bearing (spec §2, P7–P9).
+//! Kinematics of a journal inside its bearing (docs/physics.md §2, P7–P9).
 
 use crate::constraints::{BodyKin, V2};
 
@@ -23,7 +23,7 @@ pub struct JointKinematics {
     pub slip: f64,
     /// γ̇ of the offset angle γ = atan2(e_y, e_x) [rad/s] (0 when e = 0).
     pub gamma_dot: f64,
-    /// Wedge speed θ̇_j + θ̇_i − 2γ̇ [rad/s] (spec §4).
+    /// Wedge speed θ̇_j + θ̇_i − 2γ̇ [rad/s] (docs/physics.md §4).
     pub wedge: f64,
 }
 

@@ -1,5 +1,5 @@
 //! The impact memory of a dry contact: δ̇⁽⁻⁾, the approach speed at the start of the current
-//! impact (spec §3, P3). It is changed only between accepted steps, never by trial stages.
+//! impact (docs/physics.md §3, P3). It is changed only between accepted steps, never by trial stages.
 
 /// Per-joint impact state.
 #[derive(Debug, Clone, Copy, PartialEq)]

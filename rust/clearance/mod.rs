@@ -1,6 +1,6 @@
-//! Revolute clearance joints (spec §2–§4): the journal's kinematics inside the bearing, the
+//! Revolute clearance joints (docs/physics.md §2–§4): the journal's kinematics inside the bearing, the
 //! force law (dry, or lubricated with the transition to dry), and its generalised forces.
-//! The joint's two constraint equations are removed; the journal gains 2 DOF (spec §2).
+//! The joint's two constraint equations are removed; the journal gains 2 DOF (docs/physics.md §2).
 
 pub mod kinematics;
 pub mod memory;
@@ -70,7 +70,7 @@ pub struct JointForce {
 }
 
 impl ClearanceJoint {
-    /// Kinematics of the journal relative to the bearing (spec §2).
+    /// Kinematics of the journal relative to the bearing (docs/physics.md §2).
     #[inline]
     pub fn kinematics(&self, kin: &[BodyKin]) -> JointKinematics {
         self.kinematics_with(|b| b.map_or(BodyKin::GROUND, |i| kin[i as usize]))
@@ -116,7 +116,7 @@ impl ClearanceJoint {
             out.film_eta = eta * scale;
         }
         out.w_dry = w_dry;
-        // On the journal: film F_ξ n + F_η t; dry −F_N n + F_t t (spec §3, P17–P18).
+        // On the journal: film F_ξ n + F_η t; dry −F_N n + F_t t (docs/physics.md §3, P17–P18).
         let f_n = w_film * out.film_xi - w_dry * out.normal;
         let f_t = w_film * out.film_eta + w_dry * out.tangential;
         out.total = k.n.scale(f_n).add(k.t.scale(f_t));

@@ -1,4 +1,4 @@
-//! Planar kinematics of a body's reference point: A(θ) s and its derivatives (spec §1).
+//! Planar kinematics of a body's reference point: A(θ) s and its derivatives (docs/physics.md §1).
 
 /// A plain 2-vector (Copy, no allocation). nalgebra's `Vector2` is used where its algebra helps;
 /// the hot path works on this to keep the arithmetic explicit.

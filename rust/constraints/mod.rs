@@ -1,4 +1,4 @@
-//! Ideal joints as holonomic constraints Φ(q, t) = 0 (spec §1): revolute, prismatic and driving
+//! Ideal joints as holonomic constraints Φ(q, t) = 0 (docs/physics.md §1): revolute, prismatic and driving
 //! constraints. Each row's Jacobian touches at most two bodies and is stored sparsely
 //! ([`JacRow`]); the acceleration right-hand side γ = −(Φq q̇)_q q̇ − 2Φqt q̇ − Φtt (P24) is
 //! evaluated in closed form per primitive.

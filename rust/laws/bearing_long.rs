@@ -1,5 +1,5 @@
 //! Long (Pinkus–Sternlicht, infinitely long) journal bearing: the paper's film model
-//! (Eqs. 10–14), with the pressure of spec §4 (P12 corrected) and the Gümbel condition.
+//! (Eqs. 10–14), with the pressure of docs/physics.md §4 (P12 corrected) and the Gümbel condition.
 //!
 //! Pressure (θ counter-clockwise from the thickest film, `h = c(1 + ε cos θ)`, wedge
 //! `W = θ̇_j + θ̇_i − 2γ̇`):
@@ -28,7 +28,7 @@
 //! where the antiderivative differences would cancel.
 //!
 //! [`long_bearing_force_quadrature`] is the same integral by composite 16-point Gauss–Legendre
-//! on panels graded towards the thinnest film (θ = π) — the spec's reference method. Measured
+//! on panels graded towards the thinnest film (θ = π) — the reference method of docs/physics.md §4. Measured
 //! (tests): both agree with an independent adaptive Simpson rule to ≤ 5e-12 (closed form) and
 //! ≤ 4e-13 (GL) relative for ε ∈ [0.01, 0.99]; with each other to ≤ 7e-10 up to ε = 0.999 (the
 //! closed form loses a few digits there for small receding-squeeze forces: its terms scale as
@@ -57,7 +57,7 @@ fn pressure_kernel(eps: f64, eps_dot: f64, wedge: f64, sn: f64, cs: f64) -> f64 
     (wedge_part + squeeze_part) / (v * v)
 }
 
-/// Film pressure p(θ) [Pa] of the long bearing (spec §4, P12 corrected), before the Gümbel
+/// Film pressure p(θ) [Pa] of the long bearing (docs/physics.md §4, P12 corrected), before the Gümbel
 /// cut. θ [rad] counter-clockwise from the thickest film. Finite at ε = 0 (the squeeze term is
 /// written as `ε̇ (1 − cosθ)(2 + ε + ε cosθ)/((1 + ε cosθ)²(1 + ε)²)`, its exact form).
 pub fn long_bearing_pressure(g: &BearingGeometry, s: FilmState, theta: f64) -> f64 {
@@ -168,7 +168,7 @@ fn short_arc_integral(eps: f64, eps_dot: f64, wedge: f64, e1: &ArcEnd, e2: &ArcE
     })
 }
 
-/// Long-bearing film force `(F_ξ, F_η)` [N] on the journal (spec §4): `R L ∫ p⁺ (cosθ, sinθ) dθ`
+/// Long-bearing film force `(F_ξ, F_η)` [N] on the journal (docs/physics.md §4): `R L ∫ p⁺ (cosθ, sinθ) dθ`
 /// over the exact positive-pressure arc, in closed form (see the module doc; arcs shorter than
 /// 0.5 rad by Gauss–Legendre). Finite for every finite input: ε is clamped to [0, 1 − 1e-9];
 /// ε = 0 uses the exact limit of the squeeze term.
@@ -298,7 +298,7 @@ pub fn long_bearing_force_quadrature(g: &BearingGeometry, s: FilmState) -> (f64,
     (scale * fx, scale * fy)
 }
 
-/// The paper's printed closed forms, Eqs. (13)–(14), as printed (a labelled variant; spec §4
+/// The paper's printed closed forms, Eqs. (13)–(14), as printed (a labelled variant; docs/physics.md §4
 /// lists their errors: 10–25 % off at large squeeze ratios, wrong sign of F_ξ for ε̇ < 0, and a
 /// large force for pure receding squeeze where the Gümbel integral is zero):
 /// ε̇ > 0: `F_ξ = −(6μR³L/c²) ε̇/(1−ε²)^{3/2} (4kε²/(2+ε²) + π(k+3)/(k+1.5))`,
@@ -343,7 +343,7 @@ mod tests {
         6.0 * G.viscosity * G.journal_radius.powi(3) * G.length / (G.clearance * G.clearance)
     }
 
-    /// The spec §4 pressure, written out independently (divides by ε; ε > 0 only).
+    /// The docs/physics.md §4 pressure, written out independently (divides by ε; ε > 0 only).
     fn p_spec(eps: f64, eps_dot: f64, wedge: f64, th: f64) -> f64 {
         let v = 1.0 + eps * th.cos();
         let k = 6.0 * G.viscosity * (G.journal_radius / G.clearance).powi(2);

@@ -1,4 +1,4 @@
-//! Short (Ocvirk) journal bearing with wedge and squeeze and the Gümbel condition (spec §4).
+//! Short (Ocvirk) journal bearing with wedge and squeeze and the Gümbel condition (docs/physics.md §4).
 //!
 //! Short-bearing Reynolds equation (circumferential pressure flow neglected, L/D < 1):
 //! `∂/∂z (h³ ∂p/∂z) = 6μ W ∂h/∂θ + 12μ ∂h/∂t`, `h = c(1 + ε cosθ)`, `∂h/∂θ = −cε sinθ`,

@@ -1,4 +1,4 @@
-//! Normal impact force of a dry revolute clearance joint (spec §3, paper Eqs. 3–4).
+//! Normal impact force of a dry revolute clearance joint (docs/physics.md §3, paper Eqs. 3–4).
 //!
 //! Continuous-force laws of the form `F_N = K δⁿ (1 + D δ̇ / δ̇⁽⁻⁾)` for penetration `δ > 0` [m],
 //! penetration speed `δ̇` [m/s] (positive while approaching) and `δ̇⁽⁻⁾` [m/s], the approach speed
@@ -38,7 +38,7 @@ fn compliance(e: f64, nu: f64) -> f64 {
 }
 
 /// Generalized contact stiffness `K` [N/m^1.5] of a journal inside its bearing (conformal
-/// internal contact), spec §3 erratum of P4:
+/// internal contact), docs/physics.md §3 erratum of P4:
 /// `K = 4/(3(σ_b + σ_j)) · sqrt(R_b R_j / (R_b − R_j))`, `σ = (1 − ν²)/E`.
 ///
 /// Radii in m, Young's moduli in Pa. Requires `R_b > R_j` (returns +∞ for `R_b = R_j`).
@@ -73,7 +73,7 @@ pub struct ContactLaw {
     pub exponent: f64,
     /// Coefficient of restitution `c_e`.
     pub restitution: f64,
-    /// Lower bound for `δ̇⁽⁻⁾` [m/s]; guards a resting contact (spec §3).
+    /// Lower bound for `δ̇⁽⁻⁾` [m/s]; guards a resting contact (docs/physics.md §3).
     pub impact_speed_floor: f64,
 }
 

@@ -1,4 +1,4 @@
-//! Shared oil-film types and the film-model dispatch (spec §4).
+//! Shared oil-film types and the film-model dispatch (docs/physics.md §4).
 //!
 //! Convention (all film models): the returned pair `(F_ξ, F_η)` [N] is the force of the film ON
 //! THE JOURNAL along `n` (unit eccentricity vector, bearing centre → journal centre) and along
@@ -35,7 +35,7 @@ pub struct FilmState {
     pub eps: f64,
     /// ε̇ [1/s]; > 0 approaching the bearing wall (squeeze), < 0 receding.
     pub eps_dot: f64,
-    /// Wedge speed θ̇_j + θ̇_i − 2γ̇ [rad/s] (spec §4): sum of both surfaces' angular speeds
+    /// Wedge speed θ̇_j + θ̇_i − 2γ̇ [rad/s] (docs/physics.md §4): sum of both surfaces' angular speeds
     /// minus twice the whirl rate of the line of centres.
     pub wedge: f64,
 }

@@ -1,4 +1,4 @@
-//! Modified Coulomb friction of a dry clearance joint (spec §3, paper Eq. 5).
+//! Modified Coulomb friction of a dry clearance joint (docs/physics.md §3, paper Eq. 5).
 
 /// Coulomb friction with a dynamic correction `c_d` that ramps the friction up from 0 at small
 /// slip speeds (avoids the discontinuity at `v_t = 0`).

@@ -1,11 +1,11 @@
-//! Force laws of clearance joints (spec §3–§4): pure functions of kinematic inputs and parameters.
+//! Force laws of clearance joints (docs/physics.md §3–§4): pure functions of kinematic inputs and parameters.
 //!
 //! - [`contact`]: normal impact force (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores) and
-//!   contact stiffness (spec §3, P3–P4).
-//! - [`friction`]: modified Coulomb friction (spec §3, P5).
-//! - [`film`]: shared oil-film types and the model dispatch (spec §4).
-//! - [`bearing_long`]: long (Pinkus–Sternlicht) bearing, Gümbel condition (spec §4, P10–P14).
-//! - [`bearing_short`]: short (Ocvirk) bearing, Gümbel condition (spec §4).
+//!   contact stiffness (docs/physics.md §3, P3–P4).
+//! - [`friction`]: modified Coulomb friction (docs/physics.md §3, P5).
+//! - [`film`]: shared oil-film types and the model dispatch (docs/physics.md §4).
+//! - [`bearing_long`]: long (Pinkus–Sternlicht) bearing, Gümbel condition (docs/physics.md §4, P10–P14).
+//! - [`bearing_short`]: short (Ocvirk) bearing, Gümbel condition (docs/physics.md §4).
 //! - [`transition`]: small-eccentricity scaling (P15–P16) and film-to-contact blend (P18).
 //! - [`quadrature`]: Gauss–Legendre rules.
 //!

@@ -1,5 +1,5 @@
 //! Small-eccentricity scaling (paper Eqs. 15–16) and the film-to-contact transition (Eq. 18),
-//! spec §4.
+//! docs/physics.md §4.
 
 /// Scale factor applied to both film-force components (P15–P16 as written): `ε^m` for
 /// `ε < ε0`, else 1.
@@ -32,7 +32,7 @@ pub fn transition_weights(e: f64, c: f64, e0: f64) -> (f64, f64) {
     }
 }
 
-/// Eccentricity ratio at which the film is evaluated: `min(ε, ε_max)` (spec §4: the film formula
+/// Eccentricity ratio at which the film is evaluated: `min(ε, ε_max)` (docs/physics.md §4: the film formula
 /// is singular at ε → 1, so inside the blend, and beyond, it is evaluated at `ε_max`, assumed
 /// 0.99). Negative or NaN ε gives 0.
 pub fn film_eps(eps: f64, eps_max: f64) -> f64 {

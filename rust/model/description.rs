@@ -4,7 +4,7 @@
 use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
 
-/// A rigid body: reference point at the centroid (spec §1, P19).
+/// A rigid body: reference point at the centroid (docs/physics.md §1, P19).
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyDesc {
@@ -26,7 +26,7 @@ pub struct BodyDesc {
 /// `None` is the ground (the fixed frame); points on ground are global coordinates.
 pub type BodyRef = Option<usize>;
 
-/// An ideal joint: a set of holonomic constraints (spec §1).
+/// An ideal joint: a set of holonomic constraints (docs/physics.md §1).
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
@@ -61,7 +61,7 @@ pub struct DriverDesc {
     pub law: AngleLaw,
 }
 
-/// Parameters of a dry clearance joint (spec §3); a missing field takes [`DryDesc::steel`]'s value.
+/// Parameters of a dry clearance joint (docs/physics.md §3); a missing field takes [`DryDesc::steel`]'s value.
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default))]
 #[derive(Debug, Clone, PartialEq)]
@@ -104,7 +104,7 @@ pub struct WearDesc {
     pub length: f64,
 }
 
-/// Parameters of a lubricated clearance joint (spec §4).
+/// Parameters of a lubricated clearance joint (docs/physics.md §4).
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct LubricatedDesc {
@@ -367,7 +367,7 @@ impl Default for DryDesc {
 }
 
 impl DryDesc {
-    /// The spec's §7 steel-on-steel defaults (Lankarani–Nikravesh, c_e = 0.9, c_f = 0.1).
+    /// The steel-on-steel defaults of docs/physics.md §7 (Lankarani–Nikravesh, c_e = 0.9, c_f = 0.1).
     pub fn steel() -> Self {
         DryDesc {
             normal_law: NormalLaw::LankaraniNikravesh,

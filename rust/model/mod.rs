@@ -1,5 +1,5 @@
 //! A compiled model: flat arrays and enums built from a validated [`MechanismDesc`]
-//! (spec §1). Only the parts the scene uses are present: a mechanism without lubricated joints
+//! (docs/physics.md §1). Only the parts the scene uses are present: a mechanism without lubricated joints
 //! has no film data, a joint without clearance is a constraint.
 
 pub mod description;
@@ -160,7 +160,7 @@ impl Model {
 
 impl MechanismDesc {
     /// The ideal mechanism: every clearance joint replaced by a revolute joint between its
-    /// bearing and journal points (spec §5).
+    /// bearing and journal points (docs/physics.md §5).
     pub fn idealized(&self) -> MechanismDesc {
         let mut d = self.clone();
         for c in d.clearance_joints.drain(..) {

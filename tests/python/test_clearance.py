@@ -1,4 +1,4 @@
-"""Clearance joints in whole mechanisms (spec §2–§4; issue: revolute clearance joints)."""
+"""Clearance joints in whole mechanisms (docs/physics.md §2–§4; issue: revolute clearance joints)."""
 
 import math
 import os
@@ -67,7 +67,7 @@ def rms(x):
 def test_vanishing_clearance_reproduces_the_ideal_slider_acceleration():
     """1 µm clearance with a stiff, well-damped contact: over the second turn (after the
     start-up impact has decayed) the slider acceleration is the ideal one within 1 % RMS.
-    (With the spec's lightly damped steel contact, the journal rings on the contact spring after
+    (With the lightly damped steel contact, the journal rings on the contact spring after
     every load reversal: amplitude ≈ sqrt(2 a c)·ω_contact ≈ 10 % of the peak at 1 µm.)"""
     ideal = models.slider_crank("ideal").simulate(2 * TURN, rtol=1e-9, atol=1e-12, dt_out=TURN / 720)
     a0 = ideal.acceleration("slider")[720:, 0]
@@ -158,7 +158,7 @@ def test_lubricated_nine_bar_holds_the_journals_in_the_film():
 
 
 def test_lubricated_joint_uses_the_dry_law_only_beyond_the_clearance():
-    """μ = 0.04 Pa s lets the journals sink into the transition band (spec §7): the dry weight
+    """μ = 0.04 Pa s lets the journals sink into the transition band (docs/physics.md §7): the dry weight
     is 0 for e ≤ c, the linear blend (e − c)/e0 inside the band and 1 beyond (P18)."""
     c = 0.5e-3
     lub = clearsim.Lubricated(viscosity=0.04, length=0.05)

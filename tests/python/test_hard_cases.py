@@ -56,7 +56,7 @@ def mechanical_energy(m: cs.Mechanism, r: cs.Result) -> np.ndarray:
 
 
 def slip_speed(r: cs.Result, joint: str, journal: str, bearing: str, r_j: float, c: float) -> np.ndarray:
-    """Tangential slip v_t = t·ė + R_j θ̇_j − R_b θ̇_i of the contact points (spec §2)."""
+    """Tangential slip v_t = t·ė + R_j θ̇_j − R_b θ̇_i of the contact points (docs/physics.md §2)."""
     e = r.eccentricity(joint)
     ed = r.eccentricity_rate(joint)
     n = e / np.maximum(np.linalg.norm(e, axis=1), 1e-300)[:, None]
@@ -65,7 +65,7 @@ def slip_speed(r: cs.Result, joint: str, journal: str, bearing: str, r_j: float,
 
 
 def free_slider_crank(restitution: float, friction: float = 0.0) -> cs.Mechanism:
-    """The spec §8 slider-crank without its driver and without gravity: the crank is spun to
+    """The docs/physics.md §8 slider-crank without its driver and without gravity: the crank is spun to
     300 rad/s and the mechanism coasts, so the total energy is a conserved quantity (c_e = 1,
     no friction) or can only decrease (c_e < 1)."""
     m = models.slider_crank("dry", dry=Dry(restitution=restitution, friction=friction))
@@ -158,7 +158,7 @@ class Outcome:
 
 
 def _check_1um(case, m, r, metrics):
-    # c → 0 reproduces the ideal mechanism (spec §9): slider position within a few clearances.
+    # c → 0 reproduces the ideal mechanism (docs/physics.md §9): slider position within a few clearances.
     ideal = models.slider_crank("ideal").simulate(case.t_end, **case.run)
     dx = np.max(np.abs(r.position("slider")[:, 0] - ideal.position("slider")[:, 0]))
     metrics["max Δx vs ideal [m]"] = dx

@@ -1,4 +1,4 @@
-"""Ideal mechanisms against closed forms and an independent position analysis (spec §8, §7)."""
+"""Ideal mechanisms against closed forms and an independent position analysis (docs/physics.md §8, §7)."""
 
 import math
 
@@ -32,7 +32,7 @@ def test_slider_crank_matches_closed_form():
     assert np.max(np.abs(pos - x)) / np.max(np.abs(x)) < 1e-9
     assert np.max(np.abs(vel - v)) / np.max(np.abs(v)) < 1e-9
     assert np.max(np.abs(acc - a)) / np.max(np.abs(a)) < 1e-9
-    # Anchors of spec §8.
+    # Anchors of docs/physics.md §8.
     assert acc[0] == pytest.approx(-19419.36, abs=0.01)
     assert np.max(pos) - np.min(pos) == pytest.approx(0.100, abs=1e-6)
     assert np.max(np.abs(vel)) == pytest.approx(28.41, abs=0.01)
@@ -52,7 +52,7 @@ def circle_intersection(p, rp, q, rq, near):
 
 
 def nine_bar_slider_y(theta1, theta4):
-    """Independent position analysis of the nine-bar by loop-closure geometry (spec §7)."""
+    """Independent position analysis of the nine-bar by loop-closure geometry (docs/physics.md §7)."""
     ys = []
     C, D = np.array([0.2919, -0.2306]), np.array([0.6756, -0.1176])
     for t1, t4 in zip(theta1, theta4):

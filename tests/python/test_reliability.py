@@ -1,4 +1,4 @@
-"""Tests of clearsim.reliability: FOSM (paper P27–P32, spec §6) and the Monte Carlo helpers."""
+"""Tests of clearsim.reliability: FOSM (paper P27–P32, docs/physics.md §6) and the Monte Carlo helpers."""
 
 from __future__ import annotations
 

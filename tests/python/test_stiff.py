@@ -34,7 +34,7 @@ def test_ideal_slider_crank_matches_reference_and_closed_form(integrator):
     np.testing.assert_array_equal(r.t, t)
     x, xr = r.position("slider")[:, 0], ref.position("slider")[:, 0]
     assert np.max(np.abs(x - xr)) < 1e-6
-    # Acceleration at top dead centre, spec §8: −rω²(1 + r/l).
+    # Acceleration at top dead centre, docs/physics.md §8: −rω²(1 + r/l).
     assert r.acceleration("slider")[0, 0] == pytest.approx(-19419.36, rel=1e-4)
     s = r.stats
     assert s["steps"] > 0 and s["jacobians"] >= 1

@@ -1,4 +1,4 @@
-"""Reproduction of the seed paper's study (spec §7, paper §5): ``clearsim paper``.
+"""Reproduction of the seed paper's study (docs/physics.md §7, paper §5): ``clearsim paper``.
 
 The nine-bar mechanism (:func:`clearsim.models.nine_bar`) with clearance joints A and B is run
 
@@ -8,8 +8,8 @@ The nine-bar mechanism (:func:`clearsim.models.nine_bar`) with clearance joints 
 
 together with the ideal mechanism at each speed, for ``cycles`` crank cycles (period 2π/|ω|) on an
 output grid of 0.5° of crank angle. The errors of slider 9's y displacement, velocity and
-acceleration against the ideal run (spec §5) give the paper's Figs. 8–16 (error histories,
-journal-centre orbits, FOSM reliability per 18° bin, spec §6), CSV files of every curve and a
+acceleration against the ideal run (docs/physics.md §5) give the paper's Figs. 8–16 (error histories,
+journal-centre orbits, FOSM reliability per 18° bin, docs/physics.md §6), CSV files of every curve and a
 ``report.md`` that sets our numbers next to the paper's and checks the paper's trends.
 
 Start-up transient: the journals start centred (e = 0), so the first cycle contains the fall of
@@ -56,7 +56,7 @@ GRID_DEG = 0.5  # [deg] output grid of the full study
 GRID_DEG_QUICK = 2.0  # [deg] output grid of the quick study
 VISCOSITY = 0.4  # [Pa s]
 BEARING_LENGTH = 0.05  # [m]
-TRANSITION_FRACTION = 0.05  # e0 = 0.05 c (spec §4, the Lubricated default)
+TRANSITION_FRACTION = 0.05  # e0 = 0.05 c (docs/physics.md §4, the Lubricated default)
 _ANGLE_TOL = 1e-6  # [deg]
 HOLDS, FAILS, NOT_EVALUABLE = "holds", "does not hold", "not evaluable"
 
@@ -766,7 +766,7 @@ def _report(
     parts: List[str] = []
     parts.append("# clearsim paper study: dynamic response and dynamic-accuracy reliability of the nine-bar mechanism\n")
     parts.append(
-        f"Reproduction of the seed paper's §5 (spec §7) with clearsim {__version__}"
+        f"Reproduction of the seed paper's §5 (docs/physics.md §7) with clearsim {__version__}"
         + (" — **quick mode** (one cycle, coarse output grid: a smoke test, not the study)" if quick else "")
         + f". {len(runs)} runs, {cycles} crank cycle(s) each (period 2π/|ω| = 0.4 s at 5π, 0.25 s at 8π), "
         f"outputs every {grid_deg:g}° of crank angle, integrator `auto` (RADAU5 for the lubricated runs, whose film makes them stiff; RK45 for the others) at rtol 1e-6, atol 1e-9, "
@@ -777,14 +777,14 @@ def _report(
         parts.append(f"**Runs that stopped early: {', '.join(failed)}** — their results below cover only the simulated time.\n")
     parts.append("## Method\n")
     parts.append(
-        "- Mechanism, geometry, inertia and clearance-joint parameters: spec §7 (assumed; the paper's Tables 1–3 are lost). "
+        "- Mechanism, geometry, inertia and clearance-joint parameters: docs/physics.md §7 (assumed; the paper's Tables 1–3 are lost). "
         "Clearance joints A (crank 4 – rod 3) and B (rod 8 – slider 9), journal radius 10 mm; dry: Lankarani–Nikravesh "
         "(c_e = 0.9, internal-contact stiffness), modified Coulomb friction c_f = 0.1; lubricated: long-bearing film by "
         f"quadrature of the positive pressure (Gümbel), μ = {VISCOSITY:g} Pa·s, L = {BEARING_LENGTH * 1e3:g} mm, "
         "transition band e0 = 0.05 c to the dry law.\n"
         "- Errors: slider 9's y displacement, velocity and acceleration minus the ideal mechanism's at the same times and drive "
-        "(spec §5). Crank angle = |ω| t in degrees.\n"
-        f"- FOSM per {BIN_WIDTH:g}° bin (spec §6): μ_s, σ_s = mean and population standard deviation of |error| over the "
+        "(docs/physics.md §5). Crank angle = |ω| t in degrees.\n"
+        f"- FOSM per {BIN_WIDTH:g}° bin (docs/physics.md §6): μ_s, σ_s = mean and population standard deviation of |error| over the "
         "samples in the bin; allowable ranges [0, 0.004 m], [0, 0.6 m/s], [0, 200 m/s²]; β = (μ_S − μ_s)/√(σ_S² + σ_s²), "
         "R = Φ(β). Bins are named by their start angle (the paper's 198°, 216°, 270° … are bin starts).\n"
         + _transient_txt(an, cycles, analysed_txt)
@@ -826,13 +826,13 @@ def _report(
         "Why exact agreement cannot be expected:\n\n"
         "- **The paper's Tables 1–3 (design parameters) and Fig. 6 (the mechanism's dimensions) are missing** from our copy and "
         "could not be recovered. The link lengths, pivot positions, masses, inertias, journal radius, material data, friction "
-        "and restitution coefficients used here are the spec's assumptions (spec §7), chosen to give a plausible mechanism with "
+        "and restitution coefficients used here are the spec's assumptions (docs/physics.md §7), chosen to give a plausible mechanism with "
         "the paper's topology — not the paper's mechanism. Error magnitudes, their times and the crank angles of the minima "
         "all depend on them.\n"
         "- **The paper's closed-form film forces (P13–P14) are wrong for a receding journal (ε̇ < 0)**: the sign of F_ξ is "
-        "wrong and pure receding squeeze yields a large force where the pressure integral is zero (spec §4). That artefact "
+        "wrong and pure receding squeeze yields a large force where the pressure integral is zero (docs/physics.md §4). That artefact "
         "holds a receding journal near the bearing centre and plausibly explains the paper's very small lubricated errors "
-        "(e.g. 0.013 m/s, −0.881 m/s²). We integrate the positive pressure numerically (the spec's reference), so our lubricated "
+        "(e.g. 0.013 m/s, −0.881 m/s²). We integrate the positive pressure numerically (the reference of docs/physics.md §4), so our lubricated "
         "journals move much further from the centre and our lubricated errors are larger.\n"
         "- The paper does not say how μ_s and σ_s are formed from the time histories, which cycles are analysed, what initial "
         "eccentricity or integrator tolerances it used, or how its bins are named; ours are stated in the Method section.\n"
@@ -857,7 +857,7 @@ def _report(
 
 # ====================================================================== entry point
 def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progress: bool = True) -> Path:
-    """Run the paper's study (spec §7) and write figures, CSV files and ``report.md`` to ``out_dir``.
+    """Run the paper's study (docs/physics.md §7) and write figures, CSV files and ``report.md`` to ``out_dir``.
 
     Parameters
     ----------
