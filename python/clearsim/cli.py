@@ -97,7 +97,8 @@ def _joint_columns(run: SceneRun) -> Columns:
 
 
 def _clearances(scene: Scene) -> Dict[str, float]:
-    return {c["name"]: float(c["clearance"]) for c in scene.mechanism.description()["clearance_joints"]}
+    """Free travel of each clearance contact [m] (c, or half a guide's play)."""
+    return {name: c["clearance"] for name, c in scene.mechanism.contacts().items()}
 
 
 def write_csv(path: Path, t: np.ndarray, columns: Columns) -> Path:
@@ -155,11 +156,11 @@ def _figures(run: SceneRun, out_dir: Path) -> List[Path]:
                 )  # fmt: skip
                 written.append(plots.save(fig, out_dir / f"{body}_{component}_error.png"))
     if out.joints and len(result.t):
-        desc = {c["name"]: c for c in scene.mechanism.description()["clearance_joints"]}
-        names = {j: f"{j} ({desc[j]['model']['kind']})" for j in out.joints}
+        contacts = scene.mechanism.contacts()
+        names = {j: f"{j} ({contacts[j]['kind']})" for j in out.joints}
         orbits = {names[j]: tuple(result.eccentricity(j).T) for j in out.joints}
-        clearance = {names[j]: float(desc[j]["clearance"]) for j in out.joints}
-        band = {names[j]: _transition_band(desc[j]) for j in out.joints if desc[j]["model"]["kind"] == "lubricated"}
+        clearance = {names[j]: contacts[j]["clearance"] for j in out.joints}
+        band = {names[j]: _transition_band(contacts[j]["entry"]) for j in out.joints if contacts[j]["kind"] == "lubricated"}
         fig = plots.plot_journal_orbits(orbits, clearance, transition_band=band or None, title=title)
         written.append(plots.save(fig, out_dir / "orbits.png"))
     if run.reliability:

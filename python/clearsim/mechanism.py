@@ -509,6 +509,18 @@ class Mechanism:
         ends = [f"{p['name']} {end}" for p in self._prismatic_clearance for end in ("front", "rear")]
         return [c["name"] for c in self._clearance] + ends
 
+    def contacts(self) -> Dict[str, Dict[str, Any]]:
+        """Each clearance contact of :attr:`clearance_joint_names`: its free travel
+        ``clearance`` [m] (c of a revolute joint, half the play of a prismatic one's slider end),
+        ``kind`` (``"dry"``, ``"lubricated"`` or ``"guide"``) and its description entry."""
+        out: Dict[str, Dict[str, Any]] = {}
+        for c in self._clearance:
+            out[c["name"]] = {"clearance": float(c["clearance"]), "kind": c["model"]["kind"], "entry": copy.deepcopy(c)}
+        for p in self._prismatic_clearance:
+            for end in ("front", "rear"):
+                out[f"{p['name']} {end}"] = {"clearance": 0.5 * float(p["clearance"]), "kind": "guide", "entry": copy.deepcopy(p)}
+        return out
+
     def description(self) -> Dict[str, Any]:
         """The plain-data description handed to the Rust core (a deep copy)."""
         return copy.deepcopy(
