@@ -9,12 +9,28 @@
 //! reference (the ideal mechanism's response, a cubic Hermite curve through its values and rates
 //! on a fine grid), or the raw value when there is no reference.
 
-/// Which derivative of the coordinate is monitored.
+/// What is monitored: a derivative of a body coordinate, or a quantity of a clearance joint
+/// (then [`MonitorSpec::coordinate`] is the joint's index).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Quantity {
     Displacement,
     Velocity,
     Acceleration,
+    /// Eccentricity ratio ε = e / c of a clearance joint.
+    Eccentricity,
+    /// Magnitude of the joint's total force on the journal [N] (dry and film, blended).
+    Force,
+    /// Dry normal force F_N [N] (before the transition blend).
+    ContactForce,
+    /// Film force magnitude [N] (before the transition blend).
+    FilmForce,
+}
+
+impl Quantity {
+    /// Whether the quantity belongs to a clearance joint rather than a body coordinate.
+    pub fn of_joint(self) -> bool {
+        matches!(self, Quantity::Eccentricity | Quantity::Force | Quantity::ContactForce | Quantity::FilmForce)
+    }
 }
 
 /// A smooth reference curve: values and their time derivatives at increasing knots, evaluated by
@@ -52,7 +68,8 @@ impl Reference {
 /// What to monitor (`RunSettings::monitor`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct MonitorSpec {
-    /// Index of the coordinate in q (3 per body: x, y, θ).
+    /// Index of the coordinate in q (3 per body: x, y, θ), or of the clearance joint for a
+    /// joint quantity.
     pub coordinate: usize,
     pub quantity: Quantity,
     pub reference: Option<Reference>,

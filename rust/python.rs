@@ -271,7 +271,14 @@ fn read_monitor(d: &Bound<'_, PyDict>) -> PyResult<MonitorSpec> {
         "displacement" => Quantity::Displacement,
         "velocity" => Quantity::Velocity,
         "acceleration" => Quantity::Acceleration,
-        other => return Err(input_error(py, "monitor.quantity", other, "must be 'displacement', 'velocity' or 'acceleration'")),
+        "eccentricity" => Quantity::Eccentricity,
+        "force" => Quantity::Force,
+        "contact_force" => Quantity::ContactForce,
+        "film_force" => Quantity::FilmForce,
+        other => {
+            let known = "displacement, velocity, acceleration, eccentricity, force, contact_force or film_force";
+            return Err(input_error(py, "monitor.quantity", other, &format!("must be one of {known}")));
+        }
     };
     let reference = match r.opt("reference")? {
         None => None,

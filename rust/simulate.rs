@@ -199,17 +199,35 @@ impl<'a> MechanismSystem<'a> {
         if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration) {
             self.ws.evaluate(self.model, &self.memory, t, y)?;
         }
-        let nq = 3 * self.model.n_bodies();
-        for m in &mut self.monitors {
-            let c = m.spec.coordinate;
-            let v = match m.spec.quantity {
-                Quantity::Displacement => y[c],
-                Quantity::Velocity => y[nq + c],
-                Quantity::Acceleration => self.ws.qdd[c],
-            };
-            m.observe(t, v);
+        for j in 0..self.monitors.len() {
+            let v = self.monitored_value(j, y);
+            self.monitors[j].observe(t, v);
         }
         Ok(())
+    }
+
+    /// Monitor `j`'s quantity at state `y` (accelerations: from the last KKT solve).
+    fn monitored_value(&self, j: usize, y: &[f64]) -> f64 {
+        let spec = &self.monitors[j].spec;
+        let c = spec.coordinate;
+        let nq = 3 * self.model.n_bodies();
+        match spec.quantity {
+            Quantity::Displacement => y[c],
+            Quantity::Velocity => y[nq + c],
+            Quantity::Acceleration => self.ws.qdd[c],
+            q => {
+                let k = self.joint_kinematics(c, y);
+                if q == Quantity::Eccentricity {
+                    return k.eps;
+                }
+                let f = self.model.clearance[c].force(&k, &self.memory[c]);
+                match q {
+                    Quantity::Force => f.total.norm(),
+                    Quantity::ContactForce => f.normal,
+                    _ => f.film_xi.hypot(f.film_eta),
+                }
+            }
+        }
     }
 
     /// Feed the monitors the initial state.
@@ -282,13 +300,9 @@ impl<'a> MechanismSystem<'a> {
         for i in 0..k - 1 {
             let t = at(i);
             dense.eval(t, &mut s);
-            for (j, m) in self.monitors.iter().enumerate() {
-                let c = m.spec.coordinate;
-                self.monitor_values[i * nm + j] = match m.spec.quantity {
-                    Quantity::Displacement => s[c],
-                    Quantity::Velocity => s[nq + c],
-                    Quantity::Acceleration => 0.0,
-                };
+            for j in 0..nm {
+                self.monitor_values[i * nm + j] =
+                    if self.monitors[j].spec.quantity == Quantity::Acceleration { 0.0 } else { self.monitored_value(j, &s) };
             }
             if any_acc {
                 let d = 0.25 * h / k as f64;
@@ -305,13 +319,8 @@ impl<'a> MechanismSystem<'a> {
         if any_acc {
             self.ws.evaluate(self.model, &self.memory, t1, y1)?;
         }
-        for (j, m) in self.monitors.iter().enumerate() {
-            let c = m.spec.coordinate;
-            self.monitor_values[(k - 1) * nm + j] = match m.spec.quantity {
-                Quantity::Displacement => y1[c],
-                Quantity::Velocity => y1[nq + c],
-                Quantity::Acceleration => self.ws.qdd[c],
-            };
+        for j in 0..nm {
+            self.monitor_values[(k - 1) * nm + j] = self.monitored_value(j, y1);
         }
         // Refine the largest interior acceleration error of each monitor with a KKT solve.
         let mut result = Ok(());
@@ -727,7 +736,12 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     for spec in &rs.monitors {
-        if spec.coordinate >= 3 * model.n_bodies() {
+        if spec.quantity.of_joint() {
+            if spec.coordinate >= model.clearance.len() {
+                let n = model.clearance.len();
+                return Err(Error::invalid("monitor.coordinate", spec.coordinate, format!("must be a clearance joint index below {n}")));
+            }
+        } else if spec.coordinate >= 3 * model.n_bodies() {
             return Err(Error::invalid("monitor.coordinate", spec.coordinate, format!("must be below 3 × bodies = {}", 3 * model.n_bodies())));
         }
         if !(spec.bin_width > 0.0 && spec.bin_width.is_finite() && spec.t_start.is_finite()) {

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import Dict, Optional, Tuple
+from typing import Dict, Mapping, Optional, Tuple, Union
 
 from .errors import InputError
 from .joints import Dry, Lubricated
@@ -123,7 +123,7 @@ NINE_BAR_INERTIA: Dict[str, Tuple[float, float]] = {
 
 def nine_bar(
     joints: str = "ideal",
-    clearance: Optional[float] = 0.5e-3,
+    clearance: Union[None, float, Mapping[str, float]] = 0.5e-3,
     omega: float = -5.0 * math.pi,
     *,
     journal_radius: float = 10e-3,
@@ -137,9 +137,17 @@ def nine_bar(
     rod3, crank4, rocker6, rod7, rod8, slider9``; the slider moves on the vertical guide
     x = 0.59 m. ``joints="dry"`` or ``"lubricated"`` makes joints ``"A"`` (crank 4 – rod 3, bearing
     in crank 4) and ``"B"`` (rod 8 – slider 9, bearing in the slider) clearance joints with
-    R_j = 10 mm and the given radial ``clearance`` [m] (μ = 0.4 Pa s, L = 50 mm by default).
+    R_j = 10 mm and the given radial ``clearance`` [m] (μ = 0.4 Pa s, L = 50 mm by default); a
+    mapping ``{"A": c_A, "B": c_B}`` gives each joint its own.
     """
     kind = _kind(joints)
+    if isinstance(clearance, Mapping):
+        unknown = set(clearance) - {"A", "B"}
+        if unknown or len(clearance) != 2:
+            raise InputError(f"invalid clearance = {dict(clearance)!r}: give both joints' clearances as {{'A': c_A, 'B': c_B}} [m]", field="clearance", value=dict(clearance))
+        c_a, c_b = clearance["A"], clearance["B"]
+    else:
+        c_a = c_b = clearance
     P = NINE_BAR_POINTS
     I = NINE_BAR_INERTIA
     m = Mechanism(gravity=gravity)
@@ -166,13 +174,13 @@ def nine_bar(
     m.revolute("crank1", end("crank1", 1), "rod2", end("rod2", -1), name="B1")
     m.revolute("ground", P["O4"], "crank4", end("crank4", -1), name="O4")
     lub = lubricated or Lubricated(viscosity=0.4, length=0.05)
-    _pin(m, "A", kind, "crank4", end("crank4", 1), "rod3", end("rod3", -1), journal_radius, clearance, dry, lub)
+    _pin(m, "A", kind, "crank4", end("crank4", 1), "rod3", end("rod3", -1), journal_radius, c_a, dry, lub)
     m.revolute("rod2", end("rod2", 1), "rod7", end("rod7", -1), name="C-rod2")
     m.revolute("rod3", end("rod3", 1), "rod7", end("rod7", -1), name="C-rod3")
     m.revolute("rod7", end("rod7", 1), "rocker6", end("rocker6", 1), name="D-rocker6")
     m.revolute("rod7", end("rod7", 1), "rod8", end("rod8", -1), name="D-rod8")
     m.revolute("ground", P["H"], "rocker6", end("rocker6", -1), name="H")
-    _pin(m, "B", kind, "slider9", (0.0, 0.0), "rod8", end("rod8", 1), journal_radius, clearance, dry, lub)
+    _pin(m, "B", kind, "slider9", (0.0, 0.0), "rod8", end("rod8", 1), journal_radius, c_b, dry, lub)
     m.prismatic("ground", (0.59, 0.0), "slider9", (0.0, 0.0), axis=(0.0, 1.0), name="guide")
     m.driver("crank1", omega=omega, angle0=0.0, name="drive1")
     m.driver("crank4", omega=omega, angle0=math.pi / 2, name="drive4")

@@ -417,22 +417,13 @@ def _on_grid(raw: Dict[str, Any], refine: int) -> Dict[str, Any]:
     return {key: (value[::refine] if key in ("t", "q", "qd", "qdd") else value) for key, value in raw.items()}
 
 
-def _monitor_spec(ideal: Dict[str, Any], col: int, quantity: str, limit: Tuple[float, float], t_start: float, period: float, cycles: float, bin_width: float) -> Dict[str, Any]:
-    """The monitor of one quantity: its error against the ideal run (cubic Hermite through the
-    ideal's values and rates on the reference grid), in time bins of ``bin_width`` degrees of
-    crank angle."""
-    t = ideal["t"]
-    if quantity == "displacement":
-        value, rate = ideal["q"][:, col], ideal["qd"][:, col]
-    elif quantity == "velocity":
-        value, rate = ideal["qd"][:, col], ideal["qdd"][:, col]
-    else:
-        value = ideal["qdd"][:, col]
-        rate = np.gradient(value, t)
-    return {
+def _monitor_spec(ideal: Optional[Dict[str, Any]], col: int, quantity: str, limit: Tuple[float, float], t_start: float, period: float, cycles: float, bin_width: float) -> Dict[str, Any]:
+    """The monitor of one quantity in time bins of ``bin_width`` degrees of crank angle: a body
+    coordinate's error against the ideal run (cubic Hermite through the ideal's values and rates
+    on the reference grid), or, without ``ideal``, the quantity itself (a joint's)."""
+    spec: Dict[str, Any] = {
         "coordinate": col,
         "quantity": quantity,
-        "reference": {"t": np.ascontiguousarray(t), "value": np.ascontiguousarray(value), "rate": np.ascontiguousarray(rate)},
         "t_start": t_start,
         "bin_width": period * bin_width / 360.0,
         "bins": int(math.ceil(cycles * 360.0 / bin_width - 1e-9)),
@@ -442,6 +433,17 @@ def _monitor_spec(ideal: Dict[str, Any], col: int, quantity: str, limit: Tuple[f
         # missed impact peaks by 1e-4 relative to a 3 600-point grid on the dry slider-crank, 8 do not.
         "samples_per_step": 8,
     }
+    if ideal is not None:
+        t = ideal["t"]
+        if quantity == "displacement":
+            value, rate = ideal["q"][:, col], ideal["qd"][:, col]
+        elif quantity == "velocity":
+            value, rate = ideal["qd"][:, col], ideal["qdd"][:, col]
+        else:
+            value = ideal["qdd"][:, col]
+            rate = np.gradient(value, t)
+        spec["reference"] = {"t": np.ascontiguousarray(t), "value": np.ascontiguousarray(value), "rate": np.ascontiguousarray(rate)}
+    return spec
 
 
 def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], bin_width: float, failed: int, confidence: float) -> None:

@@ -1,0 +1,183 @@
+"""Reliability methods against closed forms (linear limit states with normal inputs), and the
+simulation study against crude Monte Carlo and across output densities."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import special, stats
+
+import clearsim
+from clearsim import reliability as rel
+from clearsim.errors import InputError
+
+ot = pytest.importorskip("openturns", reason="the rare-event methods need clearsim[uq]")
+
+# g = a0 − a·x with independent normal x: β = (a0 − a·μ)/sqrt(Σ a_i² σ_i²), p_f = Φ(−β),
+# Sobol S_i = a_i² σ_i² / Σ (first = total for an additive model).
+A0, A, MU, SIG = 5.5, np.array([1.0, 2.0]), np.array([1.0, 0.5]), np.array([0.5, 0.4])
+BETA = (A0 - A @ MU) / math.sqrt(np.sum((A * SIG) ** 2))
+PF = float(special.ndtr(-BETA))
+
+
+def linear() -> rel.LimitState:
+    return rel.LimitState(lambda x: A0 - A[0] * x["a"] - A[1] * x["b"], {"a": rel.Normal(MU[0], SIG[0]), "b": rel.Normal(MU[1], SIG[1]), "k": 3.0})
+
+
+def test_closed_form_reference_is_a_rare_event():
+    assert 3.5 < BETA < 4.5 and 1e-5 < PF < 1e-3
+
+
+def test_form_is_exact_for_a_linear_limit_state():
+    fr = linear().form()
+    assert fr.beta == pytest.approx(BETA, rel=1e-4)
+    assert fr.pf == pytest.approx(PF, rel=1e-3)
+    w = (A * SIG) ** 2 / np.sum((A * SIG) ** 2)
+    assert fr.importance["a"] == pytest.approx(w[0], abs=1e-4) and fr.importance["b"] == pytest.approx(w[1], abs=1e-4)
+    # The design point lies on g = 0.
+    x = fr.design_point
+    assert A0 - A[0] * x["a"] - A[1] * x["b"] == pytest.approx(0.0, abs=1e-4)
+    assert fr.n_runs > 0
+
+
+def test_importance_sampling_reaches_its_cov_and_brackets_the_exact_pf():
+    res = rel.uq.importance_sampling(linear(), cov=0.05, max_runs=50000, seed=1)
+    assert res.cov <= 0.05
+    assert res.interval[0] <= PF <= res.interval[1]
+    assert res.n_runs < 5000  # crude MC would need ~4e5 runs for the same CoV
+
+
+def test_subset_simulation_matches_the_exact_pf():
+    res = rel.uq.subset(linear(), seed=2, n_per_level=2000)
+    assert abs(res.pf - PF) < 3 * res.cov * PF
+    assert res.n_runs >= 2000 * 3
+
+
+def test_sobol_indices_of_an_additive_model():
+    res = rel.uq.sobol(linear(), 4000, seed=3)
+    w = (A * SIG) ** 2 / np.sum((A * SIG) ** 2)
+    for i, k in enumerate("ab"):
+        assert res.first[k] == pytest.approx(w[i], abs=0.05)
+        assert res.total[k] == pytest.approx(w[i], abs=0.05)
+    assert res.n_runs == 4000 * (2 + 2)
+
+
+def test_tolerance_design_finds_the_closed_form_mean():
+    # Largest mean of a with Φ(β) = R: μ_a = (a0 − a_b μ_b − Φ⁻¹(R)·s)/a_a, s = sqrt(Σ a²σ²).
+    R = 0.999
+    s = math.sqrt(np.sum((A * SIG) ** 2))
+    exact = (A0 - A[1] * MU[1] - special.ndtri(R) * s) / A[0]
+    res = rel.uq.tolerance(linear(), "a", R, bracket=(0.5, 6.0), cov=0.05, seed=4)
+    assert res.form_value == pytest.approx(exact, abs=2e-3 * 5.5)
+    assert res.interval[0] <= exact <= res.interval[1]
+    assert res.n_runs > 0
+
+
+def test_tolerance_bracket_that_does_not_straddle_is_named():
+    with pytest.raises(InputError) as e:
+        rel.uq.tolerance(linear(), "a", 0.999, bracket=(0.5, 1.0))
+    assert e.value.field == "bracket"
+
+
+def test_scipy_distributions_are_inputs():
+    m = rel.LimitState(lambda x: 3.0 - x["w"], {"w": stats.weibull_min(2.0, scale=1.0)})
+    fr = m.form()
+    exact = stats.weibull_min(2.0, scale=1.0).sf(3.0)
+    assert fr.pf == pytest.approx(exact, rel=0.3)  # FORM on a curved (non-normal) limit state
+    res = rel.uq.importance_sampling(m, cov=0.05, seed=5, design_point=fr)
+    assert res.interval[0] <= exact <= res.interval[1]
+
+
+def test_inputs_map_through_the_standard_normal_space_exactly_in_the_tails():
+    d = rel.LogNormal(1e-3, 2e-4)
+    u = np.array([-8.0, -1.0, 0.0, 2.0, 8.0])
+    x = d.from_standard_normal(u)
+    assert np.allclose(d.to_standard_normal(x), u, atol=1e-8)
+    assert np.allclose(x[1:4], d.dist.ppf(special.ndtr(u[1:4])), rtol=1e-12)
+    assert x[-1] > x[-2] > 0  # the far upper tail kept (Φ(8) rounds to 1)
+
+
+# ------------------------------------------------------------------ simulation study
+OMEGA = -5 * math.pi  # nine-bar drive speed [rad/s]
+
+
+def nine_bar(cA, cB):
+    return clearsim.models.nine_bar("lubricated", {"A": cA, "B": cB})
+
+
+def study(limit, quantity="displacement", cycles=0.25, **kw):
+    return rel.Study(
+        nine_bar,
+        inputs={"cA": rel.Normal(0.5e-3, 0.05e-3), "cB": rel.Normal(0.5e-3, 0.05e-3)},
+        output=rel.Output(body="slider9", axis="y", quantity=quantity),
+        limit=limit, omega=OMEGA, cycles=cycles, progress=False, **kw,
+    )  # fmt: skip
+
+
+def test_peak_comes_from_every_step_not_from_the_output_grid():
+    st = study(1e-3, quantity="acceleration")
+    ev, traces = st.evaluate({"cA": [0.55e-3], "cB": [0.45e-3]}, keep_traces=1)
+    assert not ev.failures
+    # A dense trace of the same run: its largest |error| can only be at most the tracked peak
+    # (which also sees between samples), and close to it.
+    m = nine_bar(0.55e-3, 0.45e-3)
+    period = 2 * math.pi / abs(OMEGA)
+    t = np.linspace(0, 0.25 * period, 3601)
+    res, ideal = m.simulate_with_ideal(t[-1], t_out=t, outputs=["states", "accelerations"])
+    dense = np.max(np.abs(res.error(ideal, "slider9", "acceleration")[:, 1]))
+    assert dense <= ev.peaks[0] * (1 + 1e-3)
+    assert dense >= 0.97 * ev.peaks[0]
+
+
+def test_crude_monte_carlo_agrees_with_importance_sampling_on_a_moderate_event():
+    st = study(0.75e-3)
+    mc = st.monte_carlo(300, seed=0)
+    assert 0.03 < mc.pf < 0.5, mc.pf
+    is_ = st.importance_sampling(cov=0.1, seed=1)
+    sd = math.hypot(mc.pf * mc.cov, is_.pf * is_.cov)
+    assert abs(mc.pf - is_.pf) < 3 * sd, (mc.pf, is_.pf)
+    fr = st.form()
+    assert fr.importance["cA"] + fr.importance["cB"] == pytest.approx(1.0)
+
+
+def test_joint_output_and_fosm_from_the_study():
+    st = rel.Study(nine_bar, inputs={"cA": 0.5e-3, "cB": rel.Normal(0.5e-3, 0.02e-3)}, output=rel.Output(joint="B", quantity="eccentricity"), limit=0.99, omega=OMEGA, cycles=0.25, progress=False)
+    ev, traces = st.evaluate({"cB": [0.5e-3]}, keep_traces=1)
+    eps = traces[0].eccentricity("B")
+    assert ev.peaks[0] >= eps.max() - 1e-9 and ev.peaks[0] < 1.0
+    fo = study(4e-3, cycles=1.0).fosm(bin_width=18.0)
+    assert fo.mu_S == pytest.approx(2e-3) and fo.sigma_S == pytest.approx(4e-3 / 6)
+    assert np.all(np.isfinite(fo.reliability)) and len(fo.reliability) == 20
+
+
+def test_failed_samples_are_counted_with_their_reason():
+    def crank(r):
+        return clearsim.models.slider_crank("dry", clearance=0.5e-3, crank_length=r)
+
+    st = rel.Study(crank, inputs={"r": rel.Uniform(0.04, 0.2)}, output=rel.Output(body="slider", axis="x"), limit=1.0, omega=2 * math.pi * 5000 / 60, cycles=0.2, progress=False, max_seconds=20)
+    mc = st.monte_carlo(12, seed=0, on_failure="fail")
+    r = mc.inputs["r"]
+    failed = [k for k, _ in mc.failures]
+    assert int(np.sum(r > 0.13)) >= 3 and set(np.flatnonzero(r > 0.13)) <= set(failed)
+    assert all(r[k] > 0.12 for k in failed)  # a crank longer than its rod locks up
+    assert all("step size underflow" in why or "lock" in why or "singular" in why for _, why in mc.failures)
+    assert mc.pf == pytest.approx(len(mc.failures) / 12)  # nothing else exceeds 1 m
+    ex = st.monte_carlo(12, seed=0, on_failure="exclude")
+    assert ex.pf == 0.0 and ex.bounds == (0.0, len(ex.failures) / 12)
+    with pytest.raises(clearsim.SimulationError):
+        st.monte_carlo(12, seed=0, on_failure="raise")
+
+
+def test_limits_and_outputs_are_required_and_named():
+    with pytest.raises(InputError) as e:
+        rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", axis="y"), omega=OMEGA)
+    assert e.value.field == "limit"
+    with pytest.raises(InputError) as e:
+        rel.Output(body="slider9")
+    assert e.value.field == "Output.axis"
+    with pytest.raises(InputError) as e:
+        rel.Output(joint="B", quantity="displacement")
+    assert e.value.field == "Output.quantity"
+    with pytest.raises(InputError) as e:
+        rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", axis="y"), limit=1e-3)
+    assert e.value.field == "omega"
