@@ -326,6 +326,21 @@ def _cmd_run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_reliability(args: argparse.Namespace) -> int:
+    from .reliability.report import run_study
+
+    scene = load_scene_file(args.scene)
+    if scene.study is None:
+        print(f"clearsim: error: {args.scene} has no [study] table (random inputs, output and limit; python -m pydoc clearsim.reliability.scene)", file=sys.stderr)
+        return EXIT_ERROR
+    out_dir = Path(args.output) if args.output else Path(f"clearsim-{Path(args.scene).stem}-reliability")
+    methods = args.methods.split(",") if args.methods else None
+    echo = (lambda *a, **k: None) if args.quiet else print
+    files = run_study(scene, out_dir, methods=methods, samples=args.samples, progress=not args.quiet, plots=not args.no_plots, echo=echo)
+    echo(f"wrote {len(files)} files to {out_dir}")
+    return 0
+
+
 def _cmd_paper(args: argparse.Namespace) -> int:
     try:
         from .study.paper import run_paper_study
@@ -406,6 +421,19 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--integrator", choices=INTEGRATORS, help="integrator instead of the scene's")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar, no summary on stdout")
     run.set_defaults(func=_cmd_run)
+
+    rel = sub.add_parser(
+        "reliability", help="reliability of a scene's [study]: FORM, importance sampling, subset, Sobol, Monte Carlo",
+        description="Run the [study] of a scene file (random inputs, one output and its limit): p_f by each method, "
+        "Sobol indices, tolerance design; writes CSV tables, reliability.png and report.md.",
+    )  # fmt: skip
+    rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table (format: python -m pydoc clearsim.reliability.scene)")
+    rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
+    rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm")
+    rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")
+    rel.add_argument("--no-plots", action="store_true", help="write no figure")
+    rel.add_argument("-q", "--quiet", action="store_true", help="no progress bars, nothing on stdout")
+    rel.set_defaults(func=_cmd_reliability)
 
     paper = sub.add_parser("paper", help="reproduce the paper's study", description="Reproduce the paper's study (docs/physics.md §7).")
     paper.add_argument("-o", "--output", metavar="OUTDIR", default="clearsim-paper", help="output directory (default clearsim-paper)")

@@ -10,7 +10,7 @@ from __future__ import annotations
 import copy
 import math
 import warnings
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -536,13 +536,39 @@ class Mechanism:
             }
         )
 
-    def idealized(self) -> "Mechanism":
-        """A copy with every clearance joint replaced by an ideal revolute joint (docs/physics.md §5)."""
+    def copy(self) -> "Mechanism":
+        """An independent copy (the compiled Rust model, if any, is not copied)."""
         compiled, self._compiled = self._compiled, None  # the compiled model is not copyable
         try:
-            m = copy.deepcopy(self)
+            return copy.deepcopy(self)
         finally:
             self._compiled = compiled
+
+    def with_values(self, values: Mapping[str, float]) -> "Mechanism":
+        """A copy with numbers replaced by path: ``{"B.clearance": 6e-4, "B.viscosity": 0.3,
+        "crank1.mass": 0.25, "drive1.omega": -16.0}``. A path is ``element.field``: the element
+        by its name (body, joint, driver, clearance joint, force), the field the first key of
+        that name in its description, looked up through its nested tables (a joint's model, its
+        dry law, a driver's law) in SI units. Unknown or ambiguous paths are an
+        :class:`InputError` naming them."""
+        m = self.copy()
+        groups = [m._bodies, m._joints, m._drivers, m._clearance, m._prismatic_clearance, m._forces]
+        for path, value in values.items():
+            element, _, key = str(path).rpartition(".")
+            if not element or not key:
+                raise InputError(f"invalid path {path!r}: write it as element.field (e.g. 'B.clearance')", field="path", value=path)
+            hits = [e for g in groups for e in g if e.get("name") == element]
+            if not hits:
+                raise InputError(f"invalid path {path!r}: no element named {element!r}", field="path", value=path)
+            owner = _find_key(hits[0], key)
+            if owner is None or isinstance(owner[key], (bool, dict, list, str)):
+                raise InputError(f"invalid path {path!r}: {element!r} has no number {key!r}", field="path", value=path)
+            owner[key] = check_finite(str(path), value)
+        return m
+
+    def idealized(self) -> "Mechanism":
+        """A copy with every clearance joint replaced by an ideal revolute joint (docs/physics.md §5)."""
+        m = self.copy()
         for c in m._clearance:
             m._joints.append(
                 {
@@ -796,3 +822,14 @@ class Mechanism:
 
 
 __all__ = ["Mechanism", "GROUND", "SimulationError"]
+
+
+def _find_key(d: Dict[str, Any], key: str) -> Optional[Dict[str, Any]]:
+    """The dict holding ``key``: ``d`` itself, else the first nested dict that has it (breadth first)."""
+    queue = [d]
+    while queue:
+        cur = queue.pop(0)
+        if key in cur:
+            return cur
+        queue += [v for v in cur.values() if isinstance(v, dict)]
+    return None

@@ -498,6 +498,9 @@ class Scene:
     simulation: SimulationSettings
     outputs: OutputSettings
     reliability: Optional[ReliabilitySettings] = None
+    #: The ``[study]`` table (random inputs, one output and its limit; ``clearsim reliability``):
+    #: a :class:`clearsim.reliability.scene.StudySettings`.
+    study: Optional[Any] = None
     name: str = ""
     description: str = ""
     path: Optional[Path] = None
@@ -588,7 +591,7 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 
 # ====================================================================== reading a scene
 _TOP_KEYS = (
-    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability",
+    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study",
 )  # fmt: skip
 _FORCE_KEYS = {
     "spring": ("type", "name", "body_a", "point_a", "body_b", "point_b", "stiffness", "damping", "free_length", "force_table"),
@@ -612,6 +615,7 @@ _SIM_KEYS = (
     "t_end", "cycles", "period", "t0", "integrator", "rtol", "atol", "step", "dt_out", "h_max", "h_min", "max_steps", "outputs",
 )  # fmt: skip
 _OUTPUT_KEYS = ("bodies", "quantities", "components", "joints", "joint_quantities", "ideal", "csv", "plots")
+_STUDY_KEYS = ("body", "component", "joint", "quantity", "limit", "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance")
 _RELIABILITY_KEYS = ("body", "component", "bin_width", "omega", "t_start", "allowable")
 # Builder field → scene key, for errors raised by Mechanism methods.
 _FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "point_b": "points", "driver": None}
@@ -976,9 +980,15 @@ def load_scene_file(path: PathLike) -> Scene:
     outputs = _outputs(builder, mech)
     reliability = _reliability(builder, mech)
     sim = _simulation(builder, mech, _needed_channels(outputs, reliability))
+    study_table = builder.top.table("study", _STUDY_KEYS)
+    study = None
+    if study_table is not None:
+        from .reliability.scene import parse_study  # only scenes with [study] need it
+
+        study = parse_study(study_table, mech, _drive_speed(mech))
     # The ideal counterpart is made now: Mechanism.idealized() deep-copies, which fails once the
     # mechanism holds a compiled Rust model (after a run).
-    return Scene(mech, sim, outputs, reliability, name=name, description=description, path=path, _ideal=mech.idealized())
+    return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, _ideal=mech.idealized())
 
 
 def load_scene(path: PathLike) -> Mechanism:

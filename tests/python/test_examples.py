@@ -32,7 +32,8 @@ def test_example_scene_runs_from_the_cli(tmp_path, capsys, name, t_end):
 def test_every_shipped_scene_is_exercised():
     shipped = {p.name for p in SCENES.glob("*.toml")}
     assert set(EXAMPLES) <= shipped
-    assert shipped - set(EXAMPLES) == {"nine_bar.toml", "nine_bar_lubricated.toml", "slider_crank.toml"}  # tested in test_scene / test_cli
+    # tested in test_scene / test_cli / test_reliability_cli
+    assert shipped - set(EXAMPLES) == {"nine_bar.toml", "nine_bar_lubricated.toml", "slider_crank.toml", "nine_bar_reliability.toml"}
 
 
 def test_engine_crank_speed_fluctuates_under_the_gas_force():

@@ -320,7 +320,7 @@ class Study(Model):
         first = np.full(n, np.nan)
         failures: List[Tuple[int, str]] = []
         traces: List[Any] = []
-        bar = _progress(n, self.progress and n > 1, what)
+        bar = _progress(n, self.progress and n >= 256, what)  # big batches only (not FORM's gradients)
         try:
             for start in range(0, n, CHUNK):
                 stop = min(n, start + CHUNK)

@@ -1,0 +1,146 @@
+"""The ``[study]`` table of a scene file and ``clearsim reliability``: random inputs of the
+mechanism (by path, ``element.field``), one output with its limit, and the methods to run.
+
+::
+
+    [study]                            # clearsim reliability scene.toml
+    body = "slider9"                   # the output: a body coordinate's error against the
+    component = "y"                    #   ideal mechanism (x | y | theta) ...
+    # joint = "B"                      # ... or a clearance joint's quantity
+    quantity = "displacement"          # displacement | velocity | acceleration;
+                                       #   joint: eccentricity | force | contact_force | film_force
+    limit = 1.1e-3                     # required: largest acceptable peak, in the quantity's unit
+    cycles = 1.0                       # analysed crank turns after skip_cycles turns
+    skip_cycles = 0.0
+    # omega = -15.708                  # rad/s (default: the first constant-speed driver)
+    methods = ["form", "importance_sampling", "sobol"]
+                                       # of monte_carlo, form, importance_sampling, subset, sobol, fosm
+    samples = 1000                     # monte_carlo samples; Sobol base size (× (d + 2) runs)
+    cov = 0.1                          # importance sampling target coefficient of variation
+    seed = 0
+
+    [[study.input]]                    # one per random input
+    path = "B.clearance"               # element.field of the mechanism, SI units
+    distribution = "normal"            # normal | lognormal (mean, std) | uniform (low, high)
+    mean = 0.5e-3                      #   | truncated_normal (mean, std, low, high)
+    std = 0.05e-3
+
+    [study.tolerance]                  # optional: the largest mean of one input that still
+    input = "B.clearance"              #   meets a reliability
+    reliability = 0.9999
+    # bracket = [0.3e-3, 0.6e-3]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Tuple
+
+from .distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
+from .study import BODY_QUANTITIES, JOINT_QUANTITIES, Output, Study
+
+METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fosm")
+INPUT_KEYS = ("path", "distribution", "mean", "std", "low", "high")
+TOLERANCE_KEYS = ("input", "reliability", "bracket")
+DISTRIBUTIONS = ("normal", "lognormal", "uniform", "truncated_normal")
+
+
+@dataclass
+class StudySettings:
+    """The ``[study]`` table, checked."""
+
+    output: Output
+    limit: float
+    omega: float
+    inputs: Dict[str, Distribution]
+    cycles: float = 1.0
+    skip_cycles: float = 0.0
+    methods: List[str] = field(default_factory=lambda: ["form", "importance_sampling"])
+    samples: int = 1000
+    cov: float = 0.1
+    seed: int = 0
+    bin_width: float = 18.0
+    tolerance: Optional[Tuple[str, float, Optional[Tuple[float, float]]]] = None
+
+
+def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySettings:
+    """Read the ``[study]`` table ``t`` (a scene ``_Table``: errors point at the key's line)."""
+    joint = t.string("joint", None, choices=mech.clearance_joint_names) if "joint" in t else None
+    if joint is not None:
+        if "body" in t or "component" in t:
+            raise t.error("joint", "invalid [study]: give either joint or body (with component), not both")
+        quantity = t.string("quantity", choices=JOINT_QUANTITIES)
+        output = Output(joint=joint, quantity=quantity)
+    else:
+        if "body" not in t:
+            raise t.error(None, "missing key 'body' (with component) or 'joint' in [study]: the analysed output")
+        body = t.string("body", choices=mech.body_names)
+        output = Output(body=body, axis=t.string("component", choices=("x", "y", "theta")), quantity=t.string("quantity", choices=BODY_QUANTITIES))
+    if "limit" not in t:
+        raise t.error(None, f"missing key 'limit' in [study]: the largest acceptable {output.label} [{output.unit}] (there is no default)")
+    limit = t.number("limit")
+    if not limit > 0:
+        raise t.error("limit", f"invalid study.limit = {limit!r}: must be positive [{output.unit}]", limit)
+    omega = t.number("omega", omega_default)
+    if omega is None or omega == 0:
+        raise t.error("omega", "missing key 'omega' in [study]: the drive speed [rad/s] (no constant-speed driver to take it from)", omega)
+    inputs: Dict[str, Distribution] = {}
+    for it in t.array_of_tables("input", INPUT_KEYS):
+        path = it.string("path")
+        try:
+            mech.with_values({path: 0.0})
+        except Exception as err:  # an InputError naming the path
+            raise it.error("path", str(err), path) from None
+        kind = it.string("distribution", choices=DISTRIBUTIONS)
+        try:
+            if kind == "normal":
+                d: Distribution = Normal(it.number("mean"), it.number("std"))
+            elif kind == "lognormal":
+                d = LogNormal(it.number("mean"), it.number("std"))
+            elif kind == "uniform":
+                d = Uniform(it.number("low"), it.number("high"))
+            else:
+                d = TruncatedNormal(it.number("mean"), it.number("std"), it.number("low"), it.number("high"))
+        except Exception as err:
+            if hasattr(err, "line") and getattr(err, "line", None):
+                raise
+            raise it.error(getattr(err, "field", None) and str(getattr(err, "field")).split(".")[-1], str(err)) from None
+        if path in inputs:
+            raise it.error("path", f"invalid study.input path {path!r}: given twice", path)
+        inputs[path] = d
+    if not inputs:
+        raise t.error(None, "missing [[study.input]]: give at least one random input (path, distribution, parameters)")
+    methods = t.strings("methods", ["form", "importance_sampling"], choices=METHODS)
+    samples = t.integer("samples", 1000)
+    if samples < 2:
+        raise t.error("samples", f"invalid study.samples = {samples!r}: must be at least 2", samples)
+    tol = None
+    tt = t.table("tolerance", TOLERANCE_KEYS)
+    if tt is not None:
+        name = tt.string("input", choices=list(inputs))
+        r = tt.number("reliability")
+        if not 0 < r < 1:
+            raise tt.error("reliability", f"invalid study.tolerance.reliability = {r!r}: must lie in (0, 1)", r)
+        bracket = tt.numbers("bracket", None, length=2)
+        tol = (name, r, tuple(bracket) if bracket else None)
+    return StudySettings(
+        output=output, limit=limit, omega=float(omega), inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
+        methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", 18.0), tolerance=tol,
+    )  # fmt: skip
+
+
+def scene_study(scene: Any, progress: bool = True) -> Study:
+    """The :class:`Study` of a scene's ``[study]`` table: its mechanism with the random inputs
+    set by path (:meth:`clearsim.Mechanism.with_values`), run with the scene's integrator
+    settings."""
+    s: StudySettings = scene.study
+    mech = scene.mechanism
+    sim = scene.simulation
+
+    def build(**values: float) -> Any:
+        return mech.with_values(values)
+
+    opts: Dict[str, Any] = dict(integrator=sim.integrator, rtol=sim.rtol, atol=sim.atol)
+    if sim.max_steps is not None:
+        opts["max_steps"] = sim.max_steps
+    return Study(build, s.inputs, s.output, s.limit, omega=s.omega, cycles=s.cycles, skip_cycles=s.skip_cycles, bin_width=s.bin_width, progress=progress, **opts)
