@@ -310,6 +310,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
     out_dir = Path(args.output) if args.output else Path(f"clearsim-{Path(args.scene).stem}")
     run = scene.run(progress=not args.quiet)
     files = write_run(run, out_dir, plots=not args.no_plots)
+    if args.animate:
+        span = float(run.result.t[-1] - run.result.t[0]) if len(run.result.t) else 1.0
+        speed = args.speed or max(span, 1e-9) / 8.0  # default: the whole run in 8 s
+        files.append(run.result.animate(args.animate, speed=speed, magnify=args.magnify))
     if not args.quiet:
         r = run.result.summary()
         print(f"{scene.name}: {r['outputs']} outputs to t = {r['t_reached']:g} s in {r['steps']} steps ({r['wall_time']:.3g} s)")
@@ -419,6 +423,9 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--no-plots", action="store_true", help="write no figures")
     run.add_argument("--t-end", type=_positive_float, metavar="T", help="end time [s] instead of the scene's")
     run.add_argument("--integrator", choices=INTEGRATORS, help="integrator instead of the scene's")
+    run.add_argument("--animate", metavar="FILE", help="also animate the run into FILE (.gif, or .mp4 with ffmpeg)")
+    run.add_argument("--speed", type=_positive_float, default=None, metavar="S", help="animation speed × real time (default: the run lasts 8 s)")
+    run.add_argument("--magnify", type=_positive_float, metavar="M", help="clearance magnification in pictures (default: automatic)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar, no summary on stdout")
     run.set_defaults(func=_cmd_run)
 

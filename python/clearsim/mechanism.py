@@ -612,6 +612,16 @@ class Mechanism:
             raise InputError(f"invalid coordinate = {coordinate!r}: must be one of x, y, theta", field="coordinate", value=coordinate)
         return 3 * b + axes.index(coordinate) + (3 * len(self._bodies) if velocity else 0)
 
+    def plot(self, t: float = 0.0, *, magnify: Optional[float] = None, ax: Any = None) -> Any:
+        """A figure of the mechanism as assembled at time ``t`` [s]: bodies, joints, drivers,
+        force elements and the clearance joints magnified (``magnify``; default: the largest
+        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint).
+        Check a scene you wrote with it before running."""
+        from . import draw
+
+        q = self.initial_state(float(t))[: 3 * len(self._bodies)]
+        return draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
+
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
         """Consistent initial state y0 = (q0, q̇0) from the kinematic assembly at ``t0``."""
         return self.compile().initial_state(float(t0))
@@ -808,6 +818,7 @@ class Mechanism:
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)
+        res.description = self.description()
         if settings is not None:
             res.stats["integrator"] = settings["method"]
         self._check_assembly_shift(res)

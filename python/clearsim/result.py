@@ -43,6 +43,8 @@ class Result:
         self.failure = raw.get("error")
         self.q0: np.ndarray = raw["q0"]
         self.qd0: np.ndarray = raw["qd0"]
+        #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate.
+        self.description: Optional[Dict[str, Any]] = None
 
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"
@@ -192,6 +194,29 @@ class Result:
         return get(self, body)[:n] - get(ideal, body)[:n]
 
     # ------------------------------------------------------------------ data out
+    def plot_mechanism(self, t: float, *, magnify: Optional[float] = None, ax: Any = None) -> Any:
+        """A figure of the mechanism at time ``t`` [s] of the run (positions interpolated
+        between stored outputs), clearances magnified (``magnify``; default: the largest
+        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint)."""
+        from . import draw
+
+        self._need_description()
+        q = draw.states_at(self, np.array([float(t)]))[0]
+        return draw.plot_pose(self.description, q, magnify=magnify, t=float(t), ax=ax)  # type: ignore[arg-type]
+
+    def animate(self, path: Any, *, speed: float = 1.0, magnify: Optional[float] = None, fps: int = 25, **kwargs: Any) -> Any:
+        """Animate the run into ``path`` (``.gif``, or ``.mp4`` with ffmpeg) at ``speed`` × real
+        time, clearances magnified, with each clearance joint's journal orbit in an inset
+        (:func:`clearsim.draw.animate`). Returns the path."""
+        from . import draw
+
+        self._need_description()
+        return draw.animate(self, path, speed=speed, magnify=magnify, fps=fps, **kwargs)
+
+    def _need_description(self) -> None:
+        if self.description is None:
+            raise InputError("this result does not carry its mechanism (make it with Mechanism.simulate)", field="result", value=None)
+
     def to_pandas(self) -> Any:
         """A pandas DataFrame indexed by time ``t`` [s], one column per stored output
         (``slider9.y`` [m], ``slider9.y_dot`` [m/s], ``A.ex`` [m], ...); ``df.attrs["units"]``

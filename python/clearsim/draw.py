@@ -1,0 +1,380 @@
+"""Pictures of a mechanism: its pose at one time and animations of a run.
+
+Bodies are drawn through the points where joints, clearance joints and force elements attach
+(a bar for two points, a plate for more, a block for a slider), ground joints with hatched
+supports, drivers and motors with a curved arrow, springs as zigzags, loads as arrows. A
+clearance is far too small to see at the mechanism's scale, so each clearance joint is drawn
+magnified: the bearing circle, the journal inside it displaced by ``magnify × e`` (e the true
+eccentricity), and the factor written beside it. The links themselves stay at their true pose.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from .errors import InputError
+
+#: Colours of the drawing (colour-blind safe).
+BODY_COLOUR = "#0072B2"
+GROUND_COLOUR = "0.35"
+CLEARANCE_COLOUR = "#D55E00"
+FORCE_COLOUR = "#009E73"
+DRIVE_COLOUR = "#CC79A7"
+
+
+def _pose(q: np.ndarray, body: Optional[int]) -> Tuple[np.ndarray, float]:
+    if body is None:
+        return np.zeros(2), 0.0
+    return np.array([q[3 * body], q[3 * body + 1]]), float(q[3 * body + 2])
+
+
+def _point(q: np.ndarray, body: Optional[int], local: Sequence[float]) -> np.ndarray:
+    """Global position of a body-frame point (ground: the point itself)."""
+    r, th = _pose(q, body)
+    c, s = math.cos(th), math.sin(th)
+    x, y = float(local[0]), float(local[1])
+    return r + np.array([c * x - s * y, s * x + c * y])
+
+
+def _attachments(desc: Dict[str, Any]) -> Dict[Optional[int], List[Tuple[float, float]]]:
+    """Body-frame points where something attaches, per body (None: ground)."""
+    pts: Dict[Optional[int], List[Tuple[float, float]]] = {}
+
+    def add(body: Optional[int], p: Sequence[float]) -> None:
+        pts.setdefault(body, [])
+        t = (float(p[0]), float(p[1]))
+        if all(math.hypot(t[0] - a, t[1] - b) > 1e-9 for a, b in pts[body]):
+            pts[body].append(t)
+
+    for j in desc["joints"]:
+        add(j["body_a"], j["point_a"])
+        add(j["body_b"], j["point_b"])
+    for c in desc["clearance_joints"]:
+        add(c["bearing_body"], c["bearing_point"])
+        add(c["journal_body"], c["journal_point"])
+    for p in desc.get("prismatic_clearance_joints", []):
+        add(p["slider_body"], (0.0, 0.0))
+    for f in desc.get("forces", []):
+        if f["kind"] == "spring_damper":
+            add(f["body_a"], f["point_a"])
+            add(f["body_b"], f["point_b"])
+        elif f["kind"] == "force":
+            add(f["body"], f["point"])
+    return pts
+
+
+def extent(desc: Dict[str, Any], q: np.ndarray) -> float:
+    """Size of the mechanism [m]: the diagonal of its attachment points' bounding box."""
+    pts = [_point(q, b, p) for b, ps in _attachments(desc).items() for p in ps]
+    pts += [np.array(q[3 * k : 3 * k + 2]) for k in range(len(desc["bodies"]))]
+    arr = np.array(pts)
+    return float(max(np.hypot(*(arr.max(axis=0) - arr.min(axis=0))), 1e-3))
+
+
+#: Drawn bearing radius as a fraction of the mechanism's size, and the part of it the
+#: magnified clearance takes by default.
+BEARING_SIZE = 0.03
+CLEARANCE_SHARE = 0.35
+
+
+def default_magnify(desc: Dict[str, Any], size: float) -> float:
+    """A round factor (1, 2, 5 × 10^k, at least 1) that draws the largest clearance at about a
+    third of the drawn bearing radius (1 % of the mechanism's size)."""
+    cs = [c["clearance"] for c in desc["clearance_joints"]] + [p["clearance"] for p in desc.get("prismatic_clearance_joints", [])]
+    if not cs or max(cs) <= 0:
+        return 1.0
+    raw = CLEARANCE_SHARE * BEARING_SIZE * size / max(cs)
+    k = 10 ** math.floor(math.log10(raw))
+    return max(1.0, float(max(m * k for m in (1, 2, 5) if m * k <= raw)))
+
+
+def _load_direction(f: Dict[str, Any]) -> np.ndarray:
+    """A representative direction of an applied force: its constant value, or its largest
+    table entry."""
+
+    def big(profile: Dict[str, Any]) -> float:
+        if profile["kind"] == "constant":
+            return float(profile["value"])
+        ys = profile["table"]["y"]
+        return float(max(ys, key=abs)) if ys else 0.0
+
+    v = np.array([big(f["fx"]), big(f["fy"])])
+    n = float(np.hypot(*v))
+    return v / n if n > 0 else np.array([0.0, -1.0])
+
+
+def _zigzag(a: np.ndarray, b: np.ndarray, width: float, turns: int = 6) -> np.ndarray:
+    d = b - a
+    n = float(np.hypot(*d))
+    if n == 0:
+        return np.array([a, b])
+    u, v = d / n, np.array([-d[1], d[0]]) / n
+    s = np.concatenate([[0.0, 0.15], 0.15 + 0.7 * (np.arange(2 * turns) + 0.5) / (2 * turns), [0.85, 1.0]])
+    off = np.concatenate([[0.0, 0.0], width * (-1.0) ** np.arange(2 * turns), [0.0, 0.0]])
+    return a + np.outer(s * n, u) + np.outer(off, v)
+
+
+def _convex_hull(points: np.ndarray) -> np.ndarray:
+    pts = sorted(map(tuple, points))
+    if len(pts) <= 2:
+        return np.array(pts)
+
+    def half(seq: Any) -> List[Any]:
+        out: List[Any] = []
+        for p in seq:
+            while len(out) >= 2 and (out[-1][0] - out[-2][0]) * (p[1] - out[-2][1]) - (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0]) <= 0:
+                out.pop()
+            out.append(p)
+        return out
+
+    lower, upper = half(pts), half(reversed(pts))
+    return np.array(lower[:-1] + upper[:-1])
+
+
+def draw(ax: Any, desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] = None, size: Optional[float] = None, labels: bool = True, t: Optional[float] = None) -> float:
+    """Draw the mechanism ``desc`` (a :meth:`Mechanism.description`) at coordinates ``q`` on
+    ``ax``. Returns the clearance magnification used."""
+    from matplotlib import patches
+
+    q = np.asarray(q, dtype=float)
+    size = size or extent(desc, q)
+    mag = float(magnify) if magnify is not None else default_magnify(desc, size)
+    lw = 3.0
+    att = _attachments(desc)
+    names = [b["name"] for b in desc["bodies"]]
+    prismatic_slider = {j["body_b"] for j in desc["joints"] if j["kind"] == "prismatic"} | {p["slider_body"] for p in desc.get("prismatic_clearance_joints", [])}
+    block = 0.06 * size
+    # Bodies.
+    for k in range(len(names)):
+        pts = np.array([_point(q, k, p) for p in att.get(k, [])] or [q[3 * k : 3 * k + 2]])
+        if k in prismatic_slider or len(pts) == 1:
+            r, th = _pose(q, k)
+            corner = r + np.array([math.cos(th) * -block / 2 - math.sin(th) * -block / 3, math.sin(th) * -block / 2 + math.cos(th) * -block / 3])
+            ax.add_patch(patches.Rectangle(tuple(corner), block, 2 * block / 3, angle=math.degrees(th), facecolor="#cfe3f3", edgecolor=BODY_COLOUR, lw=1.5, zorder=2))
+            if len(pts) > 1:
+                ax.plot(pts[:, 0], pts[:, 1], color=BODY_COLOUR, lw=lw, solid_capstyle="round", zorder=2)
+        elif len(pts) == 2:
+            ax.plot(pts[:, 0], pts[:, 1], color=BODY_COLOUR, lw=lw, solid_capstyle="round", zorder=2)
+        else:
+            hull = _convex_hull(pts)
+            ax.add_patch(patches.Polygon(hull, closed=True, facecolor="#cfe3f3", edgecolor=BODY_COLOUR, lw=2, alpha=0.9, zorder=2))
+        if labels:
+            r = pts.mean(axis=0)
+            ax.annotate(names[k], tuple(r), xytext=(4, 4), textcoords="offset points", fontsize=7, color=BODY_COLOUR, zorder=6)
+    # Ideal joints.
+    pin = 0.012 * size
+    for j in desc["joints"]:
+        if j["kind"] == "revolute":
+            p = _point(q, j["body_b"], j["point_b"])
+            ax.add_patch(patches.Circle(tuple(p), pin, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
+            if j["body_a"] is None or j["body_b"] is None:
+                _support(ax, p, pin)
+        else:  # prismatic: the guide line along its axis through the ground/guide point
+            r, th = _pose(q, j["body_a"])
+            a = np.asarray(j["axis"], dtype=float)
+            c, s = math.cos(th), math.sin(th)
+            u = np.array([c * a[0] - s * a[1], s * a[0] + c * a[1]]) / max(np.hypot(*a), 1e-300)
+            slider = np.array(q[3 * j["body_b"] : 3 * j["body_b"] + 2])
+            base = _point(q, j["body_a"], j["point_a"])
+            along = float(np.dot(slider - base, u))
+            n = np.array([-u[1], u[0]])
+            for side in (-1, 1):
+                off = side * block / 3 * 1.15 * n
+                seg = np.array([slider + off - 0.8 * block * u - 0.0 * along, slider + off + 0.8 * block * u])
+                ax.plot(seg[:, 0], seg[:, 1], color=GROUND_COLOUR, lw=1.0, zorder=1)
+            line = np.array([base + (along - 0.35 * size) * u, base + (along + 0.35 * size) * u])
+            ax.plot(line[:, 0], line[:, 1], color=GROUND_COLOUR, lw=0.8, ls="--", zorder=1)
+    # Clearance joints, magnified.
+    r_draw = BEARING_SIZE * size
+    for c in desc["clearance_joints"]:
+        b = _point(q, c["bearing_body"], c["bearing_point"])
+        jn = _point(q, c["journal_body"], c["journal_point"])
+        e = jn - b
+        ring = mag * c["clearance"]
+        rb = max(r_draw, ring / 0.6)  # a large magnification draws a larger bearing
+        ax.add_patch(patches.Circle(tuple(b), rb, facecolor="white", edgecolor=CLEARANCE_COLOUR, lw=1.5, zorder=4))
+        ax.add_patch(patches.Circle(tuple(b + mag * e), rb - ring, facecolor="#f6d5bf", edgecolor=CLEARANCE_COLOUR, lw=1.0, zorder=5))
+        if c["bearing_body"] is None:
+            _support(ax, b, r_draw)
+        if labels:
+            ax.annotate(f"{c['name']} (c = {c['clearance'] * 1e3:.3g} mm, ×{mag:g})", tuple(b), xytext=(6, -10), textcoords="offset points", fontsize=7, color=CLEARANCE_COLOUR, zorder=6)
+    for p in desc.get("prismatic_clearance_joints", []):
+        slider = np.array(q[3 * p["slider_body"] : 3 * p["slider_body"] + 2])
+        r, th = _pose(q, p["guide_body"])
+        a = np.asarray(p["axis"], dtype=float)
+        u = np.array([math.cos(th) * a[0] - math.sin(th) * a[1], math.sin(th) * a[0] + math.cos(th) * a[1]]) / max(np.hypot(*a), 1e-300)
+        n = np.array([-u[1], u[0]])
+        base = _point(q, p["guide_body"], p["guide_point"])
+        lateral = float(np.dot(slider - base, n))
+        half = block / 3 + mag * p["clearance"]
+        along = float(np.dot(slider - base, u))
+        for side in (-1, 1):
+            seg = np.array([base + (along - 0.35 * size) * u + side * (half + 0.0) * n, base + (along + 0.35 * size) * u + side * half * n])
+            ax.plot(seg[:, 0], seg[:, 1], color=CLEARANCE_COLOUR, lw=1.2, zorder=1)
+        if labels:
+            ax.annotate(f"{p['name']} (play {p['clearance'] * 1e3:.3g} mm, offset ×{mag:.0f}: {lateral * 1e6:.0f} µm)", tuple(base + along * u + half * n), xytext=(0, 6),
+                        textcoords="offset points", fontsize=7, color=CLEARANCE_COLOUR, zorder=6)  # fmt: skip
+    # Drivers and motors: a curved arrow at the driven body's centroid.
+    driven = [(d["body"], d["name"]) for d in desc["drivers"]] + [(f["body"], f["name"]) for f in desc.get("forces", []) if f["kind"] in ("motor", "torque")]
+    for body, name in driven:
+        r, _ = _pose(q, body)
+        ax.add_patch(patches.FancyArrowPatch(tuple(r + [0.045 * size, 0]), tuple(r + [0, 0.045 * size]), connectionstyle="arc3,rad=0.5", arrowstyle="-|>", mutation_scale=9, color=DRIVE_COLOUR, lw=1.2, zorder=6))
+        if labels:
+            ax.annotate(name, tuple(r + [0.03 * size, 0.03 * size]), xytext=(2, 2), textcoords="offset points", fontsize=7, color=DRIVE_COLOUR, zorder=6)
+    # Springs and loads.
+    for f in desc.get("forces", []):
+        if f["kind"] == "spring_damper":
+            a, b = _point(q, f["body_a"], f["point_a"]), _point(q, f["body_b"], f["point_b"])
+            z = _zigzag(a, b, 0.015 * size)
+            ax.plot(z[:, 0], z[:, 1], color=FORCE_COLOUR, lw=1.2, zorder=3)
+            if f["body_a"] is None:
+                _support(ax, a, pin)
+        elif f["kind"] == "force":
+            p = _point(q, f["body"], f["point"])
+            u = _load_direction(f)
+            if f.get("frame") == "body":
+                _, th = _pose(q, f["body"])
+                u = np.array([math.cos(th) * u[0] - math.sin(th) * u[1], math.sin(th) * u[0] + math.cos(th) * u[1]])
+            tail = p - 0.12 * size * u
+            ax.add_patch(patches.FancyArrowPatch(tuple(tail), tuple(p), arrowstyle="-|>", mutation_scale=10, color=FORCE_COLOUR, lw=1.5, zorder=6))
+            if labels:
+                ax.annotate(f["name"], tuple(tail), xytext=(3, 3), textcoords="offset points", fontsize=7, color=FORCE_COLOUR)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    if t is not None:
+        ax.set_title(f"t = {t:.4f} s", fontsize=9)
+    return mag
+
+
+def _support(ax: Any, p: np.ndarray, r: float) -> None:
+    """A hatched ground support under point ``p``."""
+    from matplotlib import patches
+
+    tri = np.array([p, p + [-1.6 * r, -2.4 * r], p + [1.6 * r, -2.4 * r]])
+    ax.add_patch(patches.Polygon(tri, closed=True, facecolor="none", edgecolor=GROUND_COLOUR, lw=1.0, hatch="////", zorder=1))
+
+
+def _limits(desc: Dict[str, Any], qs: np.ndarray) -> Tuple[Tuple[float, float], Tuple[float, float]]:
+    pts = []
+    for q in qs:
+        pts += [_point(q, b, p) for b, ps in _attachments(desc).items() for p in ps]
+        pts += [np.array(q[3 * k : 3 * k + 2]) for k in range(len(desc["bodies"]))]
+    arr = np.array(pts)
+    lo, hi = arr.min(axis=0), arr.max(axis=0)
+    span = float(np.hypot(*(hi - lo)) or 1.0)
+    pad = 0.12 * span
+    # Keep the frame at least half as high as wide (and the reverse): flat poses stay readable.
+    half = np.maximum(0.5 * (hi - lo) + pad, 0.25 * span)
+    mid = 0.5 * (hi + lo)
+    return (mid[0] - half[0], mid[0] + half[0]), (mid[1] - half[1], mid[1] + half[1])
+
+
+def plot_pose(desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] = None, title: Optional[str] = None, t: Optional[float] = None, ax: Any = None) -> Any:
+    """A figure of the mechanism at coordinates ``q`` (see :func:`draw`)."""
+    from . import plots
+
+    with plots.style():
+        if ax is None:
+            fig = plots._new_figure(6.0, 5.0)
+            ax = fig.add_subplot(1, 1, 1)
+        else:
+            fig = ax.figure
+        draw(ax, desc, q, magnify=magnify, t=t)
+        (x0, x1), (y0, y1) = _limits(desc, np.asarray(q)[None, :])
+        ax.set_xlim(x0, x1)
+        ax.set_ylim(y0, y1)
+        if title:
+            ax.set_title(title if t is None else f"{title}, t = {t:.4f} s", fontsize=9)
+    return fig
+
+
+def states_at(result: Any, times: np.ndarray) -> np.ndarray:
+    """Body coordinates q at ``times`` [s], interpolated linearly between the stored outputs
+    (angles unwrapped first)."""
+    q = result._channel("q", "states")
+    t = result.t
+    times = np.asarray(times, dtype=float)
+    if times.size and (times.min() < t[0] - 1e-12 or times.max() > t[-1] + 1e-12):
+        raise InputError(f"invalid t: the run covers [{t[0]:g}, {t[-1]:g}] s", field="t", value=float(times.min() if times.min() < t[0] else times.max()))
+    return np.column_stack([np.interp(times, t, q[:, k]) for k in range(q.shape[1])])
+
+
+def animate(
+    result: Any, path: Union[str, Path], *, speed: float = 1.0, magnify: Optional[float] = None, fps: int = 25, t_start: Optional[float] = None, t_end: Optional[float] = None,
+    max_frames: int = 400, dpi: int = 100, orbits: bool = True,
+) -> Path:  # fmt: skip
+    """Animate a run: the mechanism at ``speed`` × real time (``speed=0.05``: twenty times
+    slower), clearances magnified, with each revolute clearance joint's journal orbit (e/c, the
+    clearance circle) in an inset. ``path`` ending in ``.gif`` (Pillow) or ``.mp4`` (needs
+    ffmpeg). At most ``max_frames`` frames: longer runs are sampled more coarsely."""
+    import matplotlib.animation as animation
+
+    from . import plots
+
+    desc = result.description
+    if desc is None:
+        raise InputError("invalid result: it does not carry its mechanism (make it with Mechanism.simulate)", field="result", value=None)
+    path = Path(path)
+    if path.suffix.lower() not in (".gif", ".mp4"):
+        raise InputError(f"invalid path = {str(path)!r}: must end in .gif or .mp4", field="path", value=str(path))
+    if not speed > 0:
+        raise InputError(f"invalid speed = {speed!r}: must be positive (1 = real time)", field="speed", value=speed)
+    if path.suffix.lower() == ".mp4" and not animation.writers.is_available("ffmpeg"):
+        raise InputError("invalid path: writing .mp4 needs ffmpeg on the PATH; write a .gif instead", field="path", value=str(path))
+    t0 = result.t[0] if t_start is None else float(t_start)
+    t1 = result.t[-1] if t_end is None else float(t_end)
+    n = int(min(max_frames, max(2, math.ceil((t1 - t0) / speed * fps))))
+    times = np.linspace(t0, t1, n)
+    qs = states_at(result, times)
+    size = extent(desc, qs[0])
+    mag = float(magnify) if magnify is not None else default_magnify(desc, size)
+    joints = [c for c in desc["clearance_joints"]] if orbits else []
+    xlim, ylim = _limits(desc, qs[:: max(1, n // 50)])
+    with plots.style():
+        fig = plots._new_figure(7.5 if joints else 6.0, 5.0)
+        if joints:
+            gs = fig.add_gridspec(len(joints), 2, width_ratios=[3, 1])
+            ax = fig.add_subplot(gs[:, 0])
+            insets = [fig.add_subplot(gs[k, 1]) for k in range(len(joints))]
+        else:
+            ax = fig.add_subplot(1, 1, 1)
+            insets = []
+        # Orbits from every stored output (not only the frames), drawn up to each frame's time.
+        q_all = result._channel("q", "states")
+        orbit = []
+        for c in joints:
+            b = np.array([_point(q, c["bearing_body"], c["bearing_point"]) for q in q_all])
+            j = np.array([_point(q, c["journal_body"], c["journal_point"]) for q in q_all])
+            orbit.append((j - b) / c["clearance"])
+        upto = np.searchsorted(result.t, times, side="right")
+
+        def frame(i: int) -> List[Any]:
+            ax.clear()
+            draw(ax, desc, qs[i], magnify=mag, size=size, t=times[i])
+            ax.set_xlim(*xlim)
+            ax.set_ylim(*ylim)
+            for k, (axi, c) in enumerate(zip(insets, joints)):
+                axi.clear()
+                th = np.linspace(0, 2 * math.pi, 120)
+                axi.plot(np.cos(th), np.sin(th), color="0.5", lw=0.8)
+                o = orbit[k][: max(1, upto[i])]
+                axi.plot(o[:, 0], o[:, 1], color=CLEARANCE_COLOUR, lw=0.8)
+                axi.plot(o[-1, 0], o[-1, 1], "o", color=CLEARANCE_COLOUR, ms=4)
+                lim = max(1.1, float(np.abs(orbit[k]).max()) * 1.05)
+                axi.set_xlim(-lim, lim)
+                axi.set_ylim(-lim, lim)
+                axi.set_aspect("equal")
+                axi.set_title(f"{c['name']}: e/c", fontsize=8)
+                axi.tick_params(labelsize=6)
+            return []
+
+        anim = animation.FuncAnimation(fig, frame, frames=n, blit=False)
+        writer = animation.PillowWriter(fps=fps) if path.suffix.lower() == ".gif" else animation.FFMpegWriter(fps=fps)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        anim.save(str(path), writer=writer, dpi=dpi)
+    return path

@@ -1,0 +1,79 @@
+"""Pictures and animations of a mechanism: valid files with the expected frames, and the
+drawing's geometry (bodies where the assembly puts them, journals displaced by magnify × e)."""
+
+import math
+import pickle
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import clearsim
+from clearsim import draw, plots
+from clearsim.cli import main
+from clearsim.errors import InputError
+from clearsim.scene import load_scene
+
+SCENES = __import__("pathlib").Path(__file__).resolve().parents[2] / "scenes"
+
+
+def _png_ok(path):
+    with Image.open(path) as im:
+        assert im.format == "PNG" and im.size[0] > 300 and im.size[1] > 200
+        arr = np.asarray(im.convert("L"))
+    assert arr.std() > 5  # not blank
+
+
+@pytest.mark.parametrize("scene", ["nine_bar_lubricated.toml", "slider_crank_guide_clearance.toml", "four_bar_spring.toml", "engine.toml", "press_workpiece.toml"])
+def test_mechanism_picture_of_every_example(tmp_path, scene):
+    m = load_scene(SCENES / scene)
+    fig = m.plot()
+    _png_ok(plots.save(fig, tmp_path / "pose.png"))
+
+
+def test_drawing_puts_bodies_at_their_assembled_pose():
+    m = clearsim.models.slider_crank("dry", clearance=0.5e-3)
+    fig = m.plot(t=0.0, magnify=100)
+    ax = fig.axes[0]
+    # The crank bar runs from the ground pivot (0, 0) to the crank pin (0.05, 0) at θ = 0.
+    lines = [np.asarray(line.get_xydata()) for line in ax.lines]
+    assert any(np.allclose(xy[[0, -1]], [[0.0, 0.0], [0.05, 0.0]], atol=1e-9) for xy in lines if len(xy) == 2)
+    labels = [t.get_text() for t in ax.texts]
+    assert any("×100" in t and "rod-slider" in t for t in labels)
+
+
+def test_journal_drawn_at_magnified_eccentricity():
+    m = clearsim.models.slider_crank("dry", clearance=0.5e-3)
+    res = m.simulate(0.01, dt_out=1e-4, progress=False)
+    fig = res.plot_mechanism(0.008, magnify=10)
+    circles = [p for p in fig.axes[0].patches if type(p).__name__ == "Circle"]
+    q = draw.states_at(res, np.array([0.008]))[0]
+    c = res.description["clearance_joints"][0]
+    b = draw._point(q, c["bearing_body"], c["bearing_point"])
+    j = draw._point(q, c["journal_body"], c["journal_point"])
+    centres = np.array([p.center for p in circles])
+    assert np.min(np.hypot(*(centres - (b + 10 * (j - b))).T)) < 1e-12
+
+
+def test_animation_is_a_gif_with_the_expected_frames(tmp_path):
+    m = clearsim.models.slider_crank("dry", clearance=0.5e-3)
+    res = m.simulate(0.024, dt_out=1e-4, progress=False)
+    path = res.animate(tmp_path / "run.gif", speed=0.024 / 1.0, fps=12)  # the run in 1 s
+    with Image.open(path) as im:
+        assert im.format == "GIF" and im.n_frames == 12
+        im.seek(6)
+        assert np.asarray(im.convert("L")).std() > 5
+    with pytest.raises(InputError) as e:
+        res.animate(tmp_path / "run.avi")
+    assert e.value.field == "path"
+    # A result still pickles with its drawing data.
+    again = pickle.loads(pickle.dumps(res))
+    assert again.description == res.description
+
+
+def test_cli_run_animates(tmp_path):
+    out = tmp_path / "o"
+    gif = tmp_path / "a.gif"
+    assert main(["run", str(SCENES / "four_bar_spring.toml"), "-o", str(out), "--t-end", "0.02", "--no-plots", "--animate", str(gif), "--speed", "0.05", "-q"]) == 0
+    with Image.open(gif) as im:
+        assert im.n_frames == 10  # 0.02 s at 1/20 of real time, 25 frames/s
