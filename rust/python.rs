@@ -598,6 +598,38 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, sett
     Ok(res)
 }
 
+/// Film force `(F_ξ, F_η)` [N] on the journal of a lubricated joint (docs/physics.md §4): `film`
+/// one of long, short, long_paper, finite; the geometry in SI; ε, ε̇ [1/s], wedge speed [rad/s].
+/// For studying the film laws; a finite bearing builds its table on first use.
+#[pyfunction]
+#[pyo3(signature = (film, viscosity, journal_radius, clearance, length, eps, eps_dot, wedge))]
+#[allow(clippy::too_many_arguments)]
+fn film_force(py: Python<'_>, film: &str, viscosity: f64, journal_radius: f64, clearance: f64, length: f64, eps: f64, eps_dot: f64, wedge: f64) -> PyResult<(f64, f64)> {
+    use crate::laws::{BearingGeometry, FilmModel, FilmState};
+    let model = match film {
+        "long" => FilmModel::LongBearing,
+        "short" => FilmModel::ShortBearing,
+        "long_paper" => FilmModel::LongBearingPaperClosedForm,
+        "finite" => FilmModel::Finite,
+        other => return Err(input_error(py, "film", other, "must be one of long, short, long_paper, finite")),
+    };
+    for (name, v) in [("viscosity", viscosity), ("journal_radius", journal_radius), ("clearance", clearance), ("length", length)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(input_error(py, name, v, "must be positive and finite"));
+        }
+    }
+    for (name, v) in [("eps", eps), ("eps_dot", eps_dot), ("wedge", wedge)] {
+        if !v.is_finite() {
+            return Err(input_error(py, name, v, "must be finite"));
+        }
+    }
+    if model == FilmModel::Finite {
+        crate::model::check_finite_bearing_ratio("film", length / (2.0 * journal_radius)).map_err(|e| to_pyerr(py, &e))?;
+    }
+    let g = BearingGeometry { viscosity, journal_radius, clearance, length };
+    Ok(py.detach(|| crate::laws::film_force(model, &g, FilmState { eps, eps_dot, wedge }, None)))
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", crate::version())?;
@@ -606,6 +638,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<CompiledModel>()?;
     m.add_function(wrap_pyfunction!(compile, m)?)?;
     m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;
+    m.add_function(wrap_pyfunction!(film_force, m)?)?;
     m.add("run_batch", m.getattr("run_batch_py")?)?;
     Ok(())
 }

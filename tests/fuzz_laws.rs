@@ -61,7 +61,13 @@ fn normal_law() -> impl Strategy<Value = NormalLaw> {
 }
 
 fn film_model() -> impl Strategy<Value = FilmModel> {
-    prop::sample::select(vec![FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm])
+    prop::sample::select(vec![FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm, FilmModel::Finite])
+}
+
+/// The finite bearing's table for every random geometry (one table: building one per random L/D
+/// would take seconds each; the table's evaluation is what is fuzzed).
+fn table() -> Option<&'static clearsim::laws::bearing_finite::FiniteBearingTable> {
+    Some(clearsim::laws::bearing_finite::table_for(0.4))
 }
 
 fn geometry() -> impl Strategy<Value = BearingGeometry> {
@@ -112,7 +118,7 @@ proptest! {
     #[test]
     fn film_force_finite(model in film_model(), g in geometry(), eps in eps_ratio(), eps_dot in rate(), wedge in rate()) {
         let s = FilmState { eps, eps_dot, wedge };
-        let f = film_force(model, &g, s);
+        let f = film_force(model, &g, s, table());
         prop_assert!(finite2(f), "{model:?} {g:?} {s:?}: {f:?}");
         let q = long_bearing_force_quadrature(&g, s);
         prop_assert!(finite2(q), "quadrature {g:?} {s:?}: {q:?}");
@@ -120,7 +126,7 @@ proptest! {
 
     #[test]
     fn film_force_vanishes_without_relative_motion(model in film_model(), g in geometry(), eps in 0.0f64..0.99) {
-        let f = film_force(model, &g, FilmState { eps, eps_dot: 0.0, wedge: 0.0 });
+        let f = film_force(model, &g, FilmState { eps, eps_dot: 0.0, wedge: 0.0 }, table());
         prop_assert_eq!(f, (0.0, 0.0));
     }
 
@@ -161,6 +167,7 @@ fn joint(lubricated: bool, law: NormalLaw, film: FilmModel, c: f64, r_j: f64, ce
         friction: ModifiedCoulomb { friction_coefficient: cf, v0: 1e-4, v1: 1e-2 },
         film: lubricated.then_some(Film {
             model: film,
+            table: if film == FilmModel::Finite { table() } else { None },
             geometry: BearingGeometry { viscosity: 0.04, journal_radius: r_j, clearance: c, length: 0.05 },
             eps0: 2e-6,
             m: 0.5,

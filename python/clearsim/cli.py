@@ -353,7 +353,7 @@ def _cmd_paper(args: argparse.Namespace) -> int:
             raise
         print("clearsim: error: the paper study (clearsim.study.paper) is not available in this installation", file=sys.stderr)
         return EXIT_ERROR
-    out = run_paper_study(Path(args.output), cycles=args.cycles, quick=args.quick, progress=not args.quiet)
+    out = run_paper_study(Path(args.output), cycles=args.cycles, quick=args.quick, progress=not args.quiet, film=args.film, compare_films=not args.no_film_comparison)
     if not args.quiet:
         print(f"paper study written to {out}")
     return 0
@@ -446,6 +446,8 @@ def build_parser() -> argparse.ArgumentParser:
     paper.add_argument("-o", "--output", metavar="OUTDIR", default="clearsim-paper", help="output directory (default clearsim-paper)")
     paper.add_argument("--quick", action="store_true", help="coarser, faster runs (a smoke test)")
     paper.add_argument("--cycles", type=_positive_int, default=3, metavar="N", help="crank cycles per run (default 3)")
+    paper.add_argument("--film", choices=("long", "short", "finite", "long_paper"), default="long", help="film model of the lubricated joints (default long)")
+    paper.add_argument("--no-film-comparison", action="store_true", help="skip the runs comparing the film models")
     paper.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     paper.set_defaults(func=_cmd_paper)
 

@@ -18,6 +18,8 @@ use crate::laws::transition::{film_eps, small_eccentricity_scale, transition_wei
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Film {
     pub model: FilmModel,
+    /// The finite-length bearing's table (`FilmModel::Finite`), shared by joints of one L/D.
+    pub table: Option<&'static crate::laws::bearing_finite::FiniteBearingTable>,
     pub geometry: BearingGeometry,
     pub eps0: f64,
     pub m: f64,
@@ -110,7 +112,7 @@ impl ClearanceJoint {
         if let (Some(f), true) = (&self.film, w_film > 0.0) {
             let eps = film_eps(k.eps, f.eps_max);
             let s = FilmState { eps, eps_dot: k.eps_dot, wedge: k.wedge };
-            let (xi, eta) = film_force(f.model, &f.geometry, s);
+            let (xi, eta) = film_force(f.model, &f.geometry, s, f.table);
             let scale = small_eccentricity_scale(k.eps, f.eps0, f.m);
             out.film_xi = xi * scale;
             out.film_eta = eta * scale;

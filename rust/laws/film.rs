@@ -8,6 +8,7 @@
 //! A squeezed journal (ε̇ > 0) gets `F_ξ < 0`; a journal turning counter-clockwise (wedge > 0)
 //! gets `F_η > 0`.
 
+use super::bearing_finite::{finite_bearing_force, FiniteBearingTable};
 use super::{bearing_long, bearing_short};
 
 /// Largest eccentricity ratio at which the film formulas are evaluated (they are singular at
@@ -65,14 +66,24 @@ pub enum FilmModel {
     /// The paper's printed closed forms, Eqs. (13)–(14), errors included (labelled variant).
     #[cfg_attr(feature = "serde", serde(rename = "long_paper"))]
     LongBearingPaperClosedForm,
+    /// Finite length: the Reynolds equation with the Reynolds (Swift–Stieber) cavitation
+    /// condition solved once per L/D into a table ([`super::bearing_finite`]); any L/D.
+    #[cfg_attr(feature = "serde", serde(rename = "finite"))]
+    Finite,
 }
 
 /// Film force `(F_ξ, F_η)` [N] on the journal for `model` (see the module doc for the frame).
-pub fn film_force(model: FilmModel, g: &BearingGeometry, s: FilmState) -> (f64, f64) {
+/// `table` is the bearing's finite-length table (`FilmModel::Finite` only; without it the
+/// finite model falls back to building or fetching it from the process cache).
+pub fn film_force(model: FilmModel, g: &BearingGeometry, s: FilmState, table: Option<&FiniteBearingTable>) -> (f64, f64) {
     match model {
         FilmModel::LongBearing => bearing_long::long_bearing_force(g, s),
         FilmModel::ShortBearing => bearing_short::short_bearing_force(g, s),
         FilmModel::LongBearingPaperClosedForm => bearing_long::long_bearing_paper_closed_form(g, s),
+        FilmModel::Finite => match table {
+            Some(t) => finite_bearing_force(g, s, t),
+            None => finite_bearing_force(g, s, super::bearing_finite::table_for(2.0 * g.journal_radius / g.length)),
+        },
     }
 }
 
@@ -91,20 +102,20 @@ mod tests {
     #[test]
     fn dispatch_and_no_nan_at_extremes() {
         let g = BearingGeometry { viscosity: 0.4, journal_radius: 0.01, clearance: 5e-4, length: 0.05 };
-        for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm] {
+        for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm, FilmModel::Finite] {
             for eps in [0.0, 1e-300, 1e-9, 0.5, 0.99, 1.0, 1.5, -0.1] {
                 for eps_dot in [-10.0, 0.0, 10.0] {
                     for wedge in [-50.0, 0.0, 50.0] {
-                        let f = film_force(model, &g, FilmState { eps, eps_dot, wedge });
+                        let f = film_force(model, &g, FilmState { eps, eps_dot, wedge }, None);
                         assert!(f.0.is_finite() && f.1.is_finite(), "{model:?} ε {eps} ε̇ {eps_dot} w {wedge}: {f:?}");
                     }
                 }
             }
             // Journal and bearing turning together rigidly (wedge 0) and no squeeze: no force.
-            assert_eq!(film_force(model, &g, FilmState { eps: 0.5, eps_dot: 0.0, wedge: 0.0 }), (0.0, 0.0));
+            assert_eq!(film_force(model, &g, FilmState { eps: 0.5, eps_dot: 0.0, wedge: 0.0 }, None), (0.0, 0.0));
         }
-        assert!(film_force(FilmModel::LongBearing, &g, FilmState { eps: 0.5, eps_dot: 0.0, wedge: 10.0 }).1 > 0.0);
-        assert!(film_force(FilmModel::ShortBearing, &g, FilmState { eps: 0.5, eps_dot: 1.0, wedge: 0.0 }).0 < 0.0);
+        assert!(film_force(FilmModel::LongBearing, &g, FilmState { eps: 0.5, eps_dot: 0.0, wedge: 10.0 }, None).1 > 0.0);
+        assert!(film_force(FilmModel::ShortBearing, &g, FilmState { eps: 0.5, eps_dot: 1.0, wedge: 0.0 }, None).0 < 0.0);
     }
 
     #[test]
@@ -112,11 +123,11 @@ mod tests {
         let g = BearingGeometry { viscosity: 0.4, journal_radius: 0.01, clearance: 5e-4, length: 0.05 };
         let rates = [0.0, 1e-300, -1e-300, 1e-12, -1e-12, 1.0, -1.0, 1e6, -1e6];
         let epss = [0.0, 5e-324, 1e-300, 1e-12, 1e-6, 0.3, 0.9, 0.999, 0.999999, FILM_EPS_CEILING, 1.0, 7.0];
-        for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm] {
+        for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm, FilmModel::Finite] {
             for eps in epss {
                 for eps_dot in rates {
                     for wedge in rates {
-                        let f = film_force(model, &g, FilmState { eps, eps_dot, wedge });
+                        let f = film_force(model, &g, FilmState { eps, eps_dot, wedge }, None);
                         assert!(f.0.is_finite() && f.1.is_finite(), "{model:?} ε {eps} ε̇ {eps_dot} W {wedge}: {f:?}");
                     }
                 }

@@ -12,6 +12,7 @@
 //! Film-force convention everywhere: `(F_ξ, F_η)` is the force ON THE JOURNAL along `n`
 //! (bearing centre → journal centre) and along `t` = `n` turned +90°.
 
+pub mod bearing_finite;
 pub mod bearing_long;
 pub mod bearing_short;
 pub mod contact;

@@ -96,7 +96,7 @@ mod tests {
             for eps in [0.0, 1e-9, 0.5, 0.99, 1.0, 1.5] {
                 for (eps_dot, wedge) in [(0.0, 0.0), (3.0, 0.0), (-3.0, 0.0), (0.0, 40.0), (2.0, -40.0), (-2.0, 40.0)] {
                     let fe = film_eps(eps, 0.99);
-                    let f = film_force(model, &g, FilmState { eps: fe, eps_dot, wedge });
+                    let f = film_force(model, &g, FilmState { eps: fe, eps_dot, wedge }, None);
                     let k = small_eccentricity_scale(eps, 2e-6, 0.5);
                     let (wf, wd) = transition_weights(eps * c, c, 0.05 * c);
                     let total = (wf * k * f.0 + wd * 1.0, wf * k * f.1);

@@ -201,6 +201,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
             &l.dry,
             Some(Film {
                 model: l.film,
+                table: (l.film == crate::laws::FilmModel::Finite).then(|| crate::laws::bearing_finite::table_for(2.0 * c.journal_radius / l.length)),
                 geometry: BearingGeometry {
                     viscosity: l.viscosity,
                     journal_radius: c.journal_radius,
@@ -321,4 +322,21 @@ fn compile_prismatic_clearance(p: &PrismaticClearanceDesc, desc: &MechanismDesc)
     };
     let guide = Constraint::Prismatic { a: p.guide_body.map(|i| i as u32), sa: p.guide_point.into(), u_perp: u.perp(), b: p.slider_body as u32, sb: V2::default(), theta0: th_s - th_g };
     Ok((guide, [end(1.0, "front"), end(-1.0, "rear")]))
+}
+
+/// L/D range of `film = "finite"`: its table is built by a Reynolds solve whose cost grows
+/// beyond it; outside it the short (L/D small) or long (L/D large) closed forms apply.
+pub const FINITE_BEARING_L_OVER_D: (f64, f64) = (1.0 / 16.0, 16.0);
+
+/// An `InputError` unless `l_over_d` lies in [`FINITE_BEARING_L_OVER_D`].
+pub fn check_finite_bearing_ratio(field: &str, l_over_d: f64) -> Result<()> {
+    let (lo, hi) = FINITE_BEARING_L_OVER_D;
+    if !(lo..=hi).contains(&l_over_d) {
+        return Err(Error::invalid(
+            field.to_string(),
+            "finite",
+            format!("the finite bearing covers {lo} ≤ L/D ≤ {hi}, this one has L/D = {l_over_d:.4}: use film = \"short\" (L/D < 1/16) or \"long\" (L/D > 16)"),
+        ));
+    }
+    Ok(())
 }

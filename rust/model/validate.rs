@@ -235,6 +235,9 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 }
                 positive(&format!("{f}.viscosity"), l.viscosity)?;
                 positive(&format!("{f}.length"), l.length)?;
+                if l.film == crate::laws::FilmModel::Finite {
+                    super::check_finite_bearing_ratio(&format!("{f}.film"), l.length / (2.0 * c.journal_radius))?;
+                }
                 within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;
                 within(&format!("{f}.m"), l.m, 0.0, 1.0, true, true)?;
                 if let Some(e0) = l.e0 {

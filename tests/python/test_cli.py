@@ -101,8 +101,8 @@ def test_no_command_is_a_usage_error(capsys):
 def test_paper_calls_the_study(tmp_path, monkeypatch, capsys):
     calls = []
 
-    def run_paper_study(out_dir, cycles=3, quick=False, progress=True):
-        calls.append((out_dir, cycles, quick, progress))
+    def run_paper_study(out_dir, cycles=3, quick=False, progress=True, film="long", compare_films=True):
+        calls.append((out_dir, cycles, quick, progress, film, compare_films))
         return out_dir
 
     fake = types.ModuleType("clearsim.study.paper")
@@ -110,9 +110,9 @@ def test_paper_calls_the_study(tmp_path, monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "clearsim.study", types.ModuleType("clearsim.study"))
     monkeypatch.setitem(sys.modules, "clearsim.study.paper", fake)
     assert main(["paper", "-o", str(tmp_path), "--quick", "--cycles", "2", "-q"]) == 0
-    assert calls == [(tmp_path, 2, True, False)]
-    assert main(["paper", "-q"]) == 0
-    assert calls[-1] == (Path("clearsim-paper"), 3, False, False)
+    assert calls == [(tmp_path, 2, True, False, "long", True)]
+    assert main(["paper", "-q", "--film", "finite", "--no-film-comparison"]) == 0
+    assert calls[-1] == (Path("clearsim-paper"), 3, False, False, "finite", False)
 
 
 def test_python_dash_m():

@@ -178,3 +178,18 @@ def test_invalid_cycles(tmp_path):
 
     with pytest.raises(InputError):
         paper.run_paper_study(tmp_path, cycles=0, progress=False)
+
+
+def test_film_models_are_compared_on_every_lubricated_run(study):
+    out, report = study
+    header, rows = _read_csv(out / "film_models.csv")
+    assert header[:2] == ["case", "film"]
+    lub = [k for k in paper.CLEARANCE_CASES if k.startswith("lub")]
+    assert {(r[0], r[1]) for r in rows} == {(k, f) for k in lub for f in paper.FILMS}
+    text = report.read_text(encoding="utf-8")
+    assert "## Film models on the lubricated runs" in text
+    # A verdict computed from the runs, one way or the other.
+    assert ("explain most of the paper" in text) != ("do not explain the paper" in text)
+    # The finite bearing moves the journal: its peaks are not the long bearing's.
+    by = {(r[0], r[1]): float(r[3]) for r in rows}
+    assert any(abs(by[(k, "finite")] - by[(k, "long")]) > 1e-3 * by[(k, "long")] for k in lub)
