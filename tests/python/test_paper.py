@@ -189,7 +189,8 @@ def test_film_models_are_compared_on_every_lubricated_run(study):
     text = report.read_text(encoding="utf-8")
     assert "## Film models on the lubricated runs" in text
     # A verdict computed from the runs, one way or the other.
-    assert ("explain most of the paper" in text) != ("do not explain the paper" in text)
+    verdicts = ("explain most of the paper", "alone do not explain the paper", "cannot explain the paper")
+    assert sum(v in text for v in verdicts) == 1
     # The finite bearing moves the journal: its peaks are not the long bearing's.
     by = {(r[0], r[1]): float(r[3]) for r in rows}
     assert any(abs(by[(k, "finite")] - by[(k, "long")]) > 1e-3 * by[(k, "long")] for k in lub)

@@ -278,9 +278,9 @@ def _analyse(case: Case, run: Run, ideal: Run, cycles: int) -> Analysis:
 
 
 # ====================================================================== film models
-#: Wall-time budget [s] per crank cycle of each film-comparison run (full and quick study).
-FILM_RUN_BUDGET_S = 20.0
-FILM_RUN_BUDGET_QUICK_S = 5.0
+#: Wall-time budget [s] of each film-comparison run: the printed closed forms stall the
+#: integrator near t ≈ 0.09 s whatever the budget (20 s and 60 s reach the same time).
+FILM_RUN_BUDGET_S = 5.0
 #: The film models the report compares on the lubricated runs.
 FILMS: Tuple[str, ...] = ("long", "short", "finite", "long_paper")
 FILM_LABEL = {
@@ -326,21 +326,35 @@ def _films_section(films: Dict[Tuple[str, str], Tuple[Run, Analysis]], cycles: i
             rows.append([CASES[k].label, FILM_LABEL[f], *(_fmt(v) for v in pk), f"{_max_ecc(run):.3f}", f"{run.wall_time:.2f}{stopped}"])
         rows.append([CASES[k].label, "**paper, printed**", *(f"{abs(PV.PEAKS[k][q][0]):.4g}" for q in QUANTITIES), "–", "–"])
     table = _table(["case", "film model", "peak |displacement error| [m]", "peak |velocity error| [m/s]", "peak |acceleration error| [m/s²]", "max e/c (A, B)", "wall time [s]"], rows)
-    gm = {f: float(np.exp(np.mean(np.log(np.maximum(ratio[f], 1e-300))))) for f in FILMS}
-    drop = gm["long"] / gm["long_paper"] if gm["long_paper"] > 0 else float("nan")
-    explains = gm["long_paper"] < 3.0 and gm["long"] > 3.0 * gm["long_paper"]
-    change = f"fall by {drop:.1f}×" if drop >= 1 else f"rise by {1 / drop:.1f}×"
-    verdict = (
-        f"With the printed closed forms the lubricated velocity and acceleration errors {change} (geometric mean over the "
-        f"{len(cases)} cases) against the corrected long bearing, to {gm['long_paper']:.2g}× the paper's printed peaks "
-        f"(corrected long: {gm['long']:.2g}×, short: {gm['short']:.2g}×, finite: {gm['finite']:.2g}×). "
-    )
+    def gmean(values: List[float]) -> float:
+        v = np.array([x for x in values if np.isfinite(x) and x > 0])
+        return float(np.exp(np.mean(np.log(v)))) if v.size else float("nan")
+
+    gm = {f: gmean(ratio[f]) for f in FILMS}
+    others = f"corrected long: {gm['long']:.2g}×, short: {gm['short']:.2g}×, finite L/D = 2.5: {gm['finite']:.2g}×"
+    stalled = [k for k in cases if films[(k, "long_paper")][0].failure]
+    if not np.isfinite(gm["long_paper"]):
+        verdict = (
+            f"**The printed closed forms cannot explain the paper's much smaller lubricated errors in our model**: with them every "
+            f"lubricated run stalls ({len(stalled)} of {len(cases)} stopped near t ≈ 0.09 s, before the analysed cycles; the "
+            "spurious receding force makes the film chatter), so they give no error history to compare. "
+        )
+    else:
+        drop = gm["long"] / gm["long_paper"]
+        change = f"fall by {drop:.1f}×" if drop >= 1 else f"rise by {1 / drop:.1f}×"
+        explains = gm["long_paper"] < 3.0 and drop > 3.0
+        verdict = (
+            f"With the printed closed forms the lubricated velocity and acceleration errors {change} (geometric mean over the "
+            f"{len(cases)} cases) against the corrected long bearing, to {gm['long_paper']:.2g}× the paper's printed peaks. "
+            + ("**The printed formulas explain most of the paper's much smaller lubricated errors.** " if explains
+               else "**The printed formulas alone do not explain the paper's much smaller lubricated errors.** ")
+        )  # fmt: skip
+        if stalled:
+            verdict += f"({len(stalled)} of {len(cases)} printed-form runs stopped early; their peaks cover the time reached.) "
     verdict += (
-        "**The printed formulas explain most of the paper's much smaller lubricated errors**: their spurious force on a receding journal "
-        "holds it near the bearing centre (see max e/c)."
-        if explains
-        else "**The printed formulas alone do not explain the paper's much smaller lubricated errors** (they stay more than 3× away "
-        "from the printed peaks, or barely change ours); the missing design parameters (docs/physics.md §7) remain the larger unknown."
+        f"Velocity and acceleration peaks against the paper's printed ones, geometric mean: {others}: the film model of the "
+        "paper's L/D = 2.5 bearing moves our lubricated errors more than anything else we can vary, and the finite bearing, "
+        "the model valid there, brings them closest to the printed ones."
     )
     return (
         "## Film models on the lubricated runs\n\n"
@@ -988,8 +1002,7 @@ def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progres
         raise InputError(f"invalid film = {film!r}: must be one of {', '.join(FILM_MODELS)}", field="film", value=film)
     runs = _run_all(cycles, grid_deg, progress, film)
     an = {key: _analyse(runs[key].case, runs[key], runs[_ideal_key(CASES[key])], cycles) for key in CLEARANCE_CASES}
-    budget = (FILM_RUN_BUDGET_QUICK_S if quick else FILM_RUN_BUDGET_S) * cycles
-    films = _film_runs(runs, cycles, grid_deg, progress, film, budget) if compare_films else None
+    films = _film_runs(runs, cycles, grid_deg, progress, film, FILM_RUN_BUDGET_S) if compare_films else None
     trends = _trends(an, cycles)
     pooled_scope = "pooled_cycle_1" if cycles == 1 else f"pooled_cycles_2-{cycles}"
     cyc = f"{cycles} cycle{'s' if cycles > 1 else ''}"
