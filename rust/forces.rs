@@ -223,6 +223,17 @@ impl ForceElement {
 
     /// Add this element's generalised forces to `g` (3 per body).
     #[inline]
+    /// The two bodies of an element whose force depends on the state (spring-dampers,
+    /// rotational spring-dampers, motors: their stiffness and damping go into the implicit
+    /// methods' Newton matrix); `None` for loads that depend on time or a driver's angle only.
+    pub fn stiff_bodies(&self) -> Option<[Option<u32>; 2]> {
+        match self {
+            ForceElement::SpringDamper { a, b, .. } | ForceElement::RotationalSpringDamper { a, b, .. } => Some([*a, *b]),
+            ForceElement::Motor { body, reaction, .. } => Some([Some(*body), *reaction]),
+            ForceElement::Force { .. } | ForceElement::Torque { .. } => None,
+        }
+    }
+
     pub fn apply(&self, t: f64, kin: &[BodyKin], g: &mut [f64]) {
         match self {
             ForceElement::SpringDamper { a, sa, b, sb, .. } => {

@@ -632,7 +632,11 @@ impl OdeSystem for MechanismSystem<'_> {
         let m = 3 * model.n_bodies();
         a_q.fill(0.0);
         a_v.fill(0.0);
-        if model.clearance.is_empty() {
+        // The stiff forces: clearance joints, and springs, rotational springs and motors (their
+        // stiffness and damping); applied loads and torques depend on time only.
+        let springs = model.forces.iter().enumerate().filter(|(_, f)| f.stiff_bodies().is_some()).map(|(i, _)| Stiff::Force(i));
+        let items = (0..model.clearance.len()).map(Stiff::Joint).chain(springs); // no allocation
+        if model.clearance.is_empty() && !model.forces.iter().any(|f| f.stiff_bodies().is_some()) {
             return Ok(true);
         }
         self.ws.eval_constraints(model, t, &y[..m], &y[m..2 * m]);
@@ -641,8 +645,11 @@ impl OdeSystem for MechanismSystem<'_> {
             self.mobility.resize(m * m, 0.0); // once per run
         }
         self.mobility_done.fill(false);
-        for (j, joint) in model.clearance.iter().enumerate() {
-            let bodies = [joint.bearing, joint.journal];
+        for item in items {
+            let bodies = match item {
+                Stiff::Joint(j) => [model.clearance[j].bearing, model.clearance[j].journal],
+                Stiff::Force(i) => model.forces[i].stiff_bodies().unwrap_or([None, None]),
+            };
             for &b in bodies.iter().flatten() {
                 for k in 3 * b as usize..3 * b as usize + 3 {
                     if !self.mobility_done[k] {
@@ -651,7 +658,7 @@ impl OdeSystem for MechanismSystem<'_> {
                     }
                 }
             }
-            joint_generalised_force(joint, &self.ws.kin, &self.memory[j], &mut self.g_base);
+            self.stiff_force(item, t, &bodies, false);
             for &b in bodies.iter().flatten() {
                 let b = b as usize;
                 let saved = self.ws.kin[b];
@@ -662,7 +669,7 @@ impl OdeSystem for MechanismSystem<'_> {
                     x[comp] += delta;
                     self.ws.kin[b] = BodyKin::new(&x[..3], &x[3..]);
                     x[comp] = keep;
-                    joint_generalised_force(joint, &self.ws.kin, &self.memory[j], &mut self.g_probe);
+                    self.stiff_force(item, t, &bodies, true);
                     self.ws.kin[b] = saved;
                     let target = if comp < 3 { &mut *a_q } else { &mut *a_v };
                     let col = &mut target[(3 * b + comp % 3) * m..(3 * b + comp % 3 + 1) * m];
@@ -698,6 +705,29 @@ impl OdeSystem for MechanismSystem<'_> {
 
 /// The generalised forces of one clearance joint on its two bodies, written to their entries
 /// of `g` (the other entries are left alone).
+/// A force whose derivatives enter the implicit methods' Newton matrix.
+#[derive(Clone, Copy)]
+enum Stiff {
+    Joint(usize),
+    Force(usize),
+}
+
+impl MechanismSystem<'_> {
+    /// The generalised force of one stiff item on its bodies, into `g_probe` (`probe`) or `g_base`.
+    fn stiff_force(&mut self, item: Stiff, t: f64, bodies: &[Option<u32>; 2], probe: bool) {
+        let g = if probe { &mut self.g_probe } else { &mut self.g_base };
+        match item {
+            Stiff::Joint(j) => joint_generalised_force(&self.model.clearance[j], &self.ws.kin, &self.memory[j], g),
+            Stiff::Force(i) => {
+                for &b in bodies.iter().flatten() {
+                    g[3 * b as usize..3 * b as usize + 3].fill(0.0);
+                }
+                self.model.forces[i].apply(t, &self.ws.kin, g);
+            }
+        }
+    }
+}
+
 fn joint_generalised_force(joint: &ClearanceJoint, kin: &[BodyKin], memory: &ImpactMemory, g: &mut [f64]) {
     for &b in [joint.bearing, joint.journal].iter().flatten() {
         g[3 * b as usize..3 * b as usize + 3].fill(0.0);
