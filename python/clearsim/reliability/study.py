@@ -454,7 +454,7 @@ class Study(Model):
         return uq.subset(self, seed=seed, n_per_level=n_per_level, conditional_probability=conditional_probability, on_failure=on_failure)
 
     def sobol(self, n: int, seed: Optional[int] = 0, *, on_failure: str = "fail") -> Any:
-        """First-order and total Sobol indices of the peak output (OpenTURNS, Saltelli):
+        """First-order and total Sobol indices of the peak output (OpenTURNS, Martinez):
         ``n × (d + 2)`` runs. See :func:`clearsim.reliability.uq.sobol`."""
         from . import uq
 

@@ -184,7 +184,7 @@ def subset(model: Model, *, seed: Optional[int] = 0, n_per_level: int = 1000, co
 @dataclass
 class SobolResult:
     """First-order and total Sobol indices of the output, by input, with bootstrap 95 %
-    intervals, from ``n × (d + 2)`` runs (Saltelli's estimators)."""
+    intervals, from ``n × (d + 2)`` runs (Martinez's estimators)."""
 
     first: Dict[str, float]
     total: Dict[str, float]
@@ -208,7 +208,7 @@ def sobol(model: Model, n: int, *, seed: Optional[int] = 0, on_failure: str = "f
     d = model.dimension
     x = ot.SobolIndicesExperiment(ot.Normal(d), int(n)).generate()
     y = f(x)
-    algo = ot.SaltelliSensitivityAlgorithm(x, y, int(n))
+    algo = ot.MartinezSensitivityAlgorithm(x, y, int(n))
     names = model.random_names
     s1, st = algo.getFirstOrderIndices(), algo.getTotalOrderIndices()
     i1, it = algo.getFirstOrderIndicesInterval(), algo.getTotalOrderIndicesInterval()
