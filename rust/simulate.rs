@@ -255,6 +255,16 @@ impl<'a> MechanismSystem<'a> {
         WearRate::new(&law, &k, &f, th(joint.bearing), th(joint.journal))
     }
 
+    /// The worn depth at joint `j`'s current contact direction, for its contact law (only when
+    /// its wear is fed back; the offset stays 0 otherwise).
+    fn update_wear_offset(&mut self, j: usize, y: &[f64]) {
+        let joint = &self.model.clearance[j];
+        let (Some(book), Some(true)) = (self.wear[j].as_ref(), joint.wear.map(|w| w.feedback)) else { return };
+        let k = self.joint_kinematics(j, y);
+        let th = |b: Option<u32>| b.map_or(0.0, |i| y[3 * i as usize + 2]);
+        self.memory[j].wear_offset = book.depth_at(k.n.y.atan2(k.n.x), th(joint.bearing), th(joint.journal));
+    }
+
     /// Start the wear books at the initial state.
     pub fn wear_start(&mut self, y: &[f64]) {
         for j in 0..self.wear.len() {
@@ -572,6 +582,7 @@ impl OdeSystem for MechanismSystem<'_> {
                     if let Some(w) = self.wear[j].as_mut() {
                         w.step(t1 - t0, mid, end);
                     }
+                    self.update_wear_offset(j, y1);
                 }
             }
             self.scratch = s;

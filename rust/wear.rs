@@ -18,6 +18,8 @@ pub struct Archard {
     pub k_over_h: f64,
     /// Bearing (contact) length L [m].
     pub length: f64,
+    /// Feed the worn depth back into the contact: the clearance grows where it wears.
+    pub feedback: bool,
 }
 
 /// What a contact wears at one instant: the volume rate [m³/s] and the contact's angle on the
@@ -90,6 +92,20 @@ impl WearBook {
         }
     }
 
+    /// The worn depth [m] at the contact direction `direction` [rad, global], bearing turned by
+    /// `theta_bearing`, journal by `theta_journal`: the deepest bin within half a bin of the
+    /// direction on each surface (a contact on a bin edge sees the groove on either side), summed.
+    pub fn depth_at(&self, direction: f64, theta_bearing: f64, theta_journal: f64) -> f64 {
+        let n = WEAR_BINS as f64;
+        let look = |bins: &[f64], angle: f64| {
+            let x = (angle / std::f64::consts::TAU).rem_euclid(1.0) * n;
+            let (a, b) = ((x - 0.5).floor(), (x + 0.5).floor());
+            let at = |i: f64| bins[(i.rem_euclid(n) as usize).min(WEAR_BINS - 1)];
+            at(a).max(at(b))
+        };
+        look(&self.bearing, direction - theta_bearing) + look(&self.journal, direction - theta_journal)
+    }
+
     /// The rate at the start of the run.
     pub fn start(&mut self, r: WearRate) {
         self.last = r;
@@ -123,7 +139,7 @@ mod tests {
 
     #[test]
     fn depth_integrates_to_the_volume_and_lands_in_the_contact_bin() {
-        let law = Archard { k_over_h: 1e-12, length: 0.02 };
+        let law = Archard { k_over_h: 1e-12, length: 0.02, feedback: false };
         let joint_radii = (0.0105, 0.01);
         let mut w = WearBook { law, radius_bearing: joint_radii.0, radius_journal: joint_radii.1, bearing: vec![0.0; WEAR_BINS], journal: vec![0.0; WEAR_BINS], volume: 0.0, last: WearRate::default() };
         let r = WearRate { volume_rate: 2e-9, angle_bearing: -std::f64::consts::FRAC_PI_2, angle_journal: 0.3 };

@@ -203,7 +203,7 @@ proptest! {
         let kin = [bearing, journal];
         let k: JointKinematics = j.kinematics(&kin);
         prop_assert!(k.eps.is_finite() && k.eps_dot.is_finite() && k.wedge.is_finite() && k.slip.is_finite(), "{k:?}");
-        let mem = ImpactMemory { in_contact, impact_speed: impact.abs(), impacts: 0 };
+        let mem = ImpactMemory { in_contact, impact_speed: impact.abs(), impacts: 0, wear_offset: 0.0 };
         let f = j.force(&k, &mem);
         prop_assert!(f.total.x.is_finite() && f.total.y.is_finite(), "force {f:?} at {k:?}");
         prop_assert!(f.normal >= 0.0 && (0.0..=1.0).contains(&f.w_dry));
@@ -333,7 +333,7 @@ proptest! {
         let mut y = model.q_guess.clone();
         for (v, d) in y.iter_mut().zip(&dq) { *v += d; }
         y.extend_from_slice(&qd);
-        let mem = vec![ImpactMemory { in_contact, impact_speed: impact, impacts: 0 }; model.clearance.len()];
+        let mem = vec![ImpactMemory { in_contact, impact_speed: impact, impacts: 0, wear_offset: 0.0 }; model.clearance.len()];
         match ws.evaluate(&model, &mem, t, &y) {
             Ok(()) => {
                 prop_assert!(ws.qdd.iter().all(|v| v.is_finite()), "q̈ = {:?}", ws.qdd);

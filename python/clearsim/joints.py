@@ -44,19 +44,28 @@ class Archard:
         Hardness H of the worn surface [Pa] (e.g. 2e9 Pa for a soft steel).
     length:
         Bearing length L [m], over which the volume spreads axially.
+    feedback:
+        ``True`` feeds the worn depth back into the contact: the penetration is measured from
+        the worn surfaces (bearing and journal depth where they touch, updated after every
+        accepted step), so the clearance grows where it wears. Default ``False``: wear is only
+        booked. Contact onsets are still located at the unworn surface; with wear depths far
+        below the clearance this shifts an impact by less than depth / approach speed.
     """
 
     coefficient: float
     hardness: float
     length: float
+    feedback: bool = False
 
     def __post_init__(self) -> None:
         check_positive("wear.coefficient", self.coefficient)
         check_positive("wear.hardness", self.hardness)
         check_positive("wear.length", self.length)
+        if not isinstance(self.feedback, bool):
+            raise InputError(f"invalid wear.feedback = {self.feedback!r}: must be True or False", field="wear.feedback", value=self.feedback)
 
     def _as_dict(self) -> Dict[str, Any]:
-        return {"coefficient": float(self.coefficient), "hardness": float(self.hardness), "length": float(self.length)}
+        return {"coefficient": float(self.coefficient), "hardness": float(self.hardness), "length": float(self.length), "feedback": bool(self.feedback)}
 
 
 @dataclass(frozen=True)

@@ -10,11 +10,14 @@ pub struct ImpactMemory {
     pub impact_speed: f64,
     /// Number of impacts located so far.
     pub impacts: u64,
+    /// Worn depth [m] at the contact direction, added to the clearance of the contact law when
+    /// the joint's wear is fed back (updated after every accepted step; docs/physics.md §12).
+    pub wear_offset: f64,
 }
 
 impl Default for ImpactMemory {
     fn default() -> Self {
-        ImpactMemory { in_contact: false, impact_speed: 0.0, impacts: 0 }
+        ImpactMemory { in_contact: false, impact_speed: 0.0, impacts: 0, wear_offset: 0.0 }
     }
 }
 

@@ -99,13 +99,15 @@ impl ClearanceJoint {
     #[inline]
     pub fn force(&self, k: &JointKinematics, memory: &ImpactMemory) -> JointForce {
         let mut out = JointForce::default();
+        // Penetration beyond the worn surfaces (the offset is 0 unless wear is fed back).
+        let delta = k.delta - memory.wear_offset;
         let (w_film, w_dry) = match &self.film {
-            None => (0.0, if k.delta > 0.0 { 1.0 } else { 0.0 }),
+            None => (0.0, if delta > 0.0 { 1.0 } else { 0.0 }),
             Some(f) => transition_weights(k.e, self.clearance, f.e0),
         };
-        if w_dry > 0.0 && k.delta > 0.0 {
+        if w_dry > 0.0 && delta > 0.0 {
             let impact_speed = memory.impact_speed_for(k.delta_dot);
-            let f_n = self.contact.normal_force(k.delta, k.delta_dot, impact_speed);
+            let f_n = self.contact.normal_force(delta, k.delta_dot, impact_speed);
             out.normal = f_n;
             out.tangential = self.friction.tangential_force(f_n, k.slip);
         }
@@ -124,7 +126,7 @@ impl ClearanceJoint {
         out.total = k.n.scale(f_n).add(k.t.scale(f_t));
         out.state = if self.film.is_some() {
             if k.delta <= 0.0 { 0 } else if w_film > 0.0 { 1 } else { 2 }
-        } else if k.delta > 0.0 {
+        } else if delta > 0.0 {
             2
         } else {
             0

@@ -102,6 +102,9 @@ pub struct WearDesc {
     pub hardness: f64,
     /// Bearing (contact) length L [m] over which the volume spreads.
     pub length: f64,
+    /// Feed the worn depth back into the contact geometry (default false).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub feedback: bool,
 }
 
 /// Parameters of a lubricated clearance joint (docs/physics.md §4).

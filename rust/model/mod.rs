@@ -233,7 +233,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
         film,
         guide_normal: None,
         penetration_limit: crate::simulate::max_penetration(c.clearance, c.journal_radius),
-        wear: dry.wear.map(|w| crate::wear::Archard { k_over_h: w.coefficient / w.hardness, length: w.length }),
+        wear: dry.wear.map(|w| crate::wear::Archard { k_over_h: w.coefficient / w.hardness, length: w.length, feedback: w.feedback }),
     })
 }
 

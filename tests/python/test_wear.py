@@ -62,3 +62,27 @@ def test_wear_plot_and_errors():
     m.prismatic_clearance("ground", (0, 0), "s", (1, 0), 1e-3, 0.05, clearsim.Dry(wear=Archard(K, H, L)))
     with pytest.raises(InputError, match="revolute clearance joints only"):
         m.compile()
+
+
+def test_fed_back_wear_lets_the_pin_sink_by_the_worn_depth():
+    """With feedback the contact law measures penetration from the worn surfaces: the pin
+    resting on the bottom of its bearing sinks, against the same run without feedback, by the
+    bearing's depth at the bottom plus the journal's (spread all round as it spins)."""
+
+    def run(feedback):
+        m = clearsim.Mechanism(gravity=(0, -9.81))
+        m.add_body("pin", mass=M, inertia=1e-3, position=(0, 0))
+        m.driver("pin", omega=OMEGA)
+        dry = clearsim.Dry(friction=0.0, restitution=0.5, wear=Archard(K, H, L, feedback=feedback))
+        m.clearance_joint("J", "ground", (0, 0), "pin", (0, 0), journal_radius=R_J, clearance=C, model=dry)
+        return m.simulate(T, dt_out=T / 20, rtol=1e-8, atol=1e-11, progress=False)
+
+    plain, worn = run(False), run(True)
+    sink = plain.position("pin")[-1, 1] - worn.position("pin")[-1, 1]
+    _, bearing = worn.wear("J")
+    _, journal = worn.wear("J", "journal")
+    expected = bearing.max() + np.median(journal)
+    assert expected > 1e-7  # 0.28 µm: well above the integration tolerance
+    assert sink == pytest.approx(expected, rel=0.02)
+    # The same volume is worn either way (the load and the slip do not change).
+    assert worn.wear_volume("J") == pytest.approx(plain.wear_volume("J"), rel=1e-6)
