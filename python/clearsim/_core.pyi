@@ -1,6 +1,6 @@
 """Type stub of the native module ``clearsim._core`` (Rust, pyo3). Use the ``clearsim`` facade."""
 
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -36,3 +36,9 @@ def run_batch(
 ) -> List[Union[Dict[str, Any], BaseException]]: ...
 
 run_batch_py = run_batch
+
+def film_force(
+    film: str, viscosity: float, journal_radius: float, clearance: float, length: float, eps: float, eps_dot: float, wedge: float
+) -> Tuple[float, float]:
+    """Film force (F_ξ, F_η) [N] on the journal (docs/physics.md §4); film one of long, short,
+    long_paper, finite; SI units, ε̇ [1/s], wedge speed [rad/s]."""
