@@ -26,6 +26,7 @@ from .reliability import (
     FosmResult,
     MonteCarloBins,
     compare_fosm_mc,
+    failure_reasons,
     normal_cdf,
     reliability_index,
     wilson_interval,
@@ -118,11 +119,7 @@ class MonteCarloResult:
 
     def failure_reasons(self) -> Dict[str, int]:
         """How many samples failed for each kind of reason (the message up to ' at t =')."""
-        counts: Dict[str, int] = {}
-        for _, reason in self.failures:
-            key = reason.split(" at t =")[0]
-            counts[key] = counts.get(key, 0) + 1
-        return counts
+        return failure_reasons(self.failures)
 
     def table(self, quantity: str) -> List[Dict[str, Any]]:
         """Per-bin rows: Monte Carlo reliability with its interval next to FOSM."""

@@ -17,7 +17,7 @@ subset simulation, Sobol indices and tolerance design on OpenTURNS, ``pip instal
 """
 
 from .distributions import Distribution, Fixed, LogNormal, Normal, Scipy, Shifted, TruncatedNormal, Uniform, as_distribution, sample_inputs
-from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, first_passage_probability, mc_bin_reliability, wilson_interval
+from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, first_passage_probability, mc_bin_reliability, wilson_interval
 from .fosm import PAPER_ALLOWABLE, FosmResult, allowable_statistics, fosm, normal_cdf, normal_ppf, reliability_index
 from .model import LimitState, Model
 from .study import Evaluation, MonteCarloEstimate, Output, Study
@@ -49,6 +49,7 @@ __all__ = [
     "allowable_statistics",
     "as_distribution",
     "compare_fosm_mc",
+    "failure_reasons",
     "first_passage_probability",
     "fosm",
     "mc_bin_reliability",

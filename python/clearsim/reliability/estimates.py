@@ -23,6 +23,16 @@ from .fosm import (
 )
 
 
+def failure_reasons(failures: List[Tuple[int, str]]) -> Dict[str, int]:
+    """How many runs failed for each kind of reason: the message up to ' at t =', from
+    ``(sample, reason)`` pairs."""
+    counts: Dict[str, int] = {}
+    for _, reason in failures:
+        key = reason.split(" at t =")[0]
+        counts[key] = counts.get(key, 0) + 1
+    return counts
+
+
 class Estimate(NamedTuple):
     """A probability with its confidence interval ``[lo, hi]``."""
 

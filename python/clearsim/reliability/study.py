@@ -26,7 +26,7 @@ from scipy import special
 from ..errors import InputError, SimulationError, check_finite, check_positive
 from .distributions import Distribution, as_distribution, input_stream
 from .model import ON_FAILURE, Model, check_on_failure
-from .estimates import Estimate, wilson_interval
+from .estimates import Estimate, failure_reasons, wilson_interval
 from .fosm import FosmResult, allowable_statistics, normal_cdf, reliability_index
 
 __all__ = ["Output", "Study", "Evaluation", "MonteCarloEstimate", "FosmResult"]
@@ -136,11 +136,7 @@ class MonteCarloEstimate:
 
     def failure_reasons(self) -> Dict[str, int]:
         """How many runs failed for each kind of reason (the message up to ' at t =')."""
-        counts: Dict[str, int] = {}
-        for _, reason in self.failures:
-            key = reason.split(" at t =")[0]
-            counts[key] = counts.get(key, 0) + 1
-        return counts
+        return failure_reasons(self.failures)
 
 
 class Study(Model):
