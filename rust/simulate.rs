@@ -669,15 +669,39 @@ impl OdeSystem for MechanismSystem<'_> {
                     }
                 }
             }
+            if let Stiff::Joint(j) = item {
+                if let Some(d) = model.clearance[j].force_derivatives(&self.ws.kin, &self.memory[j]) {
+                    for (slot, b) in bodies.iter().enumerate() {
+                        let Some(b) = b.map(|b| b as usize) else { continue };
+                        for comp in 0..6 {
+                            let target = if comp < 3 { &mut *a_q } else { &mut *a_v };
+                            let col = &mut target[(3 * b + comp % 3) * m..(3 * b + comp % 3 + 1) * m];
+                            for (oslot, ob) in bodies.iter().enumerate() {
+                                let Some(ob) = ob.map(|ob| ob as usize) else { continue };
+                                for o in 0..3 {
+                                    let dv = d[3 * oslot + o][6 * slot + comp];
+                                    if dv != 0.0 {
+                                        for (c, s) in col.iter_mut().zip(&self.mobility[(3 * ob + o) * m..(3 * ob + o + 1) * m]) {
+                                            *c += dv * s;
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    continue;
+                }
+            }
             self.stiff_force(item, t, &bodies, false);
             for &b in bodies.iter().flatten() {
                 let b = b as usize;
                 let saved = self.ws.kin[b];
                 let mut x = [saved.x, saved.y, saved.th, saved.vx, saved.vy, saved.w];
+                let steps = self.jacobian_steps(item, b, &x);
                 for comp in 0..6 {
-                    let delta = f64::EPSILON.sqrt() * x[comp].abs().max(1.0);
                     let keep = x[comp];
-                    x[comp] += delta;
+                    x[comp] += steps[comp];
+                    let delta = x[comp] - keep; // the step actually taken (exact in floating point)
                     self.ws.kin[b] = BodyKin::new(&x[..3], &x[3..]);
                     x[comp] = keep;
                     self.stiff_force(item, t, &bodies, true);
@@ -698,6 +722,20 @@ impl OdeSystem for MechanismSystem<'_> {
             }
         }
         Ok(true)
+    }
+
+    fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
+        let m = 3 * self.model.n_bodies();
+        let generic = (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt();
+        let (b, comp) = ((j % m) / 3, (j % m) % 3 + if j >= m { 3 } else { 0 });
+        let x = [y[3 * b], y[3 * b + 1], y[3 * b + 2], y[m + 3 * b], y[m + 3 * b + 1], y[m + 3 * b + 2]];
+        let mut step = generic;
+        for (i, joint) in self.model.clearance.iter().enumerate() {
+            if joint.bearing == Some(b as u32) || joint.journal == Some(b as u32) {
+                step = step.min(self.jacobian_steps(Stiff::Joint(i), b, &x)[comp]);
+            }
+        }
+        step
     }
 
     fn output(&mut self, t: f64, y: &[f64]) -> Result<()> {
@@ -724,6 +762,30 @@ enum Stiff {
 }
 
 impl MechanismSystem<'_> {
+    /// Finite-difference steps in body `b`'s (x, y, θ, ẋ, ẏ, θ̇) for the Newton matrix of `item`.
+    /// A clearance joint's force varies on the scale of its clearance c, not of the body's
+    /// coordinates: steps of √ε_mach·max(|x|, 1) m would move a µm journal by 1e-8 m, across
+    /// the bearing centre (where it sits under a stiff film) and through its nonlinearity. So
+    /// the positions are stepped by √ε_mach·c (θ by that over the joint point's arm) and the
+    /// velocities by √ε_mach·c·max(|θ̇|, 1 rad/s).
+    fn jacobian_steps(&self, item: Stiff, b: usize, x: &[f64; 6]) -> [f64; 6] {
+        let root = f64::EPSILON.sqrt();
+        let generic = |v: f64| root * v.abs().max(1.0);
+        let mut steps = [0.0; 6];
+        for (s, v) in steps.iter_mut().zip(x) {
+            *s = generic(*v);
+        }
+        if let Stiff::Joint(j) = item {
+            let joint = &self.model.clearance[j];
+            let c = joint.clearance;
+            let point = if joint.journal == Some(b as u32) { joint.journal_point } else { joint.bearing_point };
+            let arm = point.norm().max(c);
+            let rate = x[5].abs().max(1.0);
+            steps = [root * c, root * c, (root * c / arm).min(generic(x[2])), root * c * rate, root * c * rate, (root * c * rate / arm).min(generic(x[5]))];
+        }
+        steps
+    }
+
     /// The generalised force of one stiff item on its bodies, into `g_probe` (`probe`) or `g_base`.
     fn stiff_force(&mut self, item: Stiff, t: f64, bodies: &[Option<u32>; 2], probe: bool) {
         let g = if probe { &mut self.g_probe } else { &mut self.g_base };

@@ -192,7 +192,8 @@ class Lubricated:
         +69 % at L/D = 1 (ε = 0.5), and worse at larger ε. Neither closed form is accurate between
         L/D ≈ 1/2 and 8: use ``"finite"`` there.
     eps0, m:
-        Below ε0 both film components are scaled by ε^m (P15–P16).
+        Below ε0 both film components are scaled by (ε/ε0)^m (P15–P16, made continuous at
+        ε0: docs/physics.md §4).
     e0:
         Width of the film-to-contact transition band [m] (P18); ``None`` = 5 % of the clearance.
     eps_max:

@@ -63,17 +63,27 @@ impl JointKinematics {
     pub fn new(bearing: &BodyKin, sb: V2, journal: &BodyKin, sj: V2, r_j: f64, r_b: f64, c: f64) -> Self {
         let e_vec = journal.point(sj).sub(bearing.point(sb));
         let e_dot = journal.point_velocity(sj).sub(bearing.point_velocity(sb));
+        Self::relative(e_vec, e_dot, bearing.w, journal.w, r_j, r_b, c)
+    }
+
+    /// The same from the relative motion alone: eccentricity vector `e_vec` [m], its rate
+    /// `e_dot` [m/s] and the angular speeds of bearing `w_b` and journal `w_j` [rad/s] (the
+    /// variables the joint's force law depends on; its Newton-matrix derivatives are taken in
+    /// them).
+    #[inline]
+    pub fn relative(e_vec: V2, e_dot: V2, w_b: f64, w_j: f64, r_j: f64, r_b: f64, c: f64) -> Self {
         let e = e_vec.norm();
-        // Below 1e-12 c the journal counts as centred: n is kept from e when it can be formed
-        // (e/e, never 1/e, which overflows for subnormal e) and γ̇ = (e × ė)/e², whose e² would
-        // underflow, is taken as 0 (the film force is scaled by ε^m ≤ 1e-6 there anyway, P15).
+        // n is formed as e/e, never 1/e (which overflows for subnormal e); γ̇ = (e × ė)/e² is
+        // taken as 0 only where e² underflows. Near the centre γ̇ grows like 1/e but the film
+        // sees ε·(θ̇_j + θ̇_b − 2γ̇) = ε(θ̇_j + θ̇_b) − 2 t·ė/c, which stays smooth through e = 0
+        // (docs/physics.md §4); a cut-off at some e would make the film force jump there.
         let n = if e > 0.0 { V2::new(e_vec.x / e, e_vec.y / e) } else { V2::new(1.0, 0.0) };
         let n = if n.x.is_finite() && n.y.is_finite() { n } else { V2::new(1.0, 0.0) };
-        let gamma_dot = if e > 1e-12 * c { e_vec.cross(e_dot) / (e * e) } else { 0.0 };
+        let gamma_dot = if e * e > f64::MIN_POSITIVE { e_vec.cross(e_dot) / (e * e) } else { 0.0 };
         let t = n.perp();
         let delta_dot = n.dot(e_dot);
         // Contact-point velocities: material points of journal and bearing at Q_k = P_k + R_k n.
-        let slip = t.dot(e_dot) + r_j * journal.w - r_b * bearing.w;
+        let slip = t.dot(e_dot) + r_j * w_j - r_b * w_b;
         JointKinematics {
             e_vec,
             e_dot,
@@ -86,7 +96,7 @@ impl JointKinematics {
             delta_dot,
             slip,
             gamma_dot,
-            wedge: journal.w + bearing.w - 2.0 * gamma_dot,
+            wedge: w_j + w_b - 2.0 * gamma_dot,
         }
     }
 }

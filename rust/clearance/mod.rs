@@ -14,6 +14,31 @@ use crate::laws::film::{film_force, BearingGeometry, FilmModel, FilmState};
 use crate::laws::friction::ModifiedCoulomb;
 use crate::laws::transition::{film_eps, small_eccentricity_scale, transition_weights};
 
+/// Eccentricity ratio below which a long-bearing film is blended with its mirror image
+/// (docs/physics.md §4).
+pub const CENTRE_BAND: f64 = 1e-3;
+
+/// Weight of the mirrored long-bearing film at eccentricity ratio `eps`: ½(1 − ε/ε_c)² below
+/// ε_c = [`CENTRE_BAND`], 0 above and for the short and finite bearings.
+///
+/// The long bearing (Pinkus–Sternlicht) puts the ambient pressure at the thickest film, which
+/// flips to the other side as the journal passes the centre; with the Gümbel condition a
+/// squeeze toward the wall then carries load on one side of the centre and none on the other
+/// (at ε → 0 the pressure is ∝ ε̇ (1 − cos θ), one-signed), so the force jumps at e = 0 and a
+/// journal held near the centre by a µm film (ε ~ 1e-5) stalls the integrator. Averaging with
+/// the law at −e makes the force continuous through the centre (both sides give the same
+/// average there); it changes the long film only below ε = 1e-3.
+#[inline]
+pub fn centre_weight(model: FilmModel, eps: f64) -> f64 {
+    match model {
+        FilmModel::LongBearing | FilmModel::LongBearingPaperClosedForm if eps < CENTRE_BAND => {
+            let x = 1.0 - eps.max(0.0) / CENTRE_BAND;
+            0.5 * x * x
+        }
+        _ => 0.0,
+    }
+}
+
 /// Parameters of the film part of a lubricated joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Film {
@@ -114,7 +139,16 @@ impl ClearanceJoint {
         if let (Some(f), true) = (&self.film, w_film > 0.0) {
             let eps = film_eps(k.eps, f.eps_max);
             let s = FilmState { eps, eps_dot: k.eps_dot, wedge: k.wedge };
-            let (xi, eta) = film_force(f.model, &f.geometry, s, f.table);
+            let (mut xi, mut eta) = film_force(f.model, &f.geometry, s, f.table);
+            let w = centre_weight(f.model, k.eps);
+            if w > 0.0 {
+                // The same law seen from the opposite side (journal at −e): the long bearing's
+                // ambient-pressure point sits at the thickest film, which jumps by π as the
+                // journal passes the centre (docs/physics.md §4).
+                let (xo, eo) = film_force(f.model, &f.geometry, FilmState { eps_dot: -k.eps_dot, ..s }, f.table);
+                xi = (1.0 - w) * xi - w * xo;
+                eta = (1.0 - w) * eta - w * eo;
+            }
             let scale = small_eccentricity_scale(k.eps, f.eps0, f.m);
             out.film_xi = xi * scale;
             out.film_eta = eta * scale;
@@ -132,6 +166,91 @@ impl ClearanceJoint {
             0
         };
         out
+    }
+
+    /// Derivatives of the joint's generalised forces, for the implicit methods' Newton matrix
+    /// (docs/physics.md §4): `d[r][c]` is ∂g_r/∂x_c, rows r = (bearing x, y, θ, journal x,
+    /// y, θ) of `g`, columns c = (bearing x, y, θ, ẋ, ẏ, θ̇, journal x, y, θ, ẋ, ẏ, θ̇).
+    /// `None` for a slider-in-guide joint (differenced in body coordinates by the caller).
+    ///
+    /// The law is differenced (central differences) in the variables it depends on — e, ė
+    /// and the two angular speeds — with steps on the scale of the clearance, and the chain
+    /// rule to body coordinates is exact. Differencing in body coordinates instead (steps of
+    /// ~1e-8 m) crosses a µm bearing's centre, and its round-off gives the film a spurious
+    /// stiffness against the two bodies' common motion of ~1e-3 of the film's own, which stops
+    /// Newton's iteration for any step above ~1e-9 s.
+    pub fn force_derivatives(&self, kin: &[BodyKin], memory: &ImpactMemory) -> Option<[[f64; 12]; 6]> {
+        if self.guide_normal.is_some() {
+            return None;
+        }
+        let body = |b: Option<u32>| b.map_or(BodyKin::GROUND, |i| kin[i as usize]);
+        let (kb, kj) = (body(self.bearing), body(self.journal));
+        let k0 = self.kinematics(kin);
+        let (r_j, r_b, c) = (self.journal_radius, self.bearing_radius, self.clearance);
+        // Force on the journal (x, y) and the friction force w_dry·F_t of the law at z =
+        // (e_x, e_y, ė_x, ė_y, θ̇_b, θ̇_j).
+        let law = |z: [f64; 6]| -> [f64; 3] {
+            let k = JointKinematics::relative(V2::new(z[0], z[1]), V2::new(z[2], z[3]), z[4], z[5], r_j, r_b, c);
+            let f = self.force(&k, memory);
+            [f.total.x, f.total.y, f.w_dry * f.tangential]
+        };
+        let z0 = [k0.e_vec.x, k0.e_vec.y, k0.e_dot.x, k0.e_dot.y, kb.w, kj.w];
+        let cbrt = f64::EPSILON.cbrt();
+        let e_scale = k0.e.min(c).max(1e-4 * c);
+        let v_scale = k0.e_dot.norm().max(c * (kb.w.abs() + kj.w.abs())).max(c);
+        let steps = [e_scale, e_scale, v_scale, v_scale, kb.w.abs().max(1.0), kj.w.abs().max(1.0)].map(|s| cbrt * s);
+        let mut dlaw = [[0.0; 6]; 3]; // ∂(F_x, F_y, friction)/∂z
+        for (i, step) in steps.iter().enumerate() {
+            let (mut zp, mut zm) = (z0, z0);
+            zp[i] += step;
+            zm[i] -= step;
+            let (fp, fm) = (law(zp), law(zm));
+            let h = zp[i] - zm[i];
+            for r in 0..3 {
+                dlaw[r][i] = (fp[r] - fm[r]) / h;
+            }
+        }
+        let f0 = law(z0);
+        let force = V2::new(f0[0], f0[1]);
+        let arms = [kb.rot(self.bearing_point), kj.rot(self.journal_point)];
+        let (ws, radii, signs) = ([kb.w, kj.w], [r_b, r_j], [-1.0, 1.0]);
+        // ∂z/∂(body coordinates): e = P_j − P_b, ė = Ṗ_j − Ṗ_b; P = r + A s, Ṗ = ṙ + θ̇ (A s)⊥.
+        let mut dz = [[0.0; 12]; 6];
+        for b in 0..2 {
+            let (sg, arm, o) = (signs[b], arms[b], 6 * b);
+            let p = arm.perp();
+            dz[0][o] = sg; // e_x / x
+            dz[1][o + 1] = sg; // e_y / y
+            dz[0][o + 2] = sg * p.x; // e / θ
+            dz[1][o + 2] = sg * p.y;
+            dz[2][o + 2] = -sg * ws[b] * arm.x; // ė / θ
+            dz[3][o + 2] = -sg * ws[b] * arm.y;
+            dz[2][o + 3] = sg; // ė / ẋ, ẏ
+            dz[3][o + 4] = sg;
+            dz[2][o + 5] = sg * p.x; // ė / θ̇
+            dz[3][o + 5] = sg * p.y;
+            dz[4 + b][o + 5] = 1.0; // θ̇_b, θ̇_j
+        }
+        // ∂(F_x, F_y, friction)/∂(body coordinates).
+        let mut dlf = [[0.0; 12]; 3];
+        for r in 0..3 {
+            for col in 0..12 {
+                dlf[r][col] = (0..6).map(|i| dlaw[r][i] * dz[i][col]).sum();
+            }
+        }
+        // g of body b: sign·(F_x, F_y, arm × F + R·friction).
+        let mut d = [[0.0; 12]; 6];
+        for b in 0..2 {
+            let (sg, arm, radius) = (signs[b], arms[b], radii[b]);
+            for col in 0..12 {
+                d[3 * b][col] = sg * dlf[0][col];
+                d[3 * b + 1][col] = sg * dlf[1][col];
+                d[3 * b + 2][col] = sg * (arm.x * dlf[1][col] - arm.y * dlf[0][col] + radius * dlf[2][col]);
+            }
+            // The arm turns with its body: ∂(arm × F)/∂θ = (arm)⊥ × F.
+            d[3 * b + 2][6 * b + 2] += sg * arm.perp().cross(force);
+        }
+        Some(d)
     }
 
     /// Add the joint's generalised forces (force and moment about each centroid) to `g`.

@@ -55,6 +55,12 @@ pub trait OdeSystem {
     fn acceleration_jacobian(&mut self, _t: f64, _y: &[f64], _a_q: &mut [f64], _a_v: &mut [f64]) -> Result<bool, Error> {
         Ok(false)
     }
+    /// Forward-difference step for component `j` of `y` when the implicit methods difference
+    /// `f`. Default (Hairer): `√(ε_mach · max(1e-5, |y_j|))`. A system whose `f` varies on a
+    /// scale much finer than `|y_j|` (a journal in a µm clearance) returns a smaller one.
+    fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
+        (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt()
+    }
 }
 
 /// Continuous extension of one accepted step.

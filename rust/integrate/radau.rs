@@ -173,8 +173,8 @@ impl NewtonSystems {
         let n = y.len();
         self.probe.copy_from_slice(y);
         for j in 0..n {
-            let delta = (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt();
-            self.probe[j] = y[j] + delta;
+            self.probe[j] = y[j] + sys.difference_step(j, y);
+            let delta = self.probe[j] - y[j]; // the step actually taken
             sys.rhs(t, &self.probe, &mut self.df)?;
             self.probe[j] = y[j];
             match self.half {

@@ -263,8 +263,8 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
             }
             ysafe.copy_from_slice(&y);
             for j in 0..n {
-                let delt = (UROUND * 1e-5f64.max(y[j].abs())).sqrt();
-                ysafe[j] = y[j] + delt;
+                ysafe[j] = y[j] + sys.difference_step(j, &y);
+                let delt = ysafe[j] - y[j]; // the step actually taken
                 sys.rhs(t, &ysafe, &mut dy)?;
                 ysafe[j] = y[j];
                 for i in 0..n {

@@ -165,6 +165,27 @@ def _check_1um(case, m, r, metrics):
     assert dx < 20e-6, dx
 
 
+def _check_micrometre_film(case, m, r, metrics):
+    """A µm film holds the journal near the bearing centre: it never touches the wall after the
+    start, the slider follows the ideal mechanism within a few clearances (c → 0, docs/physics.md
+    §9), and the run costs steps comparable to c = 0.5 mm (a few hundred), not the 10⁵–10⁶ of
+    the stalls this case was added for."""
+    for j in r.joint_names:
+        c = next(cj["clearance"] for cj in m.description()["clearance_joints"] if cj["name"] == j)
+        eps = np.linalg.norm(r.eccentricity(j), axis=1) / c
+        late = eps[len(eps) // 10:]
+        metrics[f"max ε {j} after 10 %"] = float(late.max())
+        assert late.max() < 1.0, f"journal {j} reached ε = {late.max():.3f}"
+    body = "slider" if "slider" in r.body_names else "slider9"
+    kind = "slider_crank" if body == "slider" else "nine_bar"
+    ideal = getattr(models, kind)("ideal").simulate(case.t_end, **case.run)
+    dev = float(np.max(np.abs(r.position(body)[:, :2] - ideal.position(body)[:, :2])))
+    metrics["max Δ slider vs ideal [m]"] = dev
+    c = m.description()["clearance_joints"][0]["clearance"]
+    assert dev < 4 * c, f"slider {dev:.3g} m from the ideal mechanism's (c = {c:g} m)"
+    assert r.stats["steps"] < 10_000, r.stats
+
+
 def _check_impacts(case, m, r, metrics):
     assert sum(r.impacts.values()) > 0, "the journal never hit the bearing"
     for j in r.joint_names:
@@ -263,6 +284,30 @@ CASES: List[Case] = [
         "no 0/0 at ε = 0 (n undefined, ε^m scaling), slider-crank, 2 revolutions",
         lambda: models.slider_crank("lubricated"),
         2 * SC_REV, dict(dt_out=SC_REV / 200), check=_check_centred,
+    ),
+    Case(
+        "lubricated c = 5 µm, starts centred",
+        "a machine-bearing clearance (R/c = 1900): the stiff film holds the journal near the centre, where the long bearing's force used to jump; default settings, 1 revolution",
+        lambda: models.slider_crank("lubricated", clearance=5e-6),
+        SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
+    ),
+    Case(
+        "lubricated c = 5 µm, starts at the wall (ε = 0.99)",
+        "the same journal released next to the wall: the film pushes it back to the centre within microseconds",
+        lambda: with_initial_eccentricity(models.slider_crank("lubricated", clearance=5e-6), "rod-slider", (0.99 * 5e-6, 0.0)),
+        SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
+    ),
+    Case(
+        "nine-bar lubricated c = 5 µm",
+        "both nine-bar journals in 5 µm films, 1 cycle, default settings",
+        lambda: models.nine_bar("lubricated", clearance=5e-6),
+        NB_CYCLE, dict(dt_out=NB_CYCLE / 400), check=_check_micrometre_film,
+    ),
+    Case(
+        "lubricated c = 1 µm, short film, starts centred",
+        "R/c = 9500 with the short (Ocvirk) film, whose force is continuous through the centre; 1 revolution",
+        lambda: models.slider_crank("lubricated", clearance=1e-6, lubricated=Lubricated(viscosity=0.4, length=0.04, film="short")),
+        SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
     ),
     Case(
         "lubricated, starts in contact (ε = 1.03)",
