@@ -282,3 +282,67 @@ impl ClearanceJoint {
         let _ = k;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::laws::contact::NormalLaw;
+
+    fn joint(model: FilmModel) -> ClearanceJoint {
+        let c = 5e-6;
+        let geometry = BearingGeometry { viscosity: 0.4, journal_radius: 0.01, clearance: c, length: 0.025 };
+        ClearanceJoint {
+            name: "pin".into(),
+            bearing: Some(0),
+            bearing_point: V2::new(0.0, 0.0),
+            journal: Some(1),
+            journal_point: V2::new(0.0, 0.0),
+            journal_radius: 0.01,
+            bearing_radius: 0.01 + c,
+            clearance: c,
+            contact: ContactLaw { law: NormalLaw::LankaraniNikravesh, stiffness: 1e10, exponent: 1.5, restitution: 0.9, impact_speed_floor: 1e-4 },
+            friction: ModifiedCoulomb { friction_coefficient: 0.1, v0: 1e-4, v1: 1e-3 },
+            film: Some(Film { model, table: None, geometry, eps0: 2e-6, m: 0.5, e0: 0.05 * c, eps_max: 0.99 }),
+            guide_normal: None,
+            penetration_limit: c,
+            wear: None,
+        }
+    }
+
+    /// Film force on a journal at eccentricity vector `e` [m] moving at `e_dot` [m/s].
+    fn force_at(j: &ClearanceJoint, e: V2, e_dot: V2) -> V2 {
+        let k = JointKinematics::relative(e, e_dot, 0.0, 15.0, j.journal_radius, j.bearing_radius, j.clearance);
+        j.force(&k, &ImpactMemory::default()).total
+    }
+
+    #[test]
+    fn the_film_force_is_continuous_through_the_bearing_centre() {
+        // A journal squeezed along (1, 0.3) passes the centre: the force just before and just
+        // after must agree. The long bearing's ambient-pressure point (the thickest film) flips
+        // there, and without the mirror average its force jumped from ~0 to the full squeeze
+        // force (docs/physics.md §4).
+        let dir = V2::new(1.0, 0.3);
+        let e_dot = dir.scale(1e-7);
+        for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::LongBearingPaperClosedForm] {
+            let j = joint(model);
+            let scale = force_at(&j, dir.scale(2e-3 * j.clearance), e_dot).norm();
+            for s in [1e-5, 1e-6, 1e-7] {
+                let before = force_at(&j, dir.scale(-s * j.clearance), e_dot);
+                let after = force_at(&j, dir.scale(s * j.clearance), e_dot);
+                let jump = before.sub(after).norm();
+                // The mirror weight ½(1 − ε/ε_c)² leaves a difference ∝ ε/ε_c: → 0 at the centre.
+                assert!(jump < 5.0 * s / CENTRE_BAND * scale, "{model:?} at ε = {s:e}: {before:?} before, {after:?} after the centre");
+            }
+        }
+    }
+
+    #[test]
+    fn the_centre_average_leaves_the_film_alone_above_its_band() {
+        for eps in [CENTRE_BAND, 0.01, 0.5] {
+            assert_eq!(centre_weight(FilmModel::LongBearing, eps), 0.0);
+        }
+        assert_eq!(centre_weight(FilmModel::ShortBearing, 0.0), 0.0);
+        assert_eq!(centre_weight(FilmModel::Finite, 0.0), 0.0);
+        assert!((centre_weight(FilmModel::LongBearing, 0.0) - 0.5).abs() < 1e-15);
+    }
+}
