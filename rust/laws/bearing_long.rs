@@ -235,6 +235,19 @@ pub fn long_bearing_force(g: &BearingGeometry, s: FilmState) -> (f64, f64) {
     (scale * (wedge_xi + squeeze_xi), scale * (wedge_eta + squeeze_eta))
 }
 
+/// The long bearing's force at the bearing centre to first order in ε, `(F_ξ, F_η)` [N]
+/// (docs/physics.md §4, "Through the centre"): with p = 0 at the thickest film the first-order
+/// squeeze pressure ∝ ε̇ (1 − cos θ) is one-signed and depends on which side n points; the
+/// periodic (Sommerfeld) first-order pressure with the Gümbel condition does not, and gives
+/// `F = (π/2) 6μ(R/c)² R L u`, u = ε W t − 2 ε̇ n = (θ̇_sum e⊥ − 2 ė)/c: linear in the journal's
+/// motion and smooth through e = 0. Its wedge part is the long bearing's own first-order force;
+/// its squeeze part is the mean of the long bearing's squeeze force on both sides of the centre.
+pub fn long_bearing_centre_limit(g: &BearingGeometry, s: FilmState) -> (f64, f64) {
+    let scale = pressure_scale(g) * g.journal_radius * g.length * PI;
+    let eps = s.clamped_eps();
+    (-scale * s.eps_dot, 0.5 * scale * eps * s.wedge)
+}
+
 /// The same force as [`long_bearing_force`] by composite 16-point Gauss–Legendre quadrature of
 /// p over the exact positive arc, on panels with breakpoints at `π ± d·3ᵏ`,
 /// `d = acosh(1/ε)` (the distance of the poles of p from the real axis), so every panel sees
@@ -335,6 +348,28 @@ pub fn long_bearing_paper_closed_form(g: &BearingGeometry, s: FilmState) -> (f64
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn centre_limit_is_the_first_order_long_bearing() {
+        // Closed forms at ε → 0: the wedge force is the long bearing's own (π/2)·6μ(R/c)²RL·εW
+        // along t; the squeeze force is the mean of the one-sided long-bearing squeeze on the
+        // two sides of the centre (approaching: all of it, receding: none).
+        let g = BearingGeometry { viscosity: 0.4, journal_radius: 0.01, clearance: 5e-6, length: 0.025 };
+        let p = 6.0 * 0.4 * (0.01f64 / 5e-6).powi(2) * 0.01 * 0.025;
+        let eps = 1e-7;
+        let wedge = FilmState { eps, eps_dot: 0.0, wedge: 300.0 };
+        let (lx, le) = long_bearing_force(&g, wedge);
+        let (cx, ce) = long_bearing_centre_limit(&g, wedge);
+        assert!((ce - 0.5 * PI * p * eps * 300.0).abs() < 1e-12 * ce.abs() && cx == 0.0);
+        assert!((le - ce).abs() < 1e-6 * ce.abs() && lx.abs() < 1e-6 * ce.abs(), "long ({lx}, {le}) vs centre ({cx}, {ce})");
+        let squeeze = FilmState { eps, eps_dot: 2.0, wedge: 0.0 };
+        let approaching = long_bearing_force(&g, squeeze).0;
+        let receding = long_bearing_force(&g, FilmState { eps_dot: -2.0, ..squeeze }).0;
+        let centre = long_bearing_centre_limit(&g, squeeze).0;
+        assert!(receding == 0.0 && approaching < 0.0);
+        assert!((centre - 0.5 * approaching).abs() < 1e-6 * centre.abs(), "{centre} vs {approaching}/2");
+        assert!((centre + PI * p * 2.0).abs() < 1e-12 * centre.abs());
+    }
 
     const G: BearingGeometry = BearingGeometry { viscosity: 0.4, journal_radius: 0.01, clearance: 5e-4, length: 0.05 };
 

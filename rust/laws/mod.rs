@@ -21,7 +21,7 @@ pub mod friction;
 pub mod quadrature;
 pub mod transition;
 
-pub use bearing_long::{long_bearing_force, long_bearing_force_quadrature, long_bearing_paper_closed_form, long_bearing_pressure};
+pub use bearing_long::{long_bearing_centre_limit, long_bearing_force, long_bearing_force_quadrature, long_bearing_paper_closed_form, long_bearing_pressure};
 pub use bearing_short::{short_bearing_force, short_bearing_pressure, short_bearing_pressure_integrated};
 pub use contact::{hysteresis_factor, stiffness_internal, stiffness_paper_printed, ContactLaw, NormalLaw};
 pub use film::{attitude_angle, film_force, BearingGeometry, FilmModel, FilmState, FILM_EPS_CEILING};

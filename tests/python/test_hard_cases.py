@@ -168,8 +168,8 @@ def _check_1um(case, m, r, metrics):
 def _check_micrometre_film(case, m, r, metrics):
     """A µm film holds the journal near the bearing centre: it never touches the wall after the
     start, the slider follows the ideal mechanism within a few clearances (c → 0, docs/physics.md
-    §9), and the run costs steps comparable to c = 0.5 mm (a few hundred), not the 10⁵–10⁶ of
-    the stalls this case was added for."""
+    §9), and the run costs thousands of steps (c = 0.5 mm: a few hundred; 1 µm on the nine-bar
+    ~2·10⁴), not the 10⁵–10⁶ of the stalls these cases were added for."""
     for j in r.joint_names:
         c = next(cj["clearance"] for cj in m.description()["clearance_joints"] if cj["name"] == j)
         eps = np.linalg.norm(r.eccentricity(j), axis=1) / c
@@ -183,7 +183,7 @@ def _check_micrometre_film(case, m, r, metrics):
     metrics["max Δ slider vs ideal [m]"] = dev
     c = m.description()["clearance_joints"][0]["clearance"]
     assert dev < 4 * c, f"slider {dev:.3g} m from the ideal mechanism's (c = {c:g} m)"
-    assert r.stats["steps"] < 10_000, r.stats
+    assert r.stats["steps"] < 30_000, r.stats
 
 
 def _check_impacts(case, m, r, metrics):
@@ -287,7 +287,7 @@ CASES: List[Case] = [
     ),
     Case(
         "lubricated c = 5 µm, starts centred",
-        "a machine-bearing clearance (R/c = 1900): the stiff film holds the journal near the centre, where the long bearing's force used to jump; default settings, 1 revolution",
+        "a machine-bearing clearance (R/c = 1900): the stiff film holds the journal near the centre, where the long bearing's force used to jump (docs/physics.md §4); default settings, 1 revolution",
         lambda: models.slider_crank("lubricated", clearance=5e-6),
         SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
     ),
@@ -304,10 +304,16 @@ CASES: List[Case] = [
         NB_CYCLE, dict(dt_out=NB_CYCLE / 400), check=_check_micrometre_film,
     ),
     Case(
-        "lubricated c = 1 µm, short film, starts centred",
-        "R/c = 9500 with the short (Ocvirk) film, whose force is continuous through the centre; 1 revolution",
-        lambda: models.slider_crank("lubricated", clearance=1e-6, lubricated=Lubricated(viscosity=0.4, length=0.04, film="short")),
+        "lubricated c = 1 µm, starts centred",
+        "R/c = 9500, the smallest clearance of the range: the journal stays within 1e-4 c of the centre; 1 revolution",
+        lambda: models.slider_crank("lubricated", clearance=1e-6),
         SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
+    ),
+    Case(
+        "nine-bar lubricated c = 1 µm",
+        "both nine-bar journals in 1 µm films, 1 cycle, default settings",
+        lambda: models.nine_bar("lubricated", clearance=1e-6),
+        NB_CYCLE, dict(dt_out=NB_CYCLE / 400), check=_check_micrometre_film,
     ),
     Case(
         "lubricated, starts in contact (ε = 1.03)",
