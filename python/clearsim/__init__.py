@@ -12,6 +12,7 @@ from .result import Result
 from . import models, reliability
 from .montecarlo import monte_carlo
 from .scene import load_scene
+from .progress import set_progress
 
 __version__ = _core.__version__
 
@@ -31,4 +32,5 @@ __all__ = [
     "models",
     "monte_carlo",
     "reliability",
+    "set_progress",
 ]

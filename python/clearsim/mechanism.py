@@ -760,20 +760,22 @@ class Mechanism:
             keeps its partial result.
 
         progress:
-            Show a progress bar (simulated time) for runs that take longer than a second.
+            Show a progress bar (simulated time, with the time left) for runs that take longer
+            than a second; ``clearsim.set_progress(False)`` or ``CLEARSIM_PROGRESS=0`` hides
+            every bar (:mod:`clearsim.progress`).
 
         Raises :class:`clearsim.SimulationError` (with ``.result`` holding the partial result)
         if the run cannot go on; a Ctrl-C returns the partial result with a warning.
         """
         settings = self.run_settings(t_end, **kwargs)
         compiled = self.compile()
-        if not progress:
-            return self._finish(compiled.simulate(settings), settings)
-        from tqdm.auto import tqdm
+        from .progress import bar as progress_bar, progress_enabled
 
+        if not (progress and progress_enabled()):
+            return self._finish(compiled.simulate(settings), settings)
         t0 = settings["t0"]
         # Shown only for runs longer than a second; updated about every 50 ms from the core.
-        with tqdm(total=settings["t_end"] - t0, unit="s", unit_scale=True, desc="simulating", delay=1.0, leave=False) as bar:
+        with progress_bar(settings["t_end"] - t0, "simulating", "s", unit_scale=True) as bar:
 
             def advance(t: float) -> None:
                 # ``update`` (not ``refresh``) honours the bar's one-second delay.

@@ -479,9 +479,9 @@ def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, A
 
 
 def _progress(total: int, enabled: bool, what: str) -> Any:
-    from tqdm.auto import tqdm
+    from .progress import bar
 
-    return tqdm(total=total, desc=what, unit="run", disable=not enabled)
+    return bar(total, what, "run", enabled=enabled)
 
 
 __all__ = ["monte_carlo", "MonteCarloResult", "run_descriptions"]

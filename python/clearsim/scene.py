@@ -532,7 +532,7 @@ class Scene:
 
         A :class:`SimulationError` of the clearance run is kept in ``SceneRun.failure`` with
         the partial result, not raised (the errors cover the part that was computed); one of the
-        ideal run is raised. ``progress`` shows a tqdm bar when more than one run is made.
+        ideal run is raised. ``progress`` shows a bar (:mod:`clearsim.progress`) when more than one run is made.
         """
         has_clearance = bool(self.mechanism.clearance_joint_names)
         want_ideal = has_clearance and ((self.outputs.ideal if ideal is None else ideal) or self.reliability is not None)
@@ -577,16 +577,14 @@ class Scene:
 
 
 def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
-    """``items``, with a tqdm bar when enabled and there is more than one."""
-    if enabled and len(items) > 1:
-        from tqdm import tqdm
+    """``items``, with a progress bar when enabled and there is more than one."""
+    from .progress import bar
 
-        bar = tqdm(items, desc=desc, unit="run", leave=False)
-        for item in bar:
-            bar.set_postfix_str(item[0] if isinstance(item, tuple) else str(item))
+    with bar(len(items), desc, "run", enabled=enabled and len(items) > 1) as b:
+        for item in items:
+            b.set_postfix_str(item[0] if isinstance(item, tuple) else str(item))
             yield item
-    else:
-        yield from items
+            b.update(1)
 
 
 # ====================================================================== reading a scene

@@ -186,14 +186,14 @@ def _run_all(
     cycles: int, grid_deg: float, progress: bool, film: str = "long", cases: Optional[Sequence[Case]] = None, what: str = "runs", max_seconds: Optional[float] = None
 ) -> Dict[str, Run]:
     """All runs, in threads (the Rust core releases the GIL), longest first, one bar tick per run."""
-    from tqdm.auto import tqdm
+    from ..progress import bar as progress_bar
 
     chosen = [_with_film(c, film) for c in CASES.values()] if cases is None else list(cases)
     order = sorted(chosen, key=lambda c: ({"lubricated": 0, "dry": 1, "ideal": 2}[c.joints], c.omega))
     workers = max(1, min(len(order), os.cpu_count() or 1))
     runs: Dict[str, Run] = {}
-    with ThreadPoolExecutor(max_workers=workers) as pool, tqdm(
-        total=len(order), desc=f"clearsim paper: {what}", unit="run", disable=not progress
+    with ThreadPoolExecutor(max_workers=workers) as pool, progress_bar(
+        len(order), f"clearsim paper: {what}", "run", enabled=progress, delay=0.0, leave=True
     ) as bar:
         futures = {pool.submit(_simulate, c, _grid(c, cycles, grid_deg), max_seconds): c for c in order}
         for fut in as_completed(futures):
@@ -975,7 +975,7 @@ def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progres
     quick:
         Smoke-test mode: one cycle and a 2° output grid (``cycles`` is ignored).
     progress:
-        Show a tqdm progress bar over the runs.
+        Show a progress bar over the runs (:mod:`clearsim.progress`).
     film:
         Film model of the lubricated joints (``clearsim.Lubricated.film``): ``"long"`` (default,
         the paper's model corrected), ``"short"``, ``"finite"`` (L/D = 2.5 from the Reynolds
