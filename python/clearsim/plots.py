@@ -366,9 +366,10 @@ def _angle_ticks(ax: Axes, amax: float) -> None:
 def _reliability_axes(ax: Axes, curves: Mapping[str, Any], quantity: str, annotate: bool) -> List[Tuple[Any, str]]:
     styles = series_style(curves)
     items: List[Tuple[Any, str]] = []
+    minima: List[Tuple[float, float, str, Any]] = []
     amax = 0.0
     rmin = 1.0
-    for k, (label, value) in enumerate(curves.items()):
+    for label, value in curves.items():
         a, r = _curve(label, value)
         ok = np.isfinite(r)
         st = styles[label]
@@ -381,16 +382,7 @@ def _reliability_axes(ax: Axes, curves: Mapping[str, Any], quantity: str, annota
             text = f"{label} (min R = {r[j]:.4f} at {a[j]:g}°)"
             ax.plot(a[j], r[j], marker="*", markersize=12, color=st["color"], markeredgecolor="k", markeredgewidth=0.6, linestyle="none", zorder=5)
             if annotate:
-                ax.annotate(
-                    f"{a[j]:g}°, R = {r[j]:.4f}",
-                    (a[j], r[j]),
-                    xytext=(6, -12 - 10 * (k % 3)),
-                    textcoords="offset points",
-                    fontsize=8,
-                    color=st["color"],
-                    zorder=6,
-                    bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.8},
-                )
+                minima.append((float(a[j]), float(r[j]), f"{a[j]:g}°, R = {r[j]:.4f}", st["color"]))
         items.append((line, text))
     _angle_ticks(ax, amax)
     ax.set_xlim(-5.0, max(amax, 360.0) + 5.0)
@@ -401,7 +393,49 @@ def _reliability_axes(ax: Axes, curves: Mapping[str, Any], quantity: str, annota
     ax.yaxis.set_major_formatter(mpl.ticker.FormatStrFormatter("%.3f"))
     ax.set_xlabel("Crank angle [deg]")
     ax.set_ylabel(f"{quantity.capitalize()} reliability R [-]" if quantity else "Reliability R [-]")
+    _label_minima(ax, minima)
     return items
+
+
+#: Where a minimum's label may go, in points from its star: below right first, then around it.
+_LABEL_OFFSETS = [(6, -14), (6, 6), (-6, -14), (-6, 6), (6, -28), (-6, -28), (6, 20), (-6, 20), (6, -42), (-6, -42)]
+
+
+def _label_minima(ax: Axes, minima: List[Tuple[float, float, str, Any]]) -> None:
+    """Label each minimum (angle, R, text, colour) beside its star, at the first of
+    :data:`_LABEL_OFFSETS` whose box overlaps no label placed before and stays inside the axes."""
+    if not minima:
+        return
+    fig = ax.figure
+    if not hasattr(fig.canvas, "get_renderer"):  # a bare Figure: measure text with Agg
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+        FigureCanvasAgg(fig)
+    renderer = fig.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    placed: List[Any] = []
+    for a, r, text, color in sorted(minima, key=lambda m: (m[1], m[0])):
+        for dx, dy in _LABEL_OFFSETS:
+            ann = ax.annotate(
+                text,
+                (a, r),
+                xytext=(dx, dy),
+                textcoords="offset points",
+                ha="left" if dx > 0 else "right",
+                fontsize=8,
+                color=color,
+                zorder=6,
+                bbox={"boxstyle": "round,pad=0.15", "facecolor": "white", "edgecolor": "none", "alpha": 0.8},
+            )
+            box = ann.get_window_extent(renderer)
+            inside = frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1
+            if inside and not any(box.overlaps(other) for other in placed):
+                placed.append(box)
+                break
+            ann.remove()
+        else:  # nowhere free: the first place, overlapping
+            ann = ax.annotate(text, (a, r), xytext=_LABEL_OFFSETS[0], textcoords="offset points", fontsize=8, color=color, zorder=6)
+            placed.append(ann.get_window_extent(renderer))
 
 
 def plot_reliability(curves: Mapping[str, Any], quantity: str = "displacement", annotate: bool = True, title: Optional[str] = None) -> Figure:

@@ -236,3 +236,26 @@ def test_save_closes_pyplot_figures(tmp_path):
     path = plots.save(fig, tmp_path / "sub" / "pyplot.png")
     assert path.exists() and path.stat().st_size > 0
     assert num not in plt.get_fignums()
+
+
+def test_minimum_labels_do_not_overlap(tmp_path):
+    """Four curves whose minima sit 18° apart at nearly the same R (the paper's Fig. 16c had two
+    labels written over each other): every label box is clear of every other."""
+    a = np.arange(0.0, 360.0, 18.0)
+    curves = {}
+    for k, (where, depth) in enumerate([(18.0, 0.91), (36.0, 0.99), (18.0, 0.905), (36.0, 0.985)]):
+        r = np.full_like(a, 0.999) - 0.001 * k
+        r[a == where] = depth
+        curves[f"{'dry' if k % 2 else 'lubricated'}, case {k}"] = (a, r)
+    fig = plots.plot_reliability_panels({"acceleration": curves, "velocity": curves})
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    for ax in fig.axes:
+        boxes = [t.get_window_extent(renderer) for t in ax.texts if "R = " in t.get_text()]
+        assert len(boxes) == 4
+        for i in range(4):
+            for j in range(i + 1, 4):
+                assert not boxes[i].overlaps(boxes[j]), (ax.get_title(), i, j)
+    plots.save(fig, tmp_path / "labels.png")
