@@ -100,3 +100,63 @@ impl JointKinematics {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f64, b: f64, what: &str) {
+        assert!((a - b).abs() <= 1e-12 * b.abs().max(1e-12), "{what}: {a} vs {b}");
+    }
+
+    #[test]
+    fn a_whirling_journal_in_a_fixed_bearing() {
+        // Hand-computed (docs/physics.md §2): ground bearing at the origin; the journal centre at
+        // (1e-4, 0) m moving at (0, 2e-3) m/s and spinning at 10 rad/s. e = (1e-4, 0), n = x,
+        // t = y; the line of centres turns at γ̇ = (e × ė)/e² = 20 rad/s; wedge = θ̇_j + θ̇_b −
+        // 2γ̇ = −30 rad/s; δ = e − c, δ̇ = n·ė = 0; slip = t·ė + R_j θ̇_j − R_b θ̇_b = 0.102 m/s.
+        let journal = BodyKin::new(&[1e-4, 0.0, 0.0], &[0.0, 2e-3, 10.0]);
+        let k = JointKinematics::new(&BodyKin::GROUND, V2::new(0.0, 0.0), &journal, V2::new(0.0, 0.0), 0.01, 0.0105, 5e-4);
+        close(k.e, 1e-4, "e");
+        close(k.n.x, 1.0, "n.x");
+        close(k.t.y, 1.0, "t.y");
+        close(k.gamma_dot, 20.0, "γ̇");
+        close(k.wedge, -30.0, "wedge");
+        close(k.delta, -4e-4, "δ");
+        assert_eq!(k.delta_dot, 0.0);
+        assert_eq!(k.eps_dot, 0.0);
+        close(k.eps, 0.2, "ε");
+        close(k.slip, 0.102, "slip");
+    }
+
+    #[test]
+    fn a_pin_on_a_turning_crank_in_a_sliding_bearing() {
+        // Journal: a body at the origin turned by 90° at 5 rad/s, pin at s = (0.1, 0) → global
+        // (0, 0.1), velocity 5·(A s)⊥ = (−0.5, 0). Bearing: a body at (0, 0.1 + 1e-4) sliding at
+        // (0.2, 0), not turning, its point at its origin. e = (0, −1e-4), n = −y, t = n⊥ = x;
+        // ė = (−0.7, 0); γ̇ = (e × ė)/e² = −7000 rad/s; wedge = 5 + 0 + 14000; δ̇ = n·ė = 0;
+        // slip = t·ė + R_j·5 − R_b·0 = −0.7 + 0.05.
+        let journal = BodyKin::new(&[0.0, 0.0, std::f64::consts::FRAC_PI_2], &[0.0, 0.0, 5.0]);
+        let bearing = BodyKin::new(&[0.0, 0.1 + 1e-4, 0.0], &[0.2, 0.0, 0.0]);
+        let k = JointKinematics::new(&bearing, V2::new(0.0, 0.0), &journal, V2::new(0.1, 0.0), 0.01, 0.0105, 5e-4);
+        close(k.e_vec.y, -1e-4, "e_y");
+        assert!(k.e_vec.x.abs() < 1e-17);
+        close(k.n.y, -1.0, "n.y");
+        close(k.t.x, 1.0, "t.x");
+        close(k.e_dot.x, -0.7, "ė_x");
+        close(k.gamma_dot, -7000.0, "γ̇");
+        close(k.wedge, 14005.0, "wedge");
+        assert!(k.delta_dot.abs() < 1e-12); // cos(π/2) rounds to 6e-17, not 0
+        close(k.slip, -0.65, "slip");
+    }
+
+    #[test]
+    fn relative_kinematics_are_those_of_the_bodies() {
+        let journal = BodyKin::new(&[0.3, -0.2, 0.7], &[1.5, -0.4, 12.0]);
+        let bearing = BodyKin::new(&[0.1, 0.4, -0.3], &[-0.6, 0.9, -4.0]);
+        let (sb, sj) = (V2::new(0.25, -0.6), V2::new(-0.05, 0.01));
+        let k = JointKinematics::new(&bearing, sb, &journal, sj, 0.01, 0.0105, 5e-4);
+        let r = JointKinematics::relative(k.e_vec, k.e_dot, bearing.w, journal.w, 0.01, 0.0105, 5e-4);
+        assert_eq!(k, r);
+    }
+}

@@ -346,3 +346,46 @@ mod tests {
         assert_eq!(centre_weight(FilmModel::LongBearing, 0.0), 1.0);
     }
 }
+
+#[cfg(test)]
+mod friction_moments {
+    use super::*;
+    use crate::laws::contact::NormalLaw;
+
+    #[test]
+    fn friction_acts_at_the_contact_point_of_each_surface() {
+        // A dry pin pressed 1e-5 m into its bearing along n = x while slipping: the friction
+        // force F_t t acts on the journal at Q = P_j + R_j n and its opposite on the bearing at
+        // P_b + R_b n, so about the centroids (journal and bearing points at their origins) the
+        // moments are R_j F_t and −R_b F_t (n × t = 1); the forces pass through no other arm.
+        let (c, r_j) = (5e-4, 0.01);
+        let joint = ClearanceJoint {
+            name: "pin".into(),
+            bearing: Some(0),
+            bearing_point: V2::new(0.0, 0.0),
+            journal: Some(1),
+            journal_point: V2::new(0.0, 0.0),
+            journal_radius: r_j,
+            bearing_radius: r_j + c,
+            clearance: c,
+            contact: ContactLaw { law: NormalLaw::Hertz, stiffness: 1e10, exponent: 1.5, restitution: 1.0, impact_speed_floor: 1e-4 },
+            friction: ModifiedCoulomb { friction_coefficient: 0.2, v0: 1e-4, v1: 1e-3 },
+            film: None,
+            guide_normal: None,
+            penetration_limit: c,
+            wear: None,
+        };
+        let kin = [BodyKin::new(&[0.0, 0.0, 0.0], &[0.0, 0.0, 0.0]), BodyKin::new(&[c + 1e-5, 0.0, 0.0], &[0.0, 0.0, 30.0])];
+        let k = joint.kinematics(&kin);
+        let f = joint.force(&k, &ImpactMemory::default());
+        assert!(f.normal > 0.0 && f.tangential != 0.0);
+        // Full Coulomb (slip 0.3 m/s ≫ v1), opposing the slip: F_t = −c_f F_N.
+        assert!((f.tangential + 0.2 * f.normal).abs() < 1e-9 * f.normal);
+        let mut g = [0.0; 6];
+        joint.apply(&kin, &k, &f, &mut g);
+        assert!((g[3] + f.normal).abs() < 1e-9 * f.normal && (g[4] - f.tangential).abs() < 1e-9 * f.normal);
+        assert!((g[5] - r_j * f.tangential).abs() < 1e-12 * f.normal, "journal moment {}", g[5]);
+        assert!((g[2] + (r_j + c) * f.tangential).abs() < 1e-12 * f.normal, "bearing moment {}", g[2]);
+        assert!((g[0] + g[3]).abs() < 1e-12 * f.normal && (g[1] + g[4]).abs() < 1e-12 * f.normal);
+    }
+}
