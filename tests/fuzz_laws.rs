@@ -348,32 +348,42 @@ proptest! {
 
 #[test]
 fn invalid_descriptions_are_errors_not_panics() {
-    // Every numeric field set to NaN, ±∞, 0 and a negative value either compiles or is an
-    // InvalidInput naming a field; none panics.
+    // Every numeric field set to NaN, ±∞, 0, a negative value and 1e308: a value the field
+    // cannot take (non-finite anywhere; ≤ 0 where it must be positive; < 0 where it must not be
+    // negative) must be an InvalidInput naming the field; the others compile or are an
+    // InvalidInput naming the field; none panics.
     let base = slider_crank(true, NormalLaw::LankaraniNikravesh, 0.9, 0.1, 5e-4);
     let bad = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 0.0, -1.0, 1e308];
+    #[derive(Clone, Copy, PartialEq)]
+    enum Rule {
+        Finite,
+        Positive,
+        NonNegative,
+    }
+    use Rule::*;
     type Setter = fn(&mut MechanismDesc, f64);
-    let setters: Vec<(&str, Setter)> = vec![
-        ("mass", |d, v| d.bodies[0].mass = v),
-        ("inertia", |d, v| d.bodies[1].inertia = v),
-        ("position", |d, v| d.bodies[2].position[0] = v),
-        ("angle", |d, v| d.bodies[0].angle = v),
-        ("clearance", |d, v| d.clearance_joints[0].clearance = v),
-        ("journal_radius", |d, v| d.clearance_joints[0].journal_radius = v),
-        ("initial_eccentricity", |d, v| d.clearance_joints[0].initial_eccentricity[1] = v),
-        ("gravity", |d, v| d.gravity[1] = v),
-        ("baumgarte", |d, v| d.baumgarte[0] = v),
-        ("viscosity", |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.viscosity = v }),
-        ("eps0", |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.eps0 = v }),
-        ("restitution", |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.dry.restitution = v }),
-        ("v1", |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.dry.v1 = v }),
+    let setters: Vec<(&str, Rule, Setter)> = vec![
+        ("mass", Positive, |d, v| d.bodies[0].mass = v),
+        ("inertia", Positive, |d, v| d.bodies[1].inertia = v),
+        ("position", Finite, |d, v| d.bodies[2].position[0] = v),
+        ("angle", Finite, |d, v| d.bodies[0].angle = v),
+        ("clearance", Positive, |d, v| d.clearance_joints[0].clearance = v),
+        ("journal_radius", Positive, |d, v| d.clearance_joints[0].journal_radius = v),
+        ("initial_eccentricity", Finite, |d, v| d.clearance_joints[0].initial_eccentricity[1] = v),
+        ("gravity", Finite, |d, v| d.gravity[1] = v),
+        ("baumgarte", Finite, |d, v| d.baumgarte[0] = v),
+        ("viscosity", Positive, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.viscosity = v }),
+        ("eps0", NonNegative, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.eps0 = v }),
+        ("restitution", NonNegative, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.dry.restitution = v }),
+        ("v1", Positive, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.dry.v1 = v }),
     ];
-    for (name, set) in setters {
+    for (name, rule, set) in setters {
         for v in bad {
             let mut d = base.clone();
             set(&mut d, v);
+            let must_fail = !v.is_finite() || (rule == Positive && v <= 0.0) || (rule == NonNegative && v < 0.0);
             match Model::compile(&d) {
-                Ok(_) => {}
+                Ok(_) => assert!(!must_fail, "{name} = {v} compiled: it must be an InvalidInput"),
                 // A huge journal radius makes the clearance too small against it: that check
                 // names the clearance.
                 Err(clearsim::Error::InvalidInput { field, .. }) => assert!(

@@ -148,12 +148,14 @@ def test_dry_scene_runs_no_film_code_and_forces_balance():
 
 
 def test_lubricated_nine_bar_holds_the_journals_in_the_film():
-    """Spec §7: with μ = 0.4 Pa s the long-bearing film holds both journals near ε ≈ 0.9."""
+    """Spec §7: with μ = 0.4 Pa s the long-bearing film holds both journals near ε ≈ 0.9, in the
+    film (no contact) but well off the centre: measured max ε over the first quarter cycle
+    A 0.92, B 0.79. A film several times too stiff or too soft moves these out of the band."""
     period = 0.4
     res = models.nine_bar("lubricated", clearance=0.5e-3).simulate(period / 4, dt_out=1e-4)
     for j in ("A", "B"):
         eps = np.linalg.norm(res.eccentricity(j), axis=1) / 0.5e-3
-        assert np.max(eps) < 1.0
+        assert 0.7 < np.max(eps) < 0.97, (j, np.max(eps))
         assert np.all(res.contact_state(j) == 0)
 
 

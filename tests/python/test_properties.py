@@ -178,6 +178,10 @@ def _finite_or_diagnosed(m: cs.Mechanism, t_end: float, **kw: Any) -> cs.Result:
         r = m.simulate(t_end, **kw)
     except cs.SimulationError as e:
         assert e.t is not None and math.isfinite(e.t) and e.reason
+        # A stop must be a diagnosed condition of the mechanism or the budget, never a number
+        # that went non-finite (a NaN is a bug in a law or the integrator, not a diagnosis).
+        known = ("maximum number of steps", "step size underflow", "Newton", "penetration", "singular", "lock", "wall-time", "assembly")
+        assert "non-finite" not in e.reason and any(k in e.reason for k in known), e.reason
         assert e.result is not None and not e.result.completed
         if len(e.result.t):
             assert e.result.t[-1] <= e.t + 1e-15
