@@ -10,7 +10,7 @@ from __future__ import annotations
 import copy
 import math
 import warnings
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 
@@ -19,6 +19,26 @@ from . import forces as _forces
 from .errors import InputError, InterruptedRun, SimulationError, check_finite, check_positive
 from .joints import Dry, Lubricated
 from .result import Result
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+
+class RunOptions(TypedDict, total=False):
+    """The keyword arguments of :meth:`Mechanism.simulate` (all optional; see its docstring)."""
+
+    integrator: str  # "auto", "rk45", "dop853", "radau", "rodas4" or "rk4"
+    rtol: float
+    atol: float
+    step: Optional[float]  # [s], rk4 only
+    dt_out: Optional[float]  # [s]
+    t_out: Optional[Sequence[float]]  # [s]
+    t0: float  # [s]
+    outputs: Optional[Sequence[str]]
+    h_max: Optional[float]  # [s]
+    h_min: float  # [s]
+    max_steps: int
+    max_seconds: Optional[float]  # [s] of wall time
 
 GROUND = "ground"
 Point = Sequence[float]
@@ -107,17 +127,39 @@ class Mechanism:
         *,
         mass: float,
         inertia: float,
-        position: Point = (0.0, 0.0),
-        angle: float = 0.0,
+        position: Optional[Point] = None,
+        angle: Optional[float] = None,
         velocity: Optional[Sequence[float]] = None,
+        ends: Optional[Tuple[Point, Point]] = None,
     ) -> "Mechanism":
         """Add a rigid body with its reference point at the centroid.
 
         ``mass`` [kg] and ``inertia`` (about the centroid) [kg m²] must be positive.
-        ``position`` [m] and ``angle`` [rad] are approximate: the kinematic assembly at t0 makes
-        them satisfy the joints. ``velocity`` (ẋ, ẏ, θ̇) is an optional guess, projected onto
-        the constraints (drivers fix what they drive).
+        ``position`` [m] and ``angle`` [rad] (default the origin and 0) are approximate: the
+        kinematic assembly at t0 makes them satisfy the joints. For a link, ``ends=((x1, y1),
+        (x2, y2))`` [m] instead puts the centroid at mid-length and the angle along the line from
+        the first end to the second (not together with ``position``/``angle``). ``velocity``
+        (ẋ, ẏ, θ̇) is an optional guess, projected onto the constraints (drivers fix what they
+        drive).
         """
+        if ends is not None:
+            for key, value in (("position", position), ("angle", angle)):
+                if value is not None:
+                    raise InputError(
+                        f"invalid body '{name}'.{key} = {value!r}: give either ends or position/angle, not both",
+                        field=f"body '{name}'.{key}",
+                        value=value,
+                    )
+            try:
+                p, q = (_point(f"body '{name}'.ends[{k}]", e) for k, e in enumerate(ends))
+            except (TypeError, ValueError):
+                raise InputError(f"invalid body '{name}'.ends = {ends!r}: must be two points ((x1, y1), (x2, y2)) [m]", field=f"body '{name}'.ends", value=ends) from None
+            if p == q:
+                raise InputError(f"invalid body '{name}'.ends = {ends!r}: the two ends coincide", field=f"body '{name}'.ends", value=ends)
+            position = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
+            angle = math.atan2(q[1] - p[1], q[0] - p[0])
+        position = (0.0, 0.0) if position is None else position
+        angle = 0.0 if angle is None else angle
         if not isinstance(name, str) or not name:
             raise InputError(f"invalid body name = {name!r}: must be a non-empty string", field="name", value=name)
         if name == GROUND:
@@ -729,7 +771,7 @@ class Mechanism:
             settings["max_seconds"] = check_positive("max_seconds", max_seconds)
         return settings
 
-    def simulate(self, t_end: float, progress: bool = True, **kwargs: Any) -> Result:
+    def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
         """Integrate from t0 (default 0) to ``t_end`` [s].
 
         Keyword arguments
@@ -784,7 +826,7 @@ class Mechanism:
             raw = compiled.simulate(settings, advance)
         return self._finish(raw, settings)
 
-    def simulate_with_ideal(self, t_end: float, **kwargs: Any) -> Tuple[Result, Result]:
+    def simulate_with_ideal(self, t_end: float, **kwargs: Unpack[RunOptions]) -> Tuple[Result, Result]:
         """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
         settings on the same output grid, in parallel in the Rust core. Returns
         ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (docs/physics.md §5)."""

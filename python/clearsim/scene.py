@@ -771,15 +771,12 @@ class _Builder:
             for key in ("position", "angle"):
                 if key in t:
                     raise t.error(key, f"[[body]] '{name}': give either ends or position/angle, not both")
-            (p, q) = t.points("ends", 2)
-            position = [(p[0] + q[0]) / 2, (p[1] + q[1]) / 2]
-            angle = math.atan2(q[1] - p[1], q[0] - p[0])
+            where: Dict[str, Any] = {"ends": tuple(t.points("ends", 2))}
         else:
-            position = t.point("position", [0.0, 0.0])
-            angle = t.number("angle", 0.0)
+            where = {"position": t.point("position", [0.0, 0.0]), "angle": t.number("angle", 0.0)}
         self.call(
             t, m.add_body, name, mass=t.number("mass"), inertia=t.number("inertia"),
-            position=position, angle=angle, velocity=t.numbers("velocity", None, length=3),
+            velocity=t.numbers("velocity", None, length=3), **where,
         )  # fmt: skip
 
     def joint(self, m: Mechanism, t: _Table) -> None:

@@ -412,3 +412,34 @@ def test_a_joint_point_in_the_wrong_frame_warns_how_far_the_assembly_moved():
             bad.simulate(0.01, progress=False)
         except cs.ClearsimError:
             pass
+
+
+def test_a_link_can_be_given_by_its_ends():
+    """``add_body(ends=...)`` (the Python side of the scenes' ``ends``): centroid at mid-length,
+    angle along the line; with position or angle too, or with coinciding ends, an InputError."""
+    import math
+
+    m = cs.Mechanism()
+    m.add_body("rod", mass=1.0, inertia=1e-3, ends=((0.0, 0.0), (0.3, 0.4)))
+    b = m.description()["bodies"][0]
+    assert b["position"] == pytest.approx([0.15, 0.2]) and b["angle"] == pytest.approx(math.atan2(0.4, 0.3))
+    with pytest.raises(cs.InputError) as e:
+        m.add_body("bad", mass=1.0, inertia=1e-3, ends=((0, 0), (1, 0)), angle=0.2)
+    assert e.value.field == "body 'bad'.angle" and "either ends or position/angle" in str(e.value)
+    with pytest.raises(cs.InputError) as e:
+        m.add_body("bad", mass=1.0, inertia=1e-3, ends=((0.1, 0.1), (0.1, 0.1)))
+    assert e.value.field == "body 'bad'.ends" and "coincide" in str(e.value)
+    with pytest.raises(cs.InputError) as e:
+        m.add_body("bad", mass=1.0, inertia=1e-3, ends=((0.1, 0.1),))
+    assert e.value.field == "body 'bad'.ends"
+
+
+def test_run_options_name_every_run_setting():
+    """The typed keyword arguments of ``simulate`` (``RunOptions``) are exactly the parameters
+    of ``run_settings``: the two stay in step."""
+    import inspect
+
+    from clearsim.mechanism import RunOptions
+
+    params = [p for p in inspect.signature(cs.Mechanism.run_settings).parameters.values() if p.kind is p.KEYWORD_ONLY]
+    assert sorted(p.name for p in params) == sorted(RunOptions.__annotations__)
