@@ -5,50 +5,10 @@
 
 use super::controller::{dop853_error, initial_step, rms_error, Controller, Decision};
 use super::dense::{combine, ContinuousExtension};
+use super::driver::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
 use super::tableau::{dop853, dopri5, rk4};
-use super::{DenseOutput, Method, OdeSystem, Settings, Span, Stats};
+use super::{Method, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
-
-/// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.
-pub(super) fn emit<S: OdeSystem>(
-    sys: &mut S,
-    t_out: &[f64],
-    next: &mut usize,
-    t1: f64,
-    dense: &dyn DenseOutput,
-    buf: &mut [f64],
-) -> Result<(), Error> {
-    while let Some(&t) = t_out.get(*next) {
-        if t > t1 {
-            break;
-        }
-        dense.eval(t, buf);
-        sys.output(t, buf)?;
-        *next += 1;
-    }
-    Ok(())
-}
-
-/// Skips output times before `t0` and delivers those equal to `t0` from `y0`.
-pub(super) fn emit_initial<S: OdeSystem>(sys: &mut S, t_out: &[f64], t0: f64, y0: &[f64]) -> Result<usize, Error> {
-    let mut next = t_out.partition_point(|&t| t < t0);
-    while t_out.get(next) == Some(&t0) {
-        sys.output(t0, y0)?;
-        next += 1;
-    }
-    Ok(next)
-}
-
-pub(super) fn all_finite(v: &[f64]) -> bool {
-    v.iter().all(|x| x.is_finite())
-}
-
-pub(super) fn non_finite(t: f64) -> Error {
-    Error::NonFinite {
-        t,
-        detail: String::new(),
-    }
-}
 
 /// Stage time `t + c h`, exactly `t1` for `c = 1`.
 #[inline]
@@ -102,24 +62,6 @@ fn advance(y: &[f64], h: f64, b: &[f64], k: &[f64], out: &mut [f64]) {
     }
 }
 
-fn record_accepted(stats: &mut Stats, h: f64, t1: f64) {
-    stats.steps_accepted += 1;
-    stats.h_min_used = stats.h_min_used.min(h);
-    stats.h_max_used = stats.h_max_used.max(h);
-    stats.t_reached = t1;
-}
-
-/// `out = f(t, y)`, counted, and checked to be finite.
-pub(super) fn fresh_rhs<S: OdeSystem>(sys: &mut S, stats: &mut Stats, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), Error> {
-    sys.rhs(t, y, out)?;
-    stats.rhs_evals += 1;
-    if all_finite(out) {
-        Ok(())
-    } else {
-        Err(non_finite(t))
-    }
-}
-
 /// The first stage of the next step in `k[..n]`: `f(t, y)` afresh when the system changed its
 /// memory at the step's end, else the step's last stage `k[fsal]` (= f(t, y), FSAL).
 pub(super) fn first_stage<S: OdeSystem>(
@@ -138,90 +80,6 @@ pub(super) fn first_stage<S: OdeSystem>(
         k.copy_within(fsal * n..(fsal + 1) * n, 0);
         Ok(())
     }
-}
-
-/// Everything a driver does once a step `[t, t1]` of size `h` is accepted, with its dense
-/// output filled: count it, let the system update its memory, deliver the outputs inside the
-/// step, and move `y1` into `y`. Returns whether the system asked for `f(t1, y1)` afresh.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn accept_step<S: OdeSystem>(
-    sys: &mut S,
-    stats: &mut Stats,
-    h: f64,
-    t: f64,
-    t1: f64,
-    y: &mut Vec<f64>,
-    y1: &mut Vec<f64>,
-    dense: &dyn DenseOutput,
-    t_out: &[f64],
-    next_out: &mut usize,
-    buf: &mut [f64],
-) -> Result<bool, Error> {
-    record_accepted(stats, h, t1);
-    let refresh = sys.step_accepted(t, y, t1, y1, dense)?;
-    emit(sys, t_out, next_out, t1, dense, buf)?;
-    std::mem::swap(y, y1);
-    Ok(refresh)
-}
-
-/// The next trial step `[t, t1]` from a proposed size `h` (clamped to `h_max`): lands exactly
-/// on `t_end`, stretching by up to 1 % rather than leaving a sliver (Hairer), or splits the
-/// remainder in two when `h_max` forbids the stretch. Errors: the step budget is spent
-/// (`TooManySteps`), or the step fell below the floor `max(h_min, 1e-14·|t|)` — then the error of
-/// the failed trial steps that shrank it, if `failed_trials` gives one, else `StepSizeUnderflow`.
-/// Returns `(h_step, t1, last)`.
-pub(super) fn plan_step(
-    t: f64,
-    h: f64,
-    t_end: f64,
-    st: &Settings,
-    stats: &Stats,
-    failed_trials: impl FnOnce() -> Option<Error>,
-) -> Result<(f64, f64, bool), Error> {
-    let h = h.min(st.h_max);
-    let floor = st.h_min.max(1e-14 * t.abs());
-    if !(h > 0.0 && h >= floor) {
-        return Err(failed_trials().unwrap_or(Error::StepSizeUnderflow { t, h, detail: String::new() }));
-    }
-    if stats.steps_accepted + stats.steps_rejected + stats.steps_to_switch >= st.max_steps {
-        return Err(Error::TooManySteps { t, max_steps: st.max_steps });
-    }
-    Ok(if t + 1.01 * h < t_end {
-        (h, t + h, false)
-    } else if t_end - t <= st.h_max * (1.0 + 1e-9) {
-        (t_end - t, t_end, true)
-    } else {
-        let half = 0.5 * (t_end - t);
-        (half, t + half, false)
-    })
-}
-
-/// A switching point within this fraction of a step from either end is left inside the step:
-/// redoing the step would not move it out.
-const SWITCH_MARGIN: f64 = 0.02;
-
-/// For a step `[t, t1]` that passed the error test (dense output filled): the size of the step
-/// to take instead, ending on a switching point that the system reports well inside it (and
-/// not below the step floor `h_min`: then the step stays as it is).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn step_to_switch<S: OdeSystem>(
-    sys: &mut S,
-    st: &Settings,
-    stats: &mut Stats,
-    t: f64,
-    y: &[f64],
-    t1: f64,
-    y1: &[f64],
-    dense: &dyn DenseOutput,
-) -> Result<Option<f64>, Error> {
-    let margin = SWITCH_MARGIN * (t1 - t);
-    let floor = st.h_min.max(1e-14 * t.abs());
-    let inside = |ts: &f64| *ts - t > margin.max(floor) && t1 - *ts > margin;
-    let h = sys.switching_point(t, y, t1, y1, dense)?.filter(inside).map(|ts| ts - t);
-    if h.is_some() {
-        stats.steps_to_switch += 1;
-    }
-    Ok(h)
 }
 
 /// Consecutive trial steps that may fail (non-finite, singular) before the run stops.

@@ -10,6 +10,7 @@ use crate::error::Error;
 
 pub mod controller;
 pub mod dense;
+mod driver;
 mod explicit_rk;
 mod radau;
 mod stiff;

@@ -26,8 +26,9 @@
 use faer::Mat;
 
 use super::controller::initial_step;
-use super::explicit_rk::{all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
-use super::stiff::{finish_accepted, size_after_accept, Lu};
+use super::driver::{all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
+use super::driver::{finish_accepted, size_after_accept};
+use super::stiff::Lu;
 use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
 

@@ -25,7 +25,7 @@ use faer::perm::PermRef;
 use faer::{Mat, Par};
 
 use super::controller::initial_step;
-use super::explicit_rk::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
+use super::driver::{all_finite, emit_initial, finish_accepted, fresh_rhs, non_finite, plan_step, size_after_accept, step_to_switch};
 use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
 use crate::error::Error;
 
@@ -146,40 +146,6 @@ impl Lu {
             *v = self.rhs[(i, 0)];
         }
     }
-}
-
-/// The end of an accepted step of the stiff drivers, its dense output filled: accept it
-/// ([`accept_step`]: memory, outputs), move `t` to `t1` and — unless it was the `last` — evaluate
-/// `f0 = f(t1, y1)` afresh (the system may have changed its memory). Returns whether the run is
-/// done. `step` is `(h, t, t1, last)`, `outputs` the output times and the next one to deliver.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn finish_accepted<S: OdeSystem>(
-    sys: &mut S,
-    stats: &mut Stats,
-    step: (f64, &mut f64, f64, bool),
-    y: &mut Vec<f64>,
-    ynew: &mut Vec<f64>,
-    dense: &dyn DenseOutput,
-    outputs: (&[f64], &mut usize),
-    buf: &mut [f64],
-    f0: &mut [f64],
-) -> Result<bool, Error> {
-    let (h, t, t1, last) = step;
-    accept_step(sys, stats, h, *t, t1, y, ynew, dense, outputs.0, outputs.1, buf)?;
-    *t = t1;
-    if last {
-        return Ok(true);
-    }
-    fresh_rhs(sys, stats, t1, y, f0)?;
-    Ok(false)
-}
-
-/// The step size after an accepted step of the stiff drivers: `hs/quot`, but no growth right
-/// after a rejection (Hairer's RODAS and RADAU5); clears `reject`.
-pub(super) fn size_after_accept(hs: f64, quot: f64, reject: &mut bool) -> f64 {
-    let h = if *reject { (hs / quot).min(hs) } else { hs / quot };
-    *reject = false;
-    h
 }
 
 /// `out = y + Σ w_j u_j` (`u_j = u[j*n..]`).
