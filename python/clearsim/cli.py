@@ -28,7 +28,7 @@ import numpy as np
 
 from . import __version__, models
 from .errors import ClearsimError
-from .mechanism import INTEGRATORS
+from .running import INTEGRATORS
 from .scene import BODY_QUANTITIES, COMPONENTS, ERROR_QUANTITIES, JOINT_QUANTITIES, Scene, SceneRun, load_scene_file
 
 #: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.

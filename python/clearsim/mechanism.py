@@ -10,43 +10,15 @@ from __future__ import annotations
 import copy
 import math
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, List, Mapping, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-import numpy as np
-
-from . import _core
 from . import forces as _forces
-from .errors import InputError, InterruptedRun, SimulationError, check_finite, check_positive
+from .errors import InputError, SimulationError, check_finite, check_positive
 from .joints import Dry, Lubricated
-from .result import Result
-
-if TYPE_CHECKING:
-    from typing_extensions import Unpack
-
-
-class RunOptions(TypedDict, total=False):
-    """The keyword arguments of :meth:`Mechanism.simulate` (all optional; see its docstring)."""
-
-    integrator: str  # "auto", "rk45", "dop853", "radau", "rodas4" or "rk4"
-    rtol: float
-    atol: float
-    step: Optional[float]  # [s], rk4 only
-    dt_out: Optional[float]  # [s]
-    t_out: Optional[Sequence[float]]  # [s]
-    t0: float  # [s]
-    outputs: Optional[Sequence[str]]
-    h_max: Optional[float]  # [s]
-    h_min: float  # [s]
-    max_steps: int
-    max_seconds: Optional[float]  # [s] of wall time
+from .running import DEFAULT_OUTPUTS, INTEGRATORS, MAX_OUTPUTS, OUTPUTS, RunOptions, Running  # noqa: F401 (re-exported)
 
 GROUND = "ground"
 Point = Sequence[float]
-INTEGRATORS = ("auto", "rk45", "rk4", "dop853", "radau", "rodas4")
-OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation", "energy")
-DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
-#: Most outputs a dt_out grid may ask for (each holds every stored channel).
-MAX_OUTPUTS = 1e7
 
 
 def _point(field: str, p: Any) -> List[float]:
@@ -59,18 +31,14 @@ def _point(field: str, p: Any) -> List[float]:
     return [check_finite(f"{field}[0]", seq[0]), check_finite(f"{field}[1]", seq[1])]
 
 
-def _positive_int(field: str, value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise InputError(f"invalid {field} = {value!r}: must be a positive integer", field=field, value=value)
-    return int(value)
 
 
-#: A body moved by the assembly by more than this fraction of the mechanism's extent (or by
-#: more than 0.5 rad) gets a warning.
-ASSEMBLY_SHIFT = 0.2
+#: The defaults of ``add_body``'s position and angle (compared by identity to tell "not given").
+_ORIGIN: Point = (0.0, 0.0)
+_NO_ANGLE = float("0.0")
 
 
-class Mechanism:
+class Mechanism(Running):
     """A planar mechanism of rigid bodies.
 
     Parameters
@@ -127,8 +95,8 @@ class Mechanism:
         *,
         mass: float,
         inertia: float,
-        position: Optional[Point] = None,
-        angle: Optional[float] = None,
+        position: Point = _ORIGIN,
+        angle: float = _NO_ANGLE,
         velocity: Optional[Sequence[float]] = None,
         ends: Optional[Tuple[Point, Point]] = None,
     ) -> "Mechanism":
@@ -143,8 +111,8 @@ class Mechanism:
         drive).
         """
         if ends is not None:
-            for key, value in (("position", position), ("angle", angle)):
-                if value is not None:
+            for key, value, default in (("position", position, _ORIGIN), ("angle", angle, _NO_ANGLE)):
+                if value is not default:  # given: the defaults are these very objects
                     raise InputError(
                         f"invalid body '{name}'.{key} = {value!r}: give either ends or position/angle, not both",
                         field=f"body '{name}'.{key}",
@@ -158,8 +126,6 @@ class Mechanism:
                 raise InputError(f"invalid body '{name}'.ends = {ends!r}: the two ends coincide", field=f"body '{name}'.ends", value=ends)
             position = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
             angle = math.atan2(q[1] - p[1], q[0] - p[0])
-        position = (0.0, 0.0) if position is None else position
-        angle = 0.0 if angle is None else angle
         if not isinstance(name, str) or not name:
             raise InputError(f"invalid body name = {name!r}: must be a non-empty string", field="name", value=name)
         if name == GROUND:
@@ -631,250 +597,6 @@ class Mechanism:
         m._prismatic_clearance = []
         m._compiled = None
         return m
-
-    def compile(self) -> "_core.CompiledModel":
-        """The compiled Rust model (cached until the mechanism changes)."""
-        if self._compiled is None:
-            self._compiled = _core.compile(self.description())
-        return self._compiled
-
-    @property
-    def state_dim(self) -> int:
-        """Length of the state y = (q, q̇): 6 per body."""
-        return 6 * len(self._bodies)
-
-    def state_index(self, body: str, coordinate: str, velocity: bool = False) -> int:
-        """Index in the state y = (q, q̇) of ``body``'s ``coordinate`` (``"x"``, ``"y"`` [m] or
-        ``"theta"`` [rad]; with ``velocity=True`` its rate, m/s or rad/s). In ``m.rhs(t, y)``
-        the same index gives its rate (position) or acceleration (velocity)."""
-        b = self._body("body", body, allow_ground=False)
-        assert b is not None
-        axes = ("x", "y", "theta")
-        if coordinate not in axes:
-            raise InputError(f"invalid coordinate = {coordinate!r}: must be one of x, y, theta", field="coordinate", value=coordinate)
-        return 3 * b + axes.index(coordinate) + (3 * len(self._bodies) if velocity else 0)
-
-    def plot(self, t: float = 0.0, *, magnify: Optional[float] = None, ax: Any = None) -> Any:
-        """A figure of the mechanism as assembled at time ``t`` [s]: bodies, joints, drivers,
-        force elements and the clearance joints magnified (``magnify``; default: the largest
-        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint).
-        Check a scene you wrote with it before running."""
-        from . import draw
-
-        q = self.initial_state(float(t))[: 3 * len(self._bodies)]
-        return draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
-
-    def initial_state(self, t0: float = 0.0) -> np.ndarray:
-        """Consistent initial state y0 = (q0, q̇0) from the kinematic assembly at ``t0``."""
-        return self.compile().initial_state(float(t0))
-
-    def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
-        """ẏ = f(t, y), for driving clearsim's model with an external integrator such as
-        ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in the
-        order added, then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
-        return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
-
-    def jacobian(self, t: float, y: np.ndarray) -> np.ndarray:
-        """The stiff part of ∂f/∂y at (t, y) as a dense (n, n) array, ``[[0, I], [W_q, W_v]]``:
-        the clearance joints' force derivatives mapped through the constrained mobility (the
-        Newton matrix clearsim's ``"radau"`` uses). The non-stiff remainder (pose dependence of
-        the constraints, Baumgarte terms) is left out, which implicit methods tolerate:
-        ``solve_ivp(m.rhs, ..., method="Radau", jac=m.jacobian)``. Units: 1/s² and 1/s."""
-        return self.compile().jacobian(float(t), np.ascontiguousarray(y, dtype=float))
-
-    # ------------------------------------------------------------------ running
-    @property
-    def default_integrator(self) -> str:
-        """What ``integrator="auto"`` picks: ``"radau"`` when a clearance joint is lubricated (the
-        film makes the problem stiff), else ``"rk45"``."""
-        lubricated = any(cj["model"].get("kind") == "lubricated" for cj in self._clearance)
-        return "radau" if lubricated else "rk45"
-
-    def run_settings(
-        self,
-        t_end: float,
-        *,
-        integrator: str = "auto",
-        rtol: float = 1e-6,
-        atol: float = 1e-9,
-        step: Optional[float] = None,
-        dt_out: Optional[float] = None,
-        t_out: Optional[Sequence[float]] = None,
-        t0: float = 0.0,
-        outputs: Optional[Sequence[str]] = None,
-        h_max: Optional[float] = None,
-        h_min: float = 1e-14,
-        max_steps: int = 50_000_000,
-        max_seconds: Optional[float] = None,
-    ) -> Dict[str, Any]:
-        """The settings dict of a run (see :meth:`simulate`)."""
-        t0 = check_finite("t0", t0)
-        t_end = check_finite("t_end", t_end)
-        if t_end <= t0:
-            raise InputError(f"invalid t_end = {t_end!r}: must be greater than t0 = {t0}", field="t_end", value=t_end)
-        if integrator not in INTEGRATORS:
-            raise InputError(
-                f"invalid integrator = {integrator!r}: must be one of {', '.join(INTEGRATORS)}", field="integrator", value=integrator
-            )
-        if integrator == "auto":
-            integrator = self.default_integrator
-        rtol = check_positive("rtol", rtol)
-        atol = check_positive("atol", atol)
-        if rtol >= 1.0:
-            raise InputError(f"invalid rtol = {rtol!r}: must be below 1", field="rtol", value=rtol)
-        if integrator == "rk4":
-            if step is None:
-                raise InputError("invalid step = None: the rk4 integrator needs a fixed step [s]", field="step", value=step)
-            step = check_positive("step", step)
-        if t_out is None:
-            if dt_out is None:
-                dt_out = (t_end - t0) / 1000.0
-            dt_out = check_positive("dt_out", dt_out)
-            count = (t_end - t0) / dt_out
-            if not count <= MAX_OUTPUTS:
-                raise InputError(
-                    f"invalid dt_out = {dt_out!r}: gives {count:.3g} outputs over [{t0}, {t_end}] s, more than "
-                    f"{MAX_OUTPUTS:.0e}; choose a coarser grid",
-                    field="dt_out",
-                    value=dt_out,
-                )
-            n = int(math.floor(count * (1 + 1e-12)))
-            grid = t0 + dt_out * np.arange(n + 1)
-        else:
-            grid = np.asarray(t_out, dtype=float)
-            if grid.ndim != 1 or not np.all(np.isfinite(grid)):
-                raise InputError("invalid t_out: must be a 1-D sequence of finite times", field="t_out", value=t_out)
-            if np.any(np.diff(grid) <= 0):
-                raise InputError("invalid t_out: times must increase strictly", field="t_out", value=t_out)
-        wanted = set(DEFAULT_OUTPUTS if outputs is None else outputs)
-        unknown = wanted - set(OUTPUTS)
-        if unknown:
-            raise InputError(
-                f"invalid outputs = {sorted(unknown)!r}: known outputs are {', '.join(OUTPUTS)}", field="outputs", value=sorted(unknown)
-            )
-        settings: Dict[str, Any] = {
-            "method": integrator,
-            "rtol": rtol,
-            "atol": atol,
-            "t0": t0,
-            "t_end": t_end,
-            "t_out": np.ascontiguousarray(grid),
-            "h_min": check_positive("h_min", h_min),
-            "max_steps": _positive_int("max_steps", max_steps),
-            "channels": {k: (k in wanted) for k in OUTPUTS},
-        }
-        if step is not None:
-            settings["step"] = step
-        if h_max is not None:
-            settings["h_max"] = check_positive("h_max", h_max)
-        if max_seconds is not None:
-            settings["max_seconds"] = check_positive("max_seconds", max_seconds)
-        return settings
-
-    def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
-        """Integrate from t0 (default 0) to ``t_end`` [s].
-
-        Keyword arguments
-        -----------------
-        integrator:
-            ``"auto"`` (default: ``"radau"`` when a clearance joint is lubricated, else
-            ``"rk45"``; see :attr:`default_integrator`), ``"rk45"`` (Dormand–Prince 5(4),
-            adaptive), ``"dop853"`` (8th order, for
-            tight tolerances), ``"radau"`` (RADAU5: implicit Radau IIA of order 5, L-stable,
-            with Newton matrices built from the clearance joints' force derivatives — the
-            method for lubricated joints, whose film makes the problem stiff; 4–10× faster than
-            RK45 at the same error there, slower on dry impacts), ``"rodas4"`` (L-stable
-            Rosenbrock 4(3) with a finite-difference Jacobian, ``state_dim + 7`` right-hand
-            sides per step) or ``"rk4"`` (classic, fixed ``step`` [s]).
-        rtol, atol:
-            Tolerances of the adaptive methods (default 1e-6, 1e-9).
-        dt_out / t_out:
-            Output grid spacing [s] (default (t_end − t0)/1000) or explicit output times;
-            outputs come from the dense output and never shorten a step.
-        outputs:
-            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``,
-            ``"joints"``, ``"violation"`` (default: all but ``"reactions"``).
-        h_max, h_min, max_steps:
-            Step limits [s] and the step budget.
-        max_seconds:
-            Wall-time budget of the run [s] (default none): a run over it stops with a
-            :class:`clearsim.SimulationError` ("wall-time budget ... used up at t = ...") and
-            keeps its partial result.
-
-        progress:
-            Show a progress bar (simulated time, with the time left) for runs that take longer
-            than a second; ``clearsim.set_progress(False)`` or ``CLEARSIM_PROGRESS=0`` hides
-            every bar (:mod:`clearsim.progress`).
-
-        Raises :class:`clearsim.SimulationError` (with ``.result`` holding the partial result)
-        if the run cannot go on; a Ctrl-C returns the partial result with a warning.
-        """
-        settings = self.run_settings(t_end, **kwargs)
-        compiled = self.compile()
-        from .progress import bar as progress_bar, progress_enabled
-
-        if not (progress and progress_enabled()):
-            return self._finish(compiled.simulate(settings), settings)
-        t0 = settings["t0"]
-        # Shown only for runs longer than a second; updated about every 50 ms from the core.
-        with progress_bar(settings["t_end"] - t0, "simulating", "s", unit_scale=True) as bar:
-
-            def advance(t: float) -> None:
-                # ``update`` (not ``refresh``) honours the bar's one-second delay.
-                bar.update(min(t - t0, bar.total) - bar.n)
-
-            raw = compiled.simulate(settings, advance)
-        return self._finish(raw, settings)
-
-    def simulate_with_ideal(self, t_end: float, **kwargs: Unpack[RunOptions]) -> Tuple[Result, Result]:
-        """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
-        settings on the same output grid, in parallel in the Rust core. Returns
-        ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (docs/physics.md §5)."""
-        settings = self.run_settings(t_end, **kwargs)
-        ideal = self.idealized()
-        # ``integrator="auto"`` resolves per mechanism: the ideal one has no film.
-        ideal_settings = ideal.run_settings(t_end, **kwargs)
-        raws = _core.run_batch([self.description(), ideal.description()], [settings, ideal_settings], 0)
-        for raw in raws:
-            if isinstance(raw, BaseException):
-                raise raw
-        return self._finish(raws[0], settings), ideal._finish(raws[1], ideal_settings)
-
-    def _check_assembly_shift(self, res: Result) -> None:
-        """Warn when the assembly moved a body far from the pose given: a joint point given in
-        the global instead of the body frame, or a wrong length, is the usual cause."""
-        q0 = np.asarray(res.q0, dtype=float)
-        if q0.size != 3 * len(self._bodies) or not np.all(np.isfinite(q0)):
-            return
-        guess = np.array([[*b["position"], b.get("angle", 0.0)] for b in self._bodies], dtype=float)
-        pos = guess[:, :2]
-        extent = max(float(np.ptp(pos[:, 0]) + np.ptp(pos[:, 1])), 1e-3) if len(pos) > 1 else 1.0
-        moved = np.hypot(q0[0::3] - guess[:, 0], q0[1::3] - guess[:, 1])
-        turned = np.abs((q0[2::3] - guess[:, 2] + math.pi) % (2 * math.pi) - math.pi)
-        k = int(np.argmax(moved / extent + turned / 0.5))
-        if moved[k] > ASSEMBLY_SHIFT * extent or turned[k] > 0.5:
-            warnings.warn(
-                f"the assembly moved body '{self._bodies[k]['name']}' by {moved[k]:.3g} m and {math.degrees(turned[k]):.3g}° "
-                f"from the pose given (the mechanism spans {extent:.3g} m): check its joint points (body frame, not global) "
-                "and lengths",
-                stacklevel=4,
-            )
-
-    def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
-        res = Result(raw, self.body_names, self.clearance_joint_names)
-        res.description = self.description()
-        if settings is not None:
-            res.stats["integrator"] = settings["method"]
-        self._check_assembly_shift(res)
-        err = raw.get("error")
-        if err is not None:
-            err.result = res
-            if isinstance(err, InterruptedRun):
-                warnings.warn(f"clearsim: {err}; returning the partial result", RuntimeWarning, stacklevel=3)
-                return res
-            raise err
-        return res
-
 
 __all__ = ["Mechanism", "GROUND", "SimulationError"]
 

@@ -140,7 +140,8 @@ import numpy as np
 from . import _core
 from .errors import InputError, SimulationError
 from .joints import Dry, Lubricated
-from .mechanism import OUTPUTS, Mechanism
+from .mechanism import Mechanism
+from .running import OUTPUTS
 from .result import Result
 
 try:  # Python ≥ 3.11

@@ -11,7 +11,7 @@ import pytest
 import clearsim
 from clearsim.errors import InputError
 from clearsim.joints import Lubricated
-from clearsim.mechanism import INTEGRATORS
+from clearsim.running import INTEGRATORS
 from clearsim.models import nine_bar, slider_crank
 
 NINE_BAR_CYCLE = 2 * math.pi / (5 * math.pi)

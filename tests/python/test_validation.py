@@ -439,7 +439,7 @@ def test_run_options_name_every_run_setting():
     of ``run_settings``: the two stay in step."""
     import inspect
 
-    from clearsim.mechanism import RunOptions
+    from clearsim.running import RunOptions
 
     params = [p for p in inspect.signature(cs.Mechanism.run_settings).parameters.values() if p.kind is p.KEYWORD_ONLY]
     assert sorted(p.name for p in params) == sorted(RunOptions.__annotations__)
