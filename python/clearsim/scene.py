@@ -143,14 +143,7 @@ from .joints import Dry, Lubricated
 from .mechanism import Mechanism
 from .running import OUTPUTS
 from .result import Result
-
-try:  # Python ≥ 3.11
-    import tomllib as _toml
-except ModuleNotFoundError:  # pragma: no cover - Python < 3.11
-    try:
-        import tomli as _toml  # type: ignore[no-redef]
-    except ModuleNotFoundError:
-        _toml = None  # type: ignore[assignment]
+from .toml_reader import REQUIRED, Source, Table, dotted_key, read_toml
 
 PathLike = Union[str, Path]
 
@@ -176,236 +169,6 @@ ERROR_QUANTITIES: Dict[str, str] = {"position": "displacement", "velocity": "vel
 RELIABILITY_QUANTITIES: Tuple[str, ...] = tuple(ERROR_QUANTITIES.values())
 _CHANNEL_OF = {"position": "states", "velocity": "states", "acceleration": "accelerations"}
 
-# A location in the file: the table path, e.g. ("body", 2) for the third [[body]],
-# ("clearance_joint", 0, "dry") for a sub-table, ("simulation",) or () for the top level.
-Where = Tuple[Union[str, int], ...]
-
-
-# ====================================================================== file text and lines
-_HEADER = re.compile(r"^\s*(\[\[?)\s*([^\[\]#]+?)\s*\]\]?\s*(#.*)?$")
-
-
-def _split_key(dotted: str) -> Tuple[str, ...]:
-    return tuple(part.strip().strip("\"'") for part in dotted.split("."))
-
-
-class _Source:
-    """The text of a scene file, to find the line of a key (tomllib gives no positions).
-
-    Finds the table of a location by counting ``[[name]]`` headers, then the key's line inside
-    that table's span (its sub-tables included); falls back to the table's header line.
-    """
-
-    def __init__(self, path: Path, text: str) -> None:
-        self.path = path
-        self.lines = text.splitlines()
-        # (line index, is array table, name parts)
-        self.headers: List[Tuple[int, bool, Tuple[str, ...]]] = []
-        for k, line in enumerate(self.lines):
-            m = _HEADER.match(line)
-            if m:
-                self.headers.append((k, m.group(1) == "[[", _split_key(m.group(2))))
-
-    def _span(self, where: Where) -> Tuple[int, int, Optional[int]]:
-        """(first line, end line, header line) of the table at ``where`` (of the deepest
-        enclosing table written as a header if ``where`` itself is not)."""
-        start, end, header = 0, len(self.lines), None
-        if not where:
-            return 0, (self.headers[0][0] if self.headers else len(self.lines)), None
-        prefix: Tuple[str, ...] = ()
-        k = 0
-        while k < len(where):
-            prefix += (str(where[k]),)
-            nth = where[k + 1] if k + 1 < len(where) and isinstance(where[k + 1], int) else 0
-            k += 2 if k + 1 < len(where) and isinstance(where[k + 1], int) else 1
-            matches = [h for h, (n, _array, parts) in enumerate(self.headers) if start <= n < end and parts == prefix]
-            if nth >= len(matches):
-                break
-            h = matches[nth]
-            header = self.headers[h][0]
-            start, end = header + 1, len(self.lines)
-            for n, _array, parts in self.headers[h + 1 :]:
-                if parts[: len(prefix)] != prefix or parts == prefix:
-                    end = n
-                    break
-        return start, end, header
-
-    def line(self, where: Where, key: Optional[str] = None) -> Optional[int]:
-        """1-based line of ``key`` in the table at ``where`` (of the table itself if no key or
-        the key is not written there); ``None`` if neither is found."""
-        start, end, header = self._span(where)
-        if key is not None:
-            k = re.escape(key)
-            patterns = (
-                re.compile(rf"^\s*(?:{k}|\"{k}\"|'{k}')\s*="),  # key = ...
-                re.compile(rf"[{{,.]\s*(?:{k}|\"{k}\"|'{k}')\s*="),  # inline table / dotted key
-            )
-            for pattern in patterns:
-                for n in range(start, end):
-                    if pattern.search(self.lines[n].split("#", 1)[0]):
-                        return n + 1
-            # A table written as a header: [key] or [[key]], [parent.key]
-            sub = self._span(where + (key,))[2]
-            if sub is not None:
-                return sub + 1
-        return None if header is None else header + 1
-
-    def error(self, where: Where, key: Optional[str], message: str, value: Any = None) -> InputError:
-        """An :class:`InputError` ``file:line: message`` with ``file``, ``line``, ``field``."""
-        line = self.line(where, key)
-        dotted = _dotted(where, key)
-        pos = f"{self.path}:{line}" if line is not None else f"{self.path}"
-        return InputError(f"{pos}: {message}", field=dotted, value=value, file=str(self.path), line=line)
-
-
-def _dotted(where: Where, key: Optional[str]) -> str:
-    parts: List[str] = []
-    for p in where:
-        if isinstance(p, int):
-            parts[-1] += f"[{p}]"
-        else:
-            parts.append(p)
-    if key is not None:
-        parts.append(key)
-    return ".".join(parts)
-
-
-def _label(where: Where) -> str:
-    """Human name of a table: ``[[body]] #3``, ``[simulation]``."""
-    names = [p for p in where if isinstance(p, str)]
-    if not names:
-        return "top level"
-    idx = [p for p in where if isinstance(p, int)]
-    if idx:
-        return f"[[{names[0]}]] #{idx[0] + 1}" + "".join(f" [{n}]" for n in names[1:])
-    return "[" + ".".join(names) + "]"
-
-
-# ====================================================================== typed table reader
-_REQUIRED = object()
-
-
-def _type_name(value: Any) -> str:
-    return {bool: "a boolean", str: "a string", int: "an integer", float: "a number", list: "an array", dict: "a table"}.get(
-        type(value), type(value).__name__
-    )
-
-
-class _Table:
-    """One TOML table being read: typed getters whose errors point at the key's line."""
-
-    def __init__(self, src: _Source, where: Where, data: Any, known: Sequence[str]) -> None:
-        if not isinstance(data, dict):
-            parent = where[:-2] if isinstance(where[-1], int) else where[:-1]
-            raise src.error(parent, _last_name(where), f"invalid {_dotted(where, None)}: must be a table, not {_type_name(data)}", data)
-        self.src, self.where, self.data = src, where, data
-        for key in data:
-            if key not in known:
-                raise src.error(
-                    where, key, f"unknown key '{key}' in {_label(where)} (known: {', '.join(known)})", data[key]
-                )
-
-    def __contains__(self, key: str) -> bool:
-        return key in self.data
-
-    def error(self, key: Optional[str], message: str, value: Any = None) -> InputError:
-        return self.src.error(self.where, key, message, value)
-
-    def _get(self, key: str, default: Any) -> Any:
-        if key in self.data:
-            return self.data[key]
-        if default is _REQUIRED:
-            raise self.error(None, f"missing key '{key}' in {_label(self.where)}")
-        return default
-
-    def _bad(self, key: str, value: Any, what: str) -> InputError:
-        return self.error(key, f"invalid {_dotted(self.where, key)} = {value!r}: must be {what}, not {_type_name(value)}", value)
-
-    def number(self, key: str, default: Any = _REQUIRED) -> Any:
-        value = self._get(key, default)
-        if key not in self.data:
-            return value
-        return self._as_number(key, value)
-
-    def _as_number(self, key: str, value: Any) -> float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise self._bad(key, value, "a number")
-        return float(value)
-
-    def integer(self, key: str, default: Any = _REQUIRED) -> Any:
-        value = self._get(key, default)
-        if key in self.data and (isinstance(value, bool) or not isinstance(value, int)):
-            raise self._bad(key, value, "an integer")
-        return value
-
-    def boolean(self, key: str, default: Any = _REQUIRED) -> Any:
-        value = self._get(key, default)
-        if key in self.data and not isinstance(value, bool):
-            raise self._bad(key, value, "true or false")
-        return value
-
-    def string(self, key: str, default: Any = _REQUIRED, choices: Optional[Sequence[str]] = None) -> Any:
-        value = self._get(key, default)
-        if key not in self.data:
-            return value
-        if not isinstance(value, str):
-            raise self._bad(key, value, "a string")
-        if choices is not None and value not in choices:
-            raise self.error(key, f"invalid {_dotted(self.where, key)} = {value!r}: must be one of {', '.join(choices)}", value)
-        return value
-
-    def strings(self, key: str, default: Any = _REQUIRED, choices: Optional[Sequence[str]] = None) -> Any:
-        value = self._get(key, default)
-        if key not in self.data:
-            return value
-        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-            raise self._bad(key, value, "an array of strings")
-        for v in value:
-            if choices is not None and v not in choices:
-                raise self.error(key, f"invalid {_dotted(self.where, key)} entry {v!r}: must be one of {', '.join(choices)}", value)
-        return list(value)
-
-    def numbers(self, key: str, default: Any = _REQUIRED, length: Optional[int] = None) -> Any:
-        value = self._get(key, default)
-        if key not in self.data:
-            return value
-        what = f"an array of {length} numbers" if length else "an array of numbers"
-        if not isinstance(value, list) or (length is not None and len(value) != length):
-            raise self._bad(key, value, what)
-        if any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value):
-            raise self._bad(key, value, what)
-        return [float(v) for v in value]
-
-    def point(self, key: str, default: Any = _REQUIRED) -> Any:
-        return self.numbers(key, default, length=2)
-
-    def points(self, key: str, count: int, default: Any = _REQUIRED) -> Any:
-        value = self._get(key, default)
-        if key not in self.data:
-            return value
-        what = f"an array of {count} points [x, y]"
-        if not isinstance(value, list) or len(value) != count:
-            raise self._bad(key, value, what)
-        for p in value:
-            if not (isinstance(p, list) and len(p) == 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in p)):
-                raise self._bad(key, value, what)
-        return [[float(v) for v in p] for p in value]
-
-    def table(self, key: str, known: Sequence[str]) -> Optional["_Table"]:
-        if key not in self.data:
-            return None
-        return _Table(self.src, self.where + (key,), self.data[key], known)
-
-    def array_of_tables(self, key: str, known: Sequence[str]) -> List["_Table"]:
-        value = self.data.get(key, [])
-        if not isinstance(value, list):
-            raise self.error(key, f"invalid {key}: must be written as [[{key}]] tables", value)
-        return [_Table(self.src, self.where + (key, k), entry, known) for k, entry in enumerate(value)]
-
-
-def _last_name(where: Where) -> Optional[str]:
-    names = [p for p in where if isinstance(p, str)]
-    return names[-1] if names else None
 
 
 # ====================================================================== settings
@@ -620,35 +383,11 @@ _RELIABILITY_KEYS = ("body", "component", "bin_width", "omega", "t_start", "allo
 _FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "point_b": "points", "driver": None}
 
 
-def _read(path: Path) -> Tuple[_Source, Dict[str, Any]]:
-    if _toml is None:  # pragma: no cover - Python < 3.11 without tomli
-        raise InputError(
-            f"{path}: reading scene files on Python < 3.11 needs the 'tomli' package: pip install tomli", field="file", value=str(path)
-        )
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as err:
-        raise InputError(f"{path}: cannot read the scene file: {err.strerror or err}", field="file", value=str(path), file=str(path)) from None
-    except UnicodeDecodeError as err:
-        raise InputError(
-            f"{path}: the scene file is not UTF-8 text (byte {err.start}); save it as UTF-8", field="file", value=str(path), file=str(path)
-        ) from None
-    src = _Source(path, text)
-    try:
-        data = _toml.loads(text)
-    except _toml.TOMLDecodeError as err:
-        m = re.search(r"line (\d+)", str(err))
-        line = int(m.group(1)) if m else None
-        pos = f"{path}:{line}" if line else str(path)
-        raise InputError(f"{pos}: invalid TOML: {err}", field="file", value=str(path), file=str(path), line=line) from None
-    return src, data
-
-
 def _model_fields(cls: type) -> Tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(cls))
 
 
-def _read_model(table: _Table, cls: type) -> Any:
+def _read_model(table: Table, cls: type) -> Any:
     """A :class:`Dry` or :class:`Lubricated` from a sub-table using the dataclass's field names."""
     kwargs: Dict[str, Any] = {}
     for f in dataclasses.fields(cls):
@@ -671,20 +410,20 @@ def _read_model(table: _Table, cls: type) -> Any:
 class _Builder:
     """Builds the Mechanism of a scene, entry by entry, locating every error in the file."""
 
-    def __init__(self, src: _Source, top: _Table) -> None:
+    def __init__(self, src: Source, top: Table) -> None:
         self.src = src
         self.top = top
-        self.entries: Dict[Tuple[str, str], _Table] = {}  # (kind, name) → its table
-        self.mechanism_table = top.table("mechanism", _MECHANISM_KEYS) or _Table(src, ("mechanism",), {}, ())
+        self.entries: Dict[Tuple[str, str], Table] = {}  # (kind, name) → its table
+        self.mechanism_table = top.table("mechanism", _MECHANISM_KEYS) or Table(src, ("mechanism",), {}, ())
 
-    def call(self, table: _Table, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+    def call(self, table: Table, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
         """``fn(*args, **kwargs)``, with an InputError relocated to ``table``'s key."""
         try:
             return fn(*args, **kwargs)
         except InputError as err:
             raise self.relocate(err, table) from None
 
-    def relocate(self, err: InputError, table: Optional[_Table]) -> InputError:
+    def relocate(self, err: InputError, table: Optional[Table]) -> InputError:
         """``err`` (raised by the builder or the Rust core) with the file and line."""
         fld = getattr(err, "field", "") or ""
         m = re.match(r"^(body|clearance joint|joint|driver|revolute|prismatic|force) '([^']*)'\.(.+)$", fld)
@@ -718,9 +457,9 @@ class _Builder:
             self.force_element(m, t)
         return m
 
-    def _load(self, t: _Table, key: str, columns: Sequence[str]) -> Any:
+    def _load(self, t: Table, key: str, columns: Sequence[str]) -> Any:
         """A load: a number, a pair, or an inline table (see :mod:`clearsim.forces`)."""
-        value = t._get(key, _REQUIRED)
+        value = t._get(key, REQUIRED)
         if isinstance(value, dict):
             sub = t.table(key, ("t", "driver", "angle", "period", *columns))
             assert sub is not None
@@ -732,7 +471,7 @@ class _Builder:
             return out
         return t.number(key) if columns == ("torque",) else t.point(key)
 
-    def force_element(self, m: Mechanism, t: _Table) -> None:
+    def force_element(self, m: Mechanism, t: Table) -> None:
         kind = t.string("type", choices=tuple(_FORCE_KEYS))
         for key in t.data:
             if key not in _FORCE_KEYS[kind]:
@@ -761,11 +500,11 @@ class _Builder:
                 reaction=t.string("reaction", "ground"),
             )  # fmt: skip
 
-    def _register(self, kind: str, name: Optional[str], table: _Table) -> None:
+    def _register(self, kind: str, name: Optional[str], table: Table) -> None:
         if name is not None:
             self.entries[(kind, name)] = table
 
-    def body(self, m: Mechanism, t: _Table) -> None:
+    def body(self, m: Mechanism, t: Table) -> None:
         name = t.string("name")
         self._register("body", name, t)
         if "ends" in t:
@@ -780,7 +519,7 @@ class _Builder:
             velocity=t.numbers("velocity", None, length=3), **where,
         )  # fmt: skip
 
-    def joint(self, m: Mechanism, t: _Table) -> None:
+    def joint(self, m: Mechanism, t: Table) -> None:
         kind = t.string("type", choices=tuple(_JOINT_KEYS))
         for key in t.data:
             if key not in _JOINT_KEYS[kind]:
@@ -789,13 +528,13 @@ class _Builder:
         self._register("joint", name, t)
         bodies = t.strings("bodies")
         if len(bodies) != 2:
-            raise t.error("bodies", f"invalid {_dotted(t.where, 'bodies')} = {bodies!r}: must name two bodies", bodies)
+            raise t.error("bodies", f"invalid {dotted_key(t.where, 'bodies')} = {bodies!r}: must name two bodies", bodies)
         (pa, pb) = t.points("points", 2)
         extra = {"axis": t.point("axis")} if "axis" in t else {}
         fn = m.revolute if kind == "revolute" else m.prismatic
         self.call(t, fn, bodies[0], pa, bodies[1], pb, name=name, **extra)
 
-    def driver(self, m: Mechanism, t: _Table) -> None:
+    def driver(self, m: Mechanism, t: Table) -> None:
         name = t.string("name", None)
         self._register("driver", name, t)
         body = t.string("body")
@@ -811,7 +550,7 @@ class _Builder:
         )  # fmt: skip
         self.call(t, m.driver, body, **kwargs)
 
-    def clearance_joint(self, m: Mechanism, t: _Table) -> None:
+    def clearance_joint(self, m: Mechanism, t: Table) -> None:
         kind = t.string("type", "revolute", choices=("revolute", "prismatic"))
         known = _CLEARANCE_KEYS if kind == "revolute" else _PRISMATIC_CLEARANCE_KEYS
         for key in t.data:
@@ -886,7 +625,7 @@ def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationS
 
 
 def _outputs(b: _Builder, m: Mechanism) -> OutputSettings:
-    t = b.top.table("outputs", _OUTPUT_KEYS) or _Table(b.src, ("outputs",), {}, ())
+    t = b.top.table("outputs", _OUTPUT_KEYS) or Table(b.src, ("outputs",), {}, ())
     joints = m.clearance_joint_names
     out = OutputSettings(
         bodies=t.strings("bodies", [], choices=m.body_names),
@@ -922,7 +661,7 @@ def _reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]:
             if q in a:
                 lo, hi = a.numbers(q, length=2)
                 if not lo < hi:
-                    raise a.error(q, f"invalid {_dotted(a.where, q)} = {[lo, hi]!r}: must be [lower, upper] with lower < upper", [lo, hi])
+                    raise a.error(q, f"invalid {dotted_key(a.where, q)} = {[lo, hi]!r}: must be [lower, upper] with lower < upper", [lo, hi])
                 allowable[q] = (lo, hi)
         if not allowable:
             raise a.error(None, "invalid [reliability.allowable]: give at least one of " + ", ".join(RELIABILITY_QUANTITIES))
@@ -961,8 +700,8 @@ def load_scene_file(path: PathLike) -> Scene:
     the mechanism builder or the Rust core rejects.
     """
     path = Path(path)
-    src, data = _read(path)
-    top = _Table(src, (), data, _TOP_KEYS)
+    src, data = read_toml(path)
+    top = Table(src, (), data, _TOP_KEYS)
     builder = _Builder(src, top)
     mech = builder.build()
     try:
