@@ -1,0 +1,311 @@
+"""The paper study's cases, runs and their analysis (errors, peaks, FOSM per bin, film-model
+comparison runs): the computing half of ``clearsim paper`` (:mod:`clearsim.study.paper`)."""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from typing import Any, Dict, Iterator, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ..errors import SimulationError
+from ..models import nine_bar
+from ..reliability import FosmResult, fosm
+from ..result import Result
+from . import paper_values as PV
+
+
+QUANTITIES: Tuple[str, ...] = ("displacement", "velocity", "acceleration")
+UNIT = {"displacement": "m", "velocity": "m/s", "acceleration": "m/s²"}
+CSV_UNIT = {"displacement": "m", "velocity": "m_per_s", "acceleration": "m_per_s2"}
+SLIDER = "slider9"
+AXIS_Y = 1
+JOINTS = ("A", "B")
+BIN_WIDTH = 18.0  # [deg] the paper's bins
+GRID_DEG = 0.5  # [deg] output grid of the full study
+GRID_DEG_QUICK = 2.0  # [deg] output grid of the quick study
+VISCOSITY = 0.4  # [Pa s]
+BEARING_LENGTH = 0.05  # [m]
+TRANSITION_FRACTION = 0.05  # e0 = 0.05 c (docs/physics.md §4, the Lubricated default)
+_ANGLE_TOL = 1e-6  # [deg]
+HOLDS, FAILS, NOT_EVALUABLE = "holds", "does not hold", "not evaluable"
+
+
+# ====================================================================== cases
+
+
+@dataclass(frozen=True)
+class Case:
+    """One run of the study: ``joints`` ∈ ideal/dry/lubricated, ``clearance`` [m] (None for
+    ideal), ``omega`` [rad/s]."""
+
+    key: str
+    joints: str
+    clearance: Optional[float]
+    omega: float
+    film: str = "long"  # film model of the lubricated joints (clearsim.Lubricated.film)
+
+    @property
+    def speed(self) -> str:
+        """``"5π"`` or ``"8π"``."""
+        return f"{abs(self.omega) / math.pi:g}π"
+
+    @property
+    def kind(self) -> str:
+        return {"lubricated": "lubricated", "dry": "dry", "ideal": "ideal"}[self.joints]
+
+    @property
+    def c_mm(self) -> float:
+        return float("nan") if self.clearance is None else self.clearance * 1e3
+
+    @property
+    def period(self) -> float:
+        """Crank period 2π/|ω| [s]."""
+        return 2.0 * math.pi / abs(self.omega)
+
+    @property
+    def label(self) -> str:
+        if self.joints == "ideal":
+            return f"ideal, ω = −{self.speed} rad/s"
+        return f"{self.kind}, c = {self.c_mm:g} mm, ω = −{self.speed} rad/s"
+
+    def mechanism(self) -> Any:
+        if self.joints == "ideal":
+            return nine_bar("ideal", omega=self.omega)
+        from ..joints import Lubricated
+
+        lub = Lubricated(viscosity=VISCOSITY, length=BEARING_LENGTH, film=self.film)
+        return nine_bar(self.joints, clearance=self.clearance, omega=self.omega, lubricated=lub)
+
+
+def _case(joints: str, c_mm: Optional[float], speed: int) -> Case:
+    short = {"dry": "dry", "lubricated": "lub", "ideal": "ideal"}[joints]
+    key = f"ideal-{speed}pi" if c_mm is None else f"{short}-c{c_mm:g}-{speed}pi"
+    return Case(key, joints, None if c_mm is None else c_mm * 1e-3, -speed * math.pi)
+
+
+#: Every run of the study (the ideal run at 5π serves both studies).
+CASES: Dict[str, Case] = {
+    c.key: c
+    for c in (
+        _case("ideal", None, 5),
+        _case("ideal", None, 8),
+        _case("dry", 0.3, 5),
+        _case("dry", 0.5, 5),
+        _case("lubricated", 0.3, 5),
+        _case("lubricated", 0.5, 5),
+        _case("dry", 0.6, 5),
+        _case("lubricated", 0.6, 5),
+        _case("dry", 0.6, 8),
+        _case("lubricated", 0.6, 8),
+    )
+}
+CLEARANCE_STUDY = ("dry-c0.3-5pi", "dry-c0.5-5pi", "lub-c0.3-5pi", "lub-c0.5-5pi")
+SPEED_STUDY = ("dry-c0.6-5pi", "dry-c0.6-8pi", "lub-c0.6-5pi", "lub-c0.6-8pi")
+CLEARANCE_CASES = CLEARANCE_STUDY + SPEED_STUDY
+
+
+def _ideal_key(case: Case) -> str:
+    return f"ideal-{abs(case.omega) / math.pi:g}pi"
+
+
+def _short_label(case: Case, study: str) -> str:
+    """Legend label: what varies within the figure."""
+    if study == "kind":
+        return case.kind
+    if study == "clearance":
+        return f"{case.kind}, c = {case.c_mm:g} mm"
+    return f"{case.kind}, ω = −{case.speed} rad/s"
+
+
+# ====================================================================== running
+
+
+@dataclass
+class Run:
+    case: Case
+    result: Result
+    wall_time: float  # [s] measured around Mechanism.simulate (assembly included)
+    failure: Optional[str] = None
+
+
+def _grid(case: Case, cycles: int, grid_deg: float) -> np.ndarray:
+    n = int(round(360.0 / grid_deg)) * cycles
+    return np.linspace(0.0, cycles * case.period, n + 1)
+
+
+def _simulate(case: Case, grid: np.ndarray, max_seconds: Optional[float] = None) -> Run:
+    mech = case.mechanism()
+    start = time.perf_counter()
+    failure = None
+    budget = {} if max_seconds is None else {"max_seconds": max_seconds}
+    try:
+        res = mech.simulate(float(grid[-1]), t_out=grid, integrator="auto", rtol=1e-6, atol=1e-9, progress=False, **budget)
+    except SimulationError as err:
+        res = getattr(err, "result", None)
+        if res is None:
+            raise
+        failure = str(err)
+    return Run(case, res, time.perf_counter() - start, failure)
+
+
+def _with_film(case: Case, film: str) -> Case:
+    """The case with its lubricated joints on ``film`` (dry and ideal cases unchanged)."""
+    import dataclasses
+
+    return dataclasses.replace(case, film=film) if case.joints == "lubricated" else case
+
+
+def _run_all(
+    cycles: int, grid_deg: float, progress: bool, film: str = "long", cases: Optional[Sequence[Case]] = None, what: str = "runs", max_seconds: Optional[float] = None
+) -> Dict[str, Run]:
+    """All runs, in threads (the Rust core releases the GIL), longest first, one bar tick per run."""
+    from ..progress import bar as progress_bar
+
+    chosen = [_with_film(c, film) for c in CASES.values()] if cases is None else list(cases)
+    order = sorted(chosen, key=lambda c: ({"lubricated": 0, "dry": 1, "ideal": 2}[c.joints], c.omega))
+    workers = max(1, min(len(order), os.cpu_count() or 1))
+    runs: Dict[str, Run] = {}
+    with ThreadPoolExecutor(max_workers=workers) as pool, progress_bar(
+        len(order), f"clearsim paper: {what}", "run", enabled=progress, delay=0.0, leave=True
+    ) as bar:
+        futures = {pool.submit(_simulate, c, _grid(c, cycles, grid_deg), max_seconds): c for c in order}
+        for fut in as_completed(futures):
+            run = fut.result()
+            runs[run.case.key if cases is None else f"{run.case.key}|{run.case.film}"] = run
+            bar.set_postfix_str(run.case.key)
+            bar.update(1)
+    return runs
+
+
+# ====================================================================== analysis
+
+
+@dataclass
+class Peak:
+    value: float  # signed error at the largest |error|
+    time: float  # [s]
+    angle: float  # [deg]
+
+
+@dataclass
+
+
+class Analysis:
+    """Errors and reliability of one clearance case."""
+
+    case: Case
+    t: np.ndarray  # [s]
+    angle: np.ndarray  # [deg] crank angle |ω| t
+    errors: Dict[str, np.ndarray]  # slider y error per quantity (SI)
+    analysed: np.ndarray  # mask of the samples of the analysed cycles
+    first_cycle: int  # first analysed cycle (0-based)
+    pooled: Dict[str, Optional[FosmResult]]  # per 18° bin, pooled over the analysed cycles
+    per_cycle: Optional[FosmResult]  # displacement, one set of bins per cycle, all cycles
+    peak: Dict[str, Optional[Peak]]  # whole run
+    peak_first: Dict[str, Optional[Peak]]  # within the first cycle
+    rms: Dict[str, float]  # over the analysed cycles
+    peak_analysed: Dict[str, float]  # max |error| over the analysed cycles
+    peak_analysed_signed: Dict[str, Optional[Peak]] = field(default_factory=dict)
+
+    @property
+    def peak_analysed_at(self) -> Optional[Peak]:
+        """The acceleration peak over the analysed cycles."""
+        return self.peak_analysed_signed.get("acceleration")
+
+
+def _peak(t: np.ndarray, angle: np.ndarray, e: np.ndarray, mask: np.ndarray) -> Optional[Peak]:
+    idx = np.flatnonzero(mask)
+    if idx.size == 0:
+        return None
+    k = int(idx[np.argmax(np.abs(e[idx]))])
+    return Peak(float(e[k]), float(t[k]), float(angle[k]))
+
+
+def _analyse(case: Case, run: Run, ideal: Run, cycles: int) -> Analysis:
+    res, ref = run.result, ideal.result
+    n = min(len(res.t), len(ref.t))
+    t = np.asarray(res.t[:n], dtype=float)
+    angle = np.degrees(abs(case.omega) * t)
+    errors = {q: np.asarray(res.error(ref, SLIDER, q)[:n, AXIS_Y], dtype=float) for q in QUANTITIES}
+    first = 1 if cycles >= 2 else 0
+    inside = angle < 360.0 * cycles - _ANGLE_TOL  # the end point would open a one-sample cycle
+    analysed = inside & (angle >= 360.0 * first - _ANGLE_TOL)
+    pooled: Dict[str, Optional[FosmResult]] = {}
+    for q in QUANTITIES:
+        pooled[q] = fosm(errors[q][analysed], angle[analysed], q, bin_width=BIN_WIDTH) if np.any(analysed) else None
+    per_cycle = None
+    if np.any(inside):
+        per_cycle = fosm(errors["displacement"][inside], angle[inside], "displacement", bin_width=BIN_WIDTH, per_cycle=True).per_cycle
+    first_cycle = angle < 360.0 - _ANGLE_TOL
+    return Analysis(
+        case=case,
+        t=t,
+        angle=angle,
+        errors=errors,
+        analysed=analysed,
+        first_cycle=first,
+        pooled=pooled,
+        per_cycle=per_cycle,
+        peak={q: _peak(t, angle, errors[q], np.ones(n, dtype=bool)) for q in QUANTITIES},
+        peak_first={q: _peak(t, angle, errors[q], first_cycle) for q in QUANTITIES},
+        rms={q: float(np.sqrt(np.mean(errors[q][analysed] ** 2))) if np.any(analysed) else float("nan") for q in QUANTITIES},
+        peak_analysed={q: float(np.max(np.abs(errors[q][analysed]))) if np.any(analysed) else float("nan") for q in QUANTITIES},
+        peak_analysed_signed={q: _peak(t, angle, errors[q], analysed) for q in QUANTITIES},
+    )
+
+
+# ====================================================================== film models
+#: Wall-time budget [s] of each film-comparison run: the printed closed forms stall the
+#: integrator near t ≈ 0.09 s whatever the budget (20 s and 60 s reach the same time).
+FILM_RUN_BUDGET_S = 5.0
+#: The film models the report compares on the lubricated runs.
+FILMS: Tuple[str, ...] = ("long", "short", "finite", "long_paper")
+FILM_LABEL = {
+    "long": "long (Gümbel, corrected)",
+    "short": "short (Ocvirk)",
+    "finite": "finite L/D = 2.5 (Reynolds)",
+    "long_paper": "paper's printed P13–P14",
+}
+
+
+def _film_runs(runs: Dict[str, Run], cycles: int, grid_deg: float, progress: bool, film: str, budget: float) -> Dict[Tuple[str, str], Tuple[Run, Analysis]]:
+    """Every lubricated case of the study under every film model (the study's own ``film``
+    reused), analysed against the same ideal runs."""
+    lub = [k for k in CLEARANCE_CASES if CASES[k].joints == "lubricated"]
+    others = [_with_film(CASES[k], f) for k in lub for f in FILMS if f != film]
+    # The printed closed forms (long_paper) can stall the integrator (their spurious receding
+    # force chatters): every comparison run gets a wall-time budget and reports how far it got.
+    extra = _run_all(cycles, grid_deg, progress, cases=others, what="film models", max_seconds=budget)
+    out: Dict[Tuple[str, str], Tuple[Run, Analysis]] = {}
+    for k in lub:
+        for f in FILMS:
+            run = runs[k] if f == film else extra[f"{k}|{f}"]
+            out[(k, f)] = (run, _analyse(run.case, run, runs[_ideal_key(CASES[k])], cycles))
+    return out
+
+
+def _max_ecc(run: Run) -> float:
+    c = float(run.case.clearance or float("nan"))
+    return max(float(np.max(np.hypot(*run.result.eccentricity(j).T))) for j in JOINTS) / c
+
+
+def _r_beta(f: Optional[FosmResult]) -> str:
+    return "–" if f is None else f"{f.min_reliability:.4f} (β {f.min_beta:.3f})"
+
+
+def _min_R(a: Analysis, q: str) -> float:
+    f = a.pooled[q]
+    return float("nan") if f is None else f.min_reliability
+
+
+def minima_with_paper(an: Dict[str, Analysis]) -> Iterator[Tuple[Analysis, str, Optional[FosmResult], Tuple[float, Optional[float], float]]]:
+    """For each clearance-study case and quantity: its analysis, the quantity, our pooled FOSM
+    result and the paper's (angle [deg], β or None, R) of the minimum reliability."""
+    for key in CLEARANCE_CASES:
+        for q in QUANTITIES:
+            yield an[key], q, an[key].pooled[q], PV.MINIMA[key][q]
