@@ -122,6 +122,8 @@ pub struct MechanismSystem<'a> {
     pub model: &'a Model,
     pub ws: Workspace,
     pub memory: Vec<ImpactMemory>,
+    /// The memory as it was during the step last accepted (what its outputs are evaluated with).
+    step_memory: Vec<ImpactMemory>,
     pub recording: Recording,
     stop: Option<StopCheck<'a>>,
     /// Start of the run and its wall-time budget [s] ([`RunSettings::max_wall_time`]).
@@ -158,6 +160,7 @@ impl<'a> MechanismSystem<'a> {
             model,
             ws: Workspace::new(model),
             memory: vec![ImpactMemory::default(); model.clearance.len()],
+            step_memory: vec![ImpactMemory::default(); model.clearance.len()],
             recording: Recording::new(channels, capacity, model),
             stop,
             budget: None,
@@ -560,6 +563,7 @@ impl OdeSystem for MechanismSystem<'_> {
     /// Locate contact onsets inside the step and record δ̇⁽⁻⁾ there (docs/physics.md §3, P3); clear the
     /// memory at separation.
     fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
+        self.step_memory.copy_from_slice(&self.memory);
         if self.energy.is_some() {
             // The step's powers with the impact memory it was integrated with (§10.5).
             let tm = 0.5 * (t0 + t1);
@@ -587,6 +591,11 @@ impl OdeSystem for MechanismSystem<'_> {
             }
             self.scratch = s;
         }
+        // Monitors and outputs inside the step see the impact memory the step was integrated
+        // with: a contact that ends at t1 still used its δ̇⁽⁻⁾ inside the step (P3).
+        if !self.monitors.is_empty() {
+            self.observe_step(t0, t1, y1, dense)?;
+        }
         let mut changed = false;
         for j in 0..self.memory.len() {
             let k1 = self.joint_kinematics(j, y1);
@@ -610,9 +619,6 @@ impl OdeSystem for MechanismSystem<'_> {
             } else if k1.delta <= 0.0 && self.memory[j].in_contact {
                 self.memory[j].in_contact = false;
             }
-        }
-        if !self.monitors.is_empty() {
-            self.observe_step(t0, t1, y1, dense)?;
         }
         self.last_t = t1;
         self.last_y.copy_from_slice(y1);
@@ -740,7 +746,8 @@ impl OdeSystem for MechanismSystem<'_> {
 
     fn output(&mut self, t: f64, y: &[f64]) -> Result<()> {
         if self.recording.needs_evaluation() {
-            self.ws.evaluate(self.model, &self.memory, t, y)?;
+            // Outputs lie inside the step just accepted: the memory it was integrated with.
+            self.ws.evaluate(self.model, &self.step_memory, t, y)?;
         }
         self.recording.push(t, y, &self.ws);
         if let Some(book) = &self.energy {
