@@ -348,3 +348,30 @@ def test_outputs_inside_a_contact_use_its_impact_speed_to_the_end():
         v = implied[ep[usable[ep]]]
         median = np.median(v)
         assert np.max(np.abs(v[-3:] - median)) < 1e-6 * abs(median), (r.t[ep[0]], v[-3:], median)
+
+
+@pytest.mark.parametrize("omega", [100.0, -100.0])
+def test_a_loaded_journal_settles_at_the_long_bearing_attitude_angle(omega):
+    """A 10 kg shaft turning at ±100 rad/s in a lubricated bearing (R = 10 mm, c = 0.1 mm,
+    L = 20 mm, μ = 0.05 Pa s) under its weight settles where the film carries the load. Closed
+    forms of the half-Sommerfeld long bearing (docs/physics.md §4, wedge = θ̇ since the bearing is
+    fixed and the journal does not whirl): the attitude angle φ between the load line and the
+    eccentricity, tan φ = π√(1 − ε²)/(2ε), turned from the load line in the direction of
+    rotation (so a counter-clockwise shaft sits down and to the right), and the load
+    W = 6μ|θ̇|LR(R/c)² ε√(π²(1 − ε²) + 4ε²)/((2 + ε²)(1 − ε²))."""
+    mass, r_j, c, length, mu = 10.0, 0.01, 1e-4, 0.02, 0.05
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("shaft", mass=mass, inertia=1e-3)
+    m.clearance_joint("bearing", "ground", (0, 0), "shaft", (0, 0), journal_radius=r_j, clearance=c,
+                      model=clearsim.Lubricated(viscosity=mu, length=length))  # fmt: skip
+    m.driver("shaft", omega=omega)
+    r = m.simulate(0.5, dt_out=1e-3)
+    ex, ey = r.eccentricity("bearing")[-1] / c
+    eps = math.hypot(ex, ey)
+    assert ey < 0 and (ex > 0) == (omega > 0), (ex, ey)
+    phi = math.atan2(abs(ex), -ey)  # from the load line (−y) toward the eccentricity
+    assert math.degrees(abs(phi - math.atan(math.pi * math.sqrt(1 - eps**2) / (2 * eps)))) < 0.2, (math.degrees(phi), eps)
+    load = 6 * mu * abs(omega) * length * r_j * (r_j / c) ** 2 * eps * math.sqrt(math.pi**2 * (1 - eps**2) + 4 * eps**2)
+    load /= (2 + eps**2) * (1 - eps**2)
+    assert load == pytest.approx(mass * 9.81, rel=0.01)
+    assert r.joint_force("bearing")[-1] == pytest.approx([0.0, mass * 9.81], abs=1e-3 * mass * 9.81)
