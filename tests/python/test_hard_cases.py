@@ -248,6 +248,24 @@ def _check_toggle(case, m, r, metrics):
     assert np.max(np.abs(ideal.acceleration("slider")[:, 0])) > 5 * 0.05 * omega**2
 
 
+def _micrometre_case(clearance: str, model: str, shows: str, wall: bool = False) -> Case:
+    """A lubricated model with a µm clearance (``"5 µm"``) at default settings, one crank turn,
+    journal centred or released at rest at ε = 0.99 (``wall``), checked by
+    :func:`_check_micrometre_film`."""
+    c = float(clearance.split()[0]) * 1e-6
+    build_model = getattr(models, model)
+    if wall:
+        build = lambda: with_initial_eccentricity(build_model("lubricated", clearance=c), "rod-slider", (0.99 * c, 0.0))  # noqa: E731
+        where = "starts at the wall (ε = 0.99)"
+    else:
+        build = lambda: build_model("lubricated", clearance=c)  # noqa: E731
+        where = "starts centred"
+    period = SC_REV if model == "slider_crank" else NB_CYCLE
+    label = f"lubricated c = {clearance}, {where}" if model == "slider_crank" else f"nine-bar lubricated c = {clearance}"
+    return Case(label, f"{shows}; default settings, 1 {'revolution' if model == 'slider_crank' else 'cycle'}", build, period,
+                dict(dt_out=period / (200 if model == "slider_crank" else 400)), check=_check_micrometre_film)  # fmt: skip
+
+
 CASES: List[Case] = [
     Case(
         "dry c = 1 µm",
@@ -285,36 +303,11 @@ CASES: List[Case] = [
         lambda: models.slider_crank("lubricated"),
         2 * SC_REV, dict(dt_out=SC_REV / 200), check=_check_centred,
     ),
-    Case(
-        "lubricated c = 5 µm, starts centred",
-        "a machine-bearing clearance (R/c = 1900): the stiff film holds the journal near the centre, where the long bearing's force used to jump (docs/physics.md §4); default settings, 1 revolution",
-        lambda: models.slider_crank("lubricated", clearance=5e-6),
-        SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
-    ),
-    Case(
-        "lubricated c = 5 µm, starts at the wall (ε = 0.99)",
-        "the same journal released next to the wall: the film pushes it back to the centre within microseconds",
-        lambda: with_initial_eccentricity(models.slider_crank("lubricated", clearance=5e-6), "rod-slider", (0.99 * 5e-6, 0.0)),
-        SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
-    ),
-    Case(
-        "nine-bar lubricated c = 5 µm",
-        "both nine-bar journals in 5 µm films, 1 cycle, default settings",
-        lambda: models.nine_bar("lubricated", clearance=5e-6),
-        NB_CYCLE, dict(dt_out=NB_CYCLE / 400), check=_check_micrometre_film,
-    ),
-    Case(
-        "lubricated c = 1 µm, starts centred",
-        "R/c = 9500, the smallest clearance of the range: the journal stays within 1e-4 c of the centre; 1 revolution",
-        lambda: models.slider_crank("lubricated", clearance=1e-6),
-        SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
-    ),
-    Case(
-        "nine-bar lubricated c = 1 µm",
-        "both nine-bar journals in 1 µm films, 1 cycle, default settings",
-        lambda: models.nine_bar("lubricated", clearance=1e-6),
-        NB_CYCLE, dict(dt_out=NB_CYCLE / 400), check=_check_micrometre_film,
-    ),
+    _micrometre_case("5 µm", "slider_crank", "a machine-bearing clearance (R/c = 1900): the stiff film holds the journal near the centre, where the long bearing's force used to jump (docs/physics.md §4)"),
+    _micrometre_case("5 µm", "slider_crank", "the same journal released next to the wall: the film pushes it back to the centre within microseconds", wall=True),
+    _micrometre_case("5 µm", "nine_bar", "both nine-bar journals in 5 µm films"),
+    _micrometre_case("1 µm", "slider_crank", "R/c = 9500, the smallest clearance of the range: the journal stays within 1e-4 c of the centre"),
+    _micrometre_case("1 µm", "nine_bar", "both nine-bar journals in 1 µm films"),
     Case(
         "lubricated, starts in contact (ε = 1.03)",
         "start inside the transition band with penetration: no spurious impact blow-up",
