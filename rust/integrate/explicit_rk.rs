@@ -1,13 +1,15 @@
-//! Explicit Runge–Kutta stepper and the RK4 / DOPRI5 / DOP853 driver loops behind [`integrate`](super::integrate)
-//! (Hairer I, §II.4–II.6; the structure of Hairer's codes DOPRI5 and DOP853).
+//! Explicit Runge–Kutta steppers for the driver loop ([`drive`](super::driver::drive)): RK4 with
+//! a fixed step, DOPRI5 and DOP853 with PI step control (Hairer I, §II.4–II.6; the steps of
+//! Hairer's codes DOPRI5 and DOP853). A method is its tableau (`tableau.rs`) plus how its error
+//! and dense output are formed here.
 //!
-//! All work vectors are allocated once per call; a step allocates nothing.
+//! All work vectors are allocated once per run; a step allocates nothing.
 
-use super::controller::{dop853_error, initial_step, rms_error, Controller, Decision};
+use super::controller::{dop853_error, rms_error, Controller, Decision};
 use super::dense::{combine, ContinuousExtension};
-use super::driver::{accept_step, all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
+use super::driver::{all_finite, fresh_rhs, non_finite, Stepper, Trial};
 use super::tableau::{dop853, dopri5, rk4};
-use super::{Method, OdeSystem, Settings, Span, Stats};
+use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
 /// Stage time `t + c h`, exactly `t1` for `c = 1`.
@@ -64,15 +66,7 @@ fn advance(y: &[f64], h: f64, b: &[f64], k: &[f64], out: &mut [f64]) {
 
 /// The first stage of the next step in `k[..n]`: `f(t, y)` afresh when the system changed its
 /// memory at the step's end, else the step's last stage `k[fsal]` (= f(t, y), FSAL).
-pub(super) fn first_stage<S: OdeSystem>(
-    sys: &mut S,
-    stats: &mut Stats,
-    refresh: bool,
-    t: f64,
-    y: &[f64],
-    k: &mut [f64],
-    fsal: usize,
-) -> Result<(), Error> {
+fn first_stage<S: OdeSystem>(sys: &mut S, stats: &mut Stats, refresh: bool, t: f64, y: &[f64], k: &mut [f64], fsal: usize) -> Result<(), Error> {
     let n = y.len();
     if refresh {
         fresh_rhs(sys, stats, t, y, &mut k[..n])
@@ -82,224 +76,152 @@ pub(super) fn first_stage<S: OdeSystem>(
     }
 }
 
-/// Consecutive trial steps that may fail (non-finite, singular) before the run stops.
-const MAX_TRIAL_FAILURES: usize = 12;
+/// DOPRI5 or DOP853 (Hairer's `DOPCOR` / `DP86CO` steps). A trial step whose error is not
+/// finite is a failed trial, retried with a quarter of the step, up to 12 times in a row.
+pub(super) struct ExplicitRk {
+    /// DOP853 (else DOPRI5).
+    dop: bool,
+    /// Stages; `k[..n]` is `f(t, y)`, `k[fsal]` is `f(t1, y1)`.
+    k: Vec<f64>,
+    fsal: usize,
+    ytmp: Vec<f64>,
+    e5: Vec<f64>,
+    e3: Vec<f64>,
+    dense: ContinuousExtension,
+    ctrl: Controller,
+    h_next: f64,
+}
 
-/// Adaptive DOPRI5 / DOP853 driver (Hairer's `DOPCOR` / `DP86CO` loop). A trial step whose
-/// stages leave the domain of f (non-finite values, a singular constraint Jacobian) is rejected
-/// and retried with a quarter of the step, up to `MAX_TRIAL_FAILURES` times in a row.
-pub(super) fn drive_adaptive<S: OdeSystem>(
-    sys: &mut S,
-    method: Method,
-    span: Span<'_>,
-    st: &Settings,
-    stats: &mut Stats,
-) -> Result<(), Error> {
-    let Span { t0, y0, t_end, t_out } = span;
-    let dop = method == Method::Dop853;
-    let n = y0.len();
-    // Work vectors, allocated once.
-    let n_stages = if dop { dop853::STAGES_DENSE } else { 7 };
-    let mut k = vec![0.0; n_stages * n];
-    let mut y = y0.to_vec();
-    let mut y1 = vec![0.0; n];
-    let mut ytmp = vec![0.0; n];
-    let mut e5 = vec![0.0; n];
-    let mut e3 = vec![0.0; if dop { n } else { 0 }];
-    let mut buf = vec![0.0; n];
-    let mut dense = ContinuousExtension::new(n);
-    // Index of the stage holding f(t1, y1) (first stage of the next step).
-    let fsal = if dop { dop853::STAGES } else { 6 };
-
-    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
-    if t_end == t0 {
-        return Ok(());
-    }
-    let mut t = t0;
-    fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
-    let (mut ctrl, order) = if dop {
-        (Controller::dop853(), 8)
-    } else {
-        (Controller::dopri5(), 5)
-    };
-    let mut trial_failures = 0usize;
-    let mut last_trial_error = non_finite(t);
-    let mut h = match st.h0 {
-        Some(h0) => h0,
-        None => {
-            let (f0, rest) = k.split_at_mut(n);
-            let h_lim = st.h_max.min(t_end - t0);
-            let h = initial_step(
-                sys,
-                t,
-                &y,
-                f0,
-                order,
-                h_lim,
-                st.rtol,
-                st.atol,
-                &mut ytmp,
-                &mut rest[..n],
-            )?;
-            stats.rhs_evals += 1;
-            // A guess below the floor would fail at once: start at the floor instead.
-            h.max(st.h_min)
-        }
-    };
-
-    loop {
-        let (h_step, t1, last) = plan_step(t, h, t_end, st, stats, || (trial_failures > 0).then(|| last_trial_error.clone()))?;
-
-        // The trial step: its stages may leave the region where f is defined (a huge
-        // penetration, a singular pose); that rejects the step, it does not end the run.
-        let (c, a, last_stage) = if dop { (&dop853::C[..], &dop853::A[..], dop853::STAGES) } else { (&dopri5::C[..], &dopri5::A[..], 6) };
-        let mut trial = || -> Result<f64, Error> {
-            stages(sys, c, a, 1..last_stage, t, t1, h_step, &y, &mut k, &mut ytmp, stats)?;
-            Ok(if dop {
-                advance(&y, h_step, &dop853::B, &k, &mut y1);
-                combine(h_step, &dop853::E5, &k, &mut e5);
-                combine(h_step, &dop853::E3, &k, &mut e3);
-                dop853_error(&e5, &e3, &y, &y1, st.rtol, st.atol)
-            } else {
-                advance(&y, h_step, &dopri5::B, &k, &mut y1);
-                // FSAL stage 6 = f(t1, y1), part of the error estimate.
-                sys.rhs(t1, &y1, &mut k[6 * n..7 * n])?;
-                stats.rhs_evals += 1;
-                combine(h_step, &dopri5::E, &k, &mut e5);
-                rms_error(&e5, &y, &y1, st.rtol, st.atol)
-            })
-        };
-        let err = match trial() {
-            Ok(e) if e.is_finite() => {
-                trial_failures = 0;
-                e
-            }
-            Ok(_) => {
-                trial_failures += 1;
-                last_trial_error = non_finite(t);
-                f64::NAN
-            }
-            Err(e @ (Error::NonFinite { .. } | Error::SingularJacobian { .. })) => {
-                trial_failures += 1;
-                last_trial_error = e;
-                f64::NAN
-            }
-            Err(e) => return Err(e),
-        };
-        if err.is_nan() {
-            if trial_failures > MAX_TRIAL_FAILURES {
-                return Err(last_trial_error);
-            }
-            stats.steps_rejected += 1;
-            h = 0.25 * h_step;
-            continue;
-        }
-
-        match ctrl.decide(err, h_step) {
-            Decision::Reject { h_next } => {
-                stats.steps_rejected += 1;
-                h = h_next;
-            }
-            Decision::Accept { h_next } => {
-                if dop {
-                    // f(t1, y1), then the three extra stages of the dense output.
-                    sys.rhs(t1, &y1, &mut k[fsal * n..(fsal + 1) * n])?;
-                    stats.rhs_evals += 1;
-                    if !all_finite(&k[fsal * n..(fsal + 1) * n]) {
-                        return Err(non_finite(t));
-                    }
-                    stages(
-                        sys,
-                        &dop853::C,
-                        &dop853::A,
-                        13..16,
-                        t,
-                        t1,
-                        h_step,
-                        &y,
-                        &mut k,
-                        &mut ytmp,
-                        stats,
-                    )?;
-                }
-                if !all_finite(&y1) {
-                    return Err(non_finite(t));
-                }
-                if dop {
-                    dense.fill_dop853(t, t1, h_step, &y, &y1, &k);
-                } else {
-                    dense.fill_dopri5(t, t1, h_step, &y, &y1, &k);
-                }
-                if let Some(h_switch) = step_to_switch(sys, st, stats, t, &y, t1, &y1, &dense)? {
-                    h = h_switch;
-                    continue;
-                }
-                let refresh = accept_step(sys, stats, h_step, t, t1, &mut y, &mut y1, &dense, t_out, &mut next_out, &mut buf)?;
-                t = t1;
-                if last {
-                    return Ok(());
-                }
-                first_stage(sys, stats, refresh, t, &y, &mut k, fsal)?;
-                h = h_next;
-            }
+impl ExplicitRk {
+    pub(super) fn new(n: usize, dop: bool) -> Self {
+        let n_stages = if dop { dop853::STAGES_DENSE } else { 7 };
+        ExplicitRk {
+            dop,
+            k: vec![0.0; n_stages * n],
+            fsal: if dop { dop853::STAGES } else { 6 },
+            ytmp: vec![0.0; n],
+            e5: vec![0.0; n],
+            e3: vec![0.0; if dop { n } else { 0 }],
+            dense: ContinuousExtension::new(n),
+            ctrl: if dop { Controller::dop853() } else { Controller::dopri5() },
+            h_next: 0.0,
         }
     }
 }
 
-/// Classic RK4 with fixed step `step` (the last step shortened to end on `t_end`) and cubic
-/// Hermite dense output from `f` at both ends; `f(t1, y1)` is reused as the next first stage.
-pub(super) fn drive_rk4<S: OdeSystem>(
-    sys: &mut S,
-    step: f64,
-    span: Span<'_>,
-    st: &Settings,
-    stats: &mut Stats,
-) -> Result<(), Error> {
-    let Span { t0, y0, t_end, t_out } = span;
-    let n = y0.len();
-    // Stages 0–3, and f(t1, y1) in slot 4 (the next step's first stage).
-    let mut k = vec![0.0; 5 * n];
-    let mut y = y0.to_vec();
-    let mut y1 = vec![0.0; n];
-    let mut ytmp = vec![0.0; n];
-    let mut buf = vec![0.0; n];
-    let mut dense = ContinuousExtension::new(n);
-
-    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
-    if t_end == t0 {
-        return Ok(());
+impl<S: OdeSystem> Stepper<S> for ExplicitRk {
+    fn order(&self) -> usize {
+        if self.dop {
+            8
+        } else {
+            5
+        }
     }
-    let mut t = t0;
-    fresh_rhs(sys, stats, t, &y, &mut k[..n])?;
-    let mut i: u64 = 0;
-    loop {
-        if stats.steps_accepted >= st.max_steps {
-            return Err(Error::TooManySteps {
-                t,
-                max_steps: st.max_steps,
-            });
+    fn max_trial_failures(&self) -> usize {
+        12
+    }
+    fn f0(&mut self) -> &mut [f64] {
+        let n = self.ytmp.len();
+        &mut self.k[..n]
+    }
+    fn attempt(&mut self, sys: &mut S, stats: &mut Stats, st: &Settings, t: f64, t1: f64, h: f64, y: &[f64], y1: &mut [f64]) -> Result<Trial, Error> {
+        let n = y.len();
+        let (dop, k, ytmp) = (self.dop, &mut self.k, &mut self.ytmp);
+        let (c, a, last_stage) = if dop { (&dop853::C[..], &dop853::A[..], dop853::STAGES) } else { (&dopri5::C[..], &dopri5::A[..], 6) };
+        stages(sys, c, a, 1..last_stage, t, t1, h, y, k, ytmp, stats)?;
+        let err = if dop {
+            advance(y, h, &dop853::B, k, y1);
+            combine(h, &dop853::E5, k, &mut self.e5);
+            combine(h, &dop853::E3, k, &mut self.e3);
+            dop853_error(&self.e5, &self.e3, y, y1, st.rtol, st.atol)
+        } else {
+            advance(y, h, &dopri5::B, k, y1);
+            // FSAL stage 6 = f(t1, y1), part of the error estimate.
+            sys.rhs(t1, y1, &mut k[6 * n..7 * n])?;
+            stats.rhs_evals += 1;
+            combine(h, &dopri5::E, k, &mut self.e5);
+            rms_error(&self.e5, y, y1, st.rtol, st.atol)
+        };
+        if !err.is_finite() {
+            return Ok(Trial::Failed { error: non_finite(t), h_next: 0.25 * h });
         }
-        // Grid t0 + i·step (no drift); a remainder below 1e-10·step is merged into the last step.
-        i += 1;
-        let mut t1 = t0 + i as f64 * step;
-        let last = t1 >= t_end - 1e-10 * step;
-        if last {
-            t1 = t_end;
+        match self.ctrl.decide(err, h) {
+            Decision::Reject { h_next } => Ok(Trial::Rejected { h_next }),
+            Decision::Accept { h_next } => {
+                self.h_next = h_next;
+                if dop {
+                    // f(t1, y1), then the three extra stages of the dense output.
+                    let fsal = self.fsal;
+                    fresh_rhs(sys, stats, t1, y1, &mut k[fsal * n..(fsal + 1) * n])?;
+                    stages(sys, &dop853::C, &dop853::A, 13..16, t, t1, h, y, k, ytmp, stats)?;
+                    self.dense.fill_dop853(t, t1, h, y, y1, k);
+                } else {
+                    self.dense.fill_dopri5(t, t1, h, y, y1, k);
+                }
+                Ok(Trial::Passed)
+            }
         }
-        let h = t1 - t;
-        stages(sys, &rk4::C, &rk4::A, 1..4, t, t1, h, &y, &mut k, &mut ytmp, stats)?;
-        advance(&y, h, &rk4::B, &k, &mut y1);
-        if !all_finite(&y1) {
+    }
+    fn dense(&self) -> &dyn DenseOutput {
+        &self.dense
+    }
+    fn accepted(&mut self, _h: f64) -> f64 {
+        self.h_next
+    }
+    fn next_f0(&mut self, sys: &mut S, stats: &mut Stats, refresh: bool, t: f64, y: &[f64]) -> Result<(), Error> {
+        first_stage(sys, stats, refresh, t, y, &mut self.k, self.fsal)
+    }
+}
+
+/// Classic RK4 with a fixed step and cubic Hermite dense output from `f` at both ends;
+/// `f(t1, y1)` is reused as the next first stage.
+pub(super) struct Rk4 {
+    step: f64,
+    /// Stages 0–3, and `f(t1, y1)` in slot 4 (the next step's first stage).
+    k: Vec<f64>,
+    ytmp: Vec<f64>,
+    dense: ContinuousExtension,
+}
+
+impl Rk4 {
+    pub(super) fn new(n: usize, step: f64) -> Self {
+        Rk4 { step, k: vec![0.0; 5 * n], ytmp: vec![0.0; n], dense: ContinuousExtension::new(n) }
+    }
+}
+
+impl<S: OdeSystem> Stepper<S> for Rk4 {
+    fn order(&self) -> usize {
+        4
+    }
+    fn max_trial_failures(&self) -> usize {
+        0
+    }
+    fn fixed_step(&self) -> Option<f64> {
+        Some(self.step)
+    }
+    fn f0(&mut self) -> &mut [f64] {
+        let n = self.ytmp.len();
+        &mut self.k[..n]
+    }
+    fn attempt(&mut self, sys: &mut S, stats: &mut Stats, _st: &Settings, t: f64, t1: f64, h: f64, y: &[f64], y1: &mut [f64]) -> Result<Trial, Error> {
+        let n = y.len();
+        stages(sys, &rk4::C, &rk4::A, 1..4, t, t1, h, y, &mut self.k, &mut self.ytmp, stats)?;
+        advance(y, h, &rk4::B, &self.k, y1);
+        if !all_finite(y1) {
             return Err(non_finite(t));
         }
-        fresh_rhs(sys, stats, t1, &y1, &mut k[4 * n..5 * n])?;
-        dense.fill_hermite(t, t1, &y, &y1, &k[..n], &k[4 * n..5 * n]);
-        let refresh = accept_step(sys, stats, h, t, t1, &mut y, &mut y1, &dense, t_out, &mut next_out, &mut buf)?;
-        t = t1;
-        if last {
-            return Ok(());
-        }
-        first_stage(sys, stats, refresh, t, &y, &mut k, 4)?;
+        fresh_rhs(sys, stats, t1, y1, &mut self.k[4 * n..5 * n])?;
+        self.dense.fill_hermite(t, t1, y, y1, &self.k[..n], &self.k[4 * n..5 * n]);
+        Ok(Trial::Passed)
+    }
+    fn dense(&self) -> &dyn DenseOutput {
+        &self.dense
+    }
+    fn accepted(&mut self, _h: f64) -> f64 {
+        self.step
+    }
+    fn next_f0(&mut self, sys: &mut S, stats: &mut Stats, refresh: bool, t: f64, y: &[f64]) -> Result<(), Error> {
+        first_stage(sys, stats, refresh, t, y, &mut self.k, 4)
     }
 }
 

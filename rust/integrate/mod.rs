@@ -1,12 +1,15 @@
 //! Time integration: explicit Runge–Kutta methods, RODAS4 and RADAU5, with step control and
 //! dense output.
 //!
-//! One concept per file: `tableau.rs` (Butcher tableaus with their sources), `explicit_rk.rs`
-//! (the stepper), `controller.rs` (PI step-size control, initial step), `dense.rs` (continuous
-//! extensions), `stiff.rs` (RODAS4), `radau.rs` (RADAU5). The driver [`integrate`] samples the
-//! solution on a user grid through the dense output, so output times never shorten a step.
+//! One concept per file: `driver.rs` (the one driver loop and the [`Stepper`](driver::Stepper)
+//! trait a method implements), `tableau.rs` (Butcher tableaus with their sources),
+//! `explicit_rk.rs` (the RK4, DOPRI5 and DOP853 steppers), `stiff.rs` (RODAS4), `radau.rs`
+//! (RADAU5), `controller.rs` (PI step-size control, initial step), `dense.rs` (continuous
+//! extensions). [`integrate`] picks the stepper; the driver samples the solution on a user grid
+//! through the dense output, so output times never shorten a step.
 
 use crate::error::Error;
+use driver::drive;
 
 pub mod controller;
 pub mod dense;
@@ -147,11 +150,13 @@ pub fn integrate<S: OdeSystem>(
 ) -> Result<Stats, (Error, Stats)> {
     let span = Span { t0, y0, t_end, t_out };
     let mut stats = Stats { h_min_used: f64::INFINITY, t_reached: t0, ..Stats::default() };
+    let n = y0.len();
     let res = span.validate(sys.dim(), method, settings).and_then(|()| match method {
-        Method::Rk4 { step } => explicit_rk::drive_rk4(sys, step, span, settings, &mut stats),
-        Method::Dopri5 | Method::Dop853 => explicit_rk::drive_adaptive(sys, method, span, settings, &mut stats),
-        Method::Rodas4 => stiff::drive_rodas4(sys, span, settings, &mut stats),
-        Method::Radau5 => radau::drive_radau5(sys, span, settings, &mut stats),
+        Method::Rk4 { step } => drive(sys, &mut explicit_rk::Rk4::new(n, step), span, settings, &mut stats),
+        Method::Dopri5 => drive(sys, &mut explicit_rk::ExplicitRk::new(n, false), span, settings, &mut stats),
+        Method::Dop853 => drive(sys, &mut explicit_rk::ExplicitRk::new(n, true), span, settings, &mut stats),
+        Method::Rodas4 => drive(sys, &mut stiff::Rodas4::new(n), span, settings, &mut stats),
+        Method::Radau5 => drive(sys, &mut radau::Radau5Stepper::new(n, settings), span, settings, &mut stats),
     });
     match res {
         Ok(()) => Ok(stats),

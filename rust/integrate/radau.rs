@@ -25,11 +25,9 @@
 
 use faer::Mat;
 
-use super::controller::initial_step;
-use super::driver::{all_finite, emit_initial, fresh_rhs, non_finite, plan_step, step_to_switch};
-use super::driver::{finish_accepted, size_after_accept};
+use super::driver::{all_finite, non_finite, size_after_accept, Stepper, Trial};
 use super::stiff::Lu;
-use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
+use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
 /// The method's constants (Hairer's `RADCOR` / `ESTRAD`): nodes, the eigenvalues of `A⁻¹`
@@ -327,132 +325,142 @@ impl NewtonSystems {
 
 /// Most Newton iterations per step (Hairer's `NIT`).
 const NIT: usize = 7;
-/// Accepted steps that keep a differenced `W` after the hook's `W` failed (see [`drive_radau5`]).
+/// Accepted steps that keep a differenced `W` after the hook's `W` failed (see [`Radau5Stepper`]).
 const DIFFERENCED_SPELL: usize = 10;
-/// Consecutive failed trial steps (non-finite stages, divergent Newton) before the run stops.
-const MAX_TRIAL_FAILURES: usize = 30;
 
-/// The RADAU5 driver, with the contract of the other drivers. `W` is recomputed after every
-/// accepted step (cheap with the structured hook) and kept on rejections, except that after
-/// three failed trial steps a hook-supplied `W` is replaced by a differenced one, for that step
-/// and the next [`DIFFERENCED_SPELL`] (the hook leaves out terms that can matter: constraint
-/// curvature, Baumgarte terms).
-pub(super) fn drive_radau5<S: OdeSystem>(
-    sys: &mut S,
-    span: Span<'_>,
-    st: &Settings,
-    stats: &mut Stats,
-) -> Result<(), Error> {
-    let Span { t0, y0, t_end, t_out } = span;
-    let k = Radau5::new();
-    let (c1, c2) = (k.c[0], k.c[1]);
-    let (c1m1, c2m1, c1mc2) = (c1 - 1.0, c2 - 1.0, c1 - c2);
-    let n = y0.len();
-    let mut y = y0.to_vec();
-    let mut ynew = vec![0.0; n];
-    let mut f0 = vec![0.0; n];
-    let mut z = vec![0.0; 3 * n]; // stage increments Z_i = Y_i − y
-    let mut w = vec![0.0; 3 * n]; // T⁻¹ Z
-    let mut fz = vec![0.0; 3 * n]; // f at the stages, then the Newton corrections
-    let mut ytmp = vec![0.0; n];
-    let mut scal = vec![0.0; n];
-    let mut errv = vec![0.0; n];
-    let mut e_comb = vec![0.0; n];
-    let mut buf = vec![0.0; n];
-    let mut dense = RadauDense { t0, t1: t0, c1m1, c2m1, cont: vec![0.0; 4 * n] };
+/// The RADAU5 stepper (the step of Hairer's `RADCOR`). `W` is recomputed after every accepted
+/// step (cheap with the structured hook) and kept on rejections, except that after three failed
+/// trial steps a hook-supplied `W` is replaced by a differenced one, for that step and the next
+/// [`DIFFERENCED_SPELL`] (the hook leaves out terms that can matter: constraint curvature,
+/// Baumgarte terms). A trial whose stages leave the domain of `f` or whose Newton iteration
+/// does not converge is retried with a smaller step, up to 30 times in a row.
+pub(super) struct Radau5Stepper {
+    k: Radau5,
+    f0: Vec<f64>,
+    /// Stage increments `Z_i = Y_i − y`.
+    z: Vec<f64>,
+    /// `T⁻¹ Z`.
+    w: Vec<f64>,
+    /// `f` at the stages, then the Newton corrections.
+    fz: Vec<f64>,
+    ytmp: Vec<f64>,
+    scal: Vec<f64>,
+    errv: Vec<f64>,
+    e_comb: Vec<f64>,
+    buf: Vec<f64>,
+    dense: RadauDense,
+    /// Built by [`Stepper::start`] (it asks the system whether it has the structured hook).
+    newton: Option<NewtonSystems>,
+    /// Newton stopping tolerance (Hairer's `FNEWT`).
+    fnewt: f64,
+    h_acc: f64,
+    err_acc: f64,
+    /// The last accepted step (for extrapolating the stages).
+    h_old: f64,
+    first: bool,
+    /// Size of the step just abandoned to end on a switching point: the redone step starts from
+    /// the same `t`, inside the abandoned step's collocation polynomial (in `dense`).
+    redo_of: Option<f64>,
+    reject: bool,
+    need_w: bool,
+    /// Failed trial steps since `W` was last built, and whether it came from the system's hook:
+    /// after three failures it is rebuilt by differencing the whole right-hand side, and so are
+    /// the next `DIFFERENCED_SPELL` steps' (where the hook fell short once it tends to again).
+    fails_on_w: usize,
+    w_from_hook: bool,
+    differenced_left: usize,
+    faccon: f64,
+    /// `h/h_new` proposed by the last step that passed.
+    quot: f64,
+}
 
-    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
-    if t_end == t0 {
-        return Ok(());
+impl Radau5Stepper {
+    const SAFE: f64 = 0.9;
+    /// `h_new/h ∈ [1/5, 8]`.
+    const FAC_GROW: f64 = 1.0 / 8.0;
+    const FAC_SHRINK: f64 = 5.0;
+
+    pub(super) fn new(n: usize, st: &Settings) -> Self {
+        let k = Radau5::new();
+        let (c1m1, c2m1) = (k.c[0] - 1.0, k.c[1] - 1.0);
+        Radau5Stepper {
+            k,
+            f0: vec![0.0; n],
+            z: vec![0.0; 3 * n],
+            w: vec![0.0; 3 * n],
+            fz: vec![0.0; 3 * n],
+            ytmp: vec![0.0; n],
+            scal: vec![0.0; n],
+            errv: vec![0.0; n],
+            e_comb: vec![0.0; n],
+            buf: vec![0.0; n],
+            dense: RadauDense { t0: 0.0, t1: 0.0, c1m1, c2m1, cont: vec![0.0; 4 * n] },
+            newton: None,
+            fnewt: (10.0 * f64::EPSILON / st.rtol).max(0.03f64.min(st.rtol.sqrt())),
+            h_acc: 0.0,
+            err_acc: 1.0,
+            h_old: 0.0,
+            first: true,
+            redo_of: None,
+            reject: false,
+            need_w: true,
+            fails_on_w: 0,
+            w_from_hook: false,
+            differenced_left: 0,
+            faccon: 1.0,
+            quot: 1.0,
+        }
     }
-    let mut t = t0;
-    fresh_rhs(sys, stats, t, &y, &mut f0)?;
-    let mut newton = NewtonSystems::new(sys, t, &y)?;
-    let mut h = match st.h0 {
-        Some(h0) => h0,
-        None => {
-            let h = initial_step(sys, t, &y, &f0, 5, st.h_max.min(t_end - t0), st.rtol, st.atol, &mut ynew, &mut ytmp)?;
-            stats.rhs_evals += 1;
-            h.max(st.h_min)
-        }
-    };
-    let fnewt = (10.0 * f64::EPSILON / st.rtol).max(0.03f64.min(st.rtol.sqrt()));
-    let safe = 0.9;
-    let (fac_grow, fac_shrink) = (1.0 / 8.0, 5.0); // h_new/h ∈ [1/5, 8]
-    let cfac = safe * (1 + 2 * NIT) as f64;
-    let (mut h_acc, mut err_acc) = (h, 1.0f64);
-    let mut h_old = h; // the last accepted step (for extrapolating the stages)
-    let mut first = true;
-    // Size of the step just abandoned to end on a switching point: the redone step starts from
-    // the same `t`, inside the abandoned step's collocation polynomial (in `dense`).
-    let mut redo_of: Option<f64> = None;
-    let mut reject = false;
-    let mut need_w = true;
-    // Failed trial steps since `W` was last built, and whether it came from the system's hook:
-    // after three failures it is rebuilt by differencing the whole right-hand side, and so are
-    // the next `DIFFERENCED_SPELL` steps' (where the hook fell short once it tends to again).
-    let (mut fails_on_w, mut w_from_hook, mut differenced_left) = (0usize, false, 0usize);
-    let mut faccon = 1.0f64;
-    let mut trial_failures = 0usize;
-    let mut last_trial_error = non_finite(t);
 
-    'steps: loop {
-        let (hs, t1, last) = plan_step(t, h, t_end, st, stats, || (trial_failures > 0).then(|| last_trial_error.clone()))?;
-        if need_w {
-            let differenced = differenced_left > 0;
-            differenced_left = differenced_left.saturating_sub(1);
-            newton.update(sys, stats, t, &y, &f0, differenced)?;
-            (need_w, fails_on_w, w_from_hook) = (false, 0, newton.half.is_some() && !differenced);
-        } else if fails_on_w >= 3 && w_from_hook {
-            newton.update(sys, stats, t, &y, &f0, true)?;
-            (fails_on_w, w_from_hook, differenced_left) = (0, false, DIFFERENCED_SPELL);
+    /// Starting values of the stages: zero on the first step, else the last collocation
+    /// polynomial `u(t_a + x h_a) − u(t_a) = x (a1 + (x − c2 + 1)(a2 + (x − c1 + 1) a3))`,
+    /// anchored at the end `t_a` of the step of size `h_a` it came from: extrapolated past it
+    /// after an accepted step (`x = c_i hs/h_old`), read inside it for a redone step
+    /// (`x = c_i hs/h_a − 1`, less its value at `x = −1`, the common start).
+    fn starting_values(&mut self, hs: f64) {
+        let n = self.f0.len();
+        if self.first {
+            self.z.fill(0.0);
+            self.w.fill(0.0);
+            return;
         }
-        let (fac1, alphn, betan) = (k.u1 / hs, k.alpha / hs, k.beta / hs);
-        newton.factor(fac1, alphn, betan);
-
-        // Starting values: zero on the first step, else the last collocation polynomial.
-        // The polynomial is u(t_a + x h_a) − u(t_a) = x (a1 + (x − c2 + 1)(a2 + (x − c1 + 1) a3)),
-        // anchored at the end t_a of the step of size h_a it came from: extrapolated past it
-        // after an accepted step (x = c_i hs/h_old), read inside it for a redone step
-        // (x = c_i hs/h_a − 1, less its value at x = −1, the common start).
-        if first {
-            z.fill(0.0);
-            w.fill(0.0);
-        } else {
-            let (h_from, shift) = match redo_of.take() {
-                Some(h_a) => (h_a, -1.0),
-                None => (h_old, 0.0),
-            };
-            let c3q = hs / h_from;
-            let cq = [c1 * c3q + shift, c2 * c3q + shift, c3q + shift];
-            let poly = |x: f64, a1: f64, a2: f64, a3: f64| x * (a1 + (x - c2m1) * (a2 + (x - c1m1) * a3));
-            let cont = &dense.cont;
-            for i in 0..n {
-                let (a1, a2, a3) = (cont[n + i], cont[2 * n + i], cont[3 * n + i]);
-                let base = if shift == 0.0 { 0.0 } else { poly(shift, a1, a2, a3) };
-                for (s, &x) in cq.iter().enumerate() {
-                    z[s * n + i] = poly(x, a1, a2, a3) - base;
-                }
-            }
-            transform(&k.ti, &z, &mut w, n);
-        }
+        let (c1, c2) = (self.k.c[0], self.k.c[1]);
+        let (c1m1, c2m1) = (c1 - 1.0, c2 - 1.0);
+        let (h_from, shift) = match self.redo_of.take() {
+            Some(h_a) => (h_a, -1.0),
+            None => (self.h_old, 0.0),
+        };
+        let c3q = hs / h_from;
+        let cq = [c1 * c3q + shift, c2 * c3q + shift, c3q + shift];
+        let poly = |x: f64, a1: f64, a2: f64, a3: f64| x * (a1 + (x - c2m1) * (a2 + (x - c1m1) * a3));
+        let cont = &self.dense.cont;
         for i in 0..n {
-            scal[i] = st.atol + st.rtol * y[i].abs();
+            let (a1, a2, a3) = (cont[n + i], cont[2 * n + i], cont[3 * n + i]);
+            let base = if shift == 0.0 { 0.0 } else { poly(shift, a1, a2, a3) };
+            for (s, &x) in cq.iter().enumerate() {
+                self.z[s * n + i] = poly(x, a1, a2, a3) - base;
+            }
         }
+        transform(&self.k.ti, &self.z, &mut self.w, n);
+    }
 
-        // Simplified Newton iteration (Hairer–Wanner IV.8.19).
-        faccon = faccon.max(f64::EPSILON).powf(0.8);
+    /// The simplified Newton iteration (Hairer–Wanner IV.8.19) for the stages of the step
+    /// `[t, t1]` of size `hs`. Returns the number of iterations, or the failed trial (its error
+    /// and the factor for the next step).
+    #[allow(clippy::too_many_arguments)]
+    fn newton<S: OdeSystem>(&mut self, sys: &mut S, stats: &mut Stats, t: f64, t1: f64, hs: f64, y: &[f64], fac: (f64, f64, f64)) -> Result<Result<usize, (Error, f64)>, Error> {
+        let n = y.len();
+        let (fac1, alphn, betan) = fac;
+        let Some(newton) = self.newton.as_mut() else {
+            return Err(Error::invalid("radau", "not started", "the stepper's start was not called"));
+        };
+        let (k, z, w, fz, ytmp, scal) = (&self.k, &mut self.z, &mut self.w, &mut self.fz, &mut self.ytmp, &self.scal);
+        self.faccon = self.faccon.max(f64::EPSILON).powf(0.8);
         let (mut dyno_old, mut thq_old) = (1.0f64, 1.0f64);
         let mut newt = 0usize;
-        let mut failure: Option<f64> = None; // step factor on failure
-        // Why this trial would fail if the Newton iteration does not converge (a failed stage
-        // evaluation below replaces it with its own error), so a run that gives up reports this
-        // step, not a stale error of an earlier one.
-        last_trial_error = Error::NewtonFailure { t, h: hs };
         loop {
             if newt >= NIT {
-                failure = Some(0.5);
-                break;
+                return Ok(Err((Error::NewtonFailure { t, h: hs }, 0.5)));
             }
             let mut eval = || -> Result<(), Error> {
                 for s in 0..3 {
@@ -460,23 +468,15 @@ pub(super) fn drive_radau5<S: OdeSystem>(
                         ytmp[i] = y[i] + z[s * n + i];
                     }
                     let ts = if s == 2 { t1 } else { t + k.c[s] * hs };
-                    sys.rhs(ts, &ytmp, &mut fz[s * n..(s + 1) * n])?;
+                    sys.rhs(ts, ytmp, &mut fz[s * n..(s + 1) * n])?;
                     stats.rhs_evals += 1;
                 }
                 Ok(())
             };
             match eval() {
-                Ok(()) if all_finite(&fz) => {}
-                Ok(()) => {
-                    last_trial_error = non_finite(t);
-                    failure = Some(0.25);
-                    break;
-                }
-                Err(e @ (Error::NonFinite { .. } | Error::SingularJacobian { .. })) => {
-                    last_trial_error = e;
-                    failure = Some(0.25);
-                    break;
-                }
+                Ok(()) if all_finite(fz) => {}
+                Ok(()) => return Ok(Err((non_finite(t), 0.25))),
+                Err(e @ (Error::NonFinite { .. } | Error::SingularJacobian { .. })) => return Ok(Err((e, 0.25))),
                 Err(e) => return Err(e),
             }
             // Right-hand sides in transformed variables, then the two solves.
@@ -503,121 +503,152 @@ pub(super) fn drive_radau5<S: OdeSystem>(
             }
             let dyno = (dyno / (3 * n).max(1) as f64).sqrt();
             if !dyno.is_finite() {
-                last_trial_error = non_finite(t);
-                failure = Some(0.25);
-                break;
+                return Ok(Err((non_finite(t), 0.25)));
             }
             if newt >= 1 {
                 let thq = dyno / dyno_old;
                 let theta = if newt == 1 { thq } else { (thq * thq_old).sqrt() };
                 thq_old = thq;
                 if theta < 0.99 {
-                    faccon = theta / (1.0 - theta);
-                    let dyth = faccon * dyno * theta.powi((NIT - 1 - newt) as i32) / fnewt;
+                    self.faccon = theta / (1.0 - theta);
+                    let dyth = self.faccon * dyno * theta.powi((NIT - 1 - newt) as i32) / self.fnewt;
                     if dyth >= 1.0 {
                         // Convergence predicted too slow: a smaller step.
                         let qnewt = dyth.clamp(1e-4, 20.0);
-                        failure = Some(0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64)));
-                        break;
+                        return Ok(Err((Error::NewtonFailure { t, h: hs }, 0.8 * qnewt.powf(-1.0 / (4.0 + (NIT - 1 - newt) as f64)))));
                     }
                 } else {
-                    failure = Some(0.5);
-                    break;
+                    return Ok(Err((Error::NewtonFailure { t, h: hs }, 0.5)));
                 }
             }
             dyno_old = dyno.max(f64::EPSILON);
-            for (wi, d) in w.iter_mut().zip(&fz) {
+            for (wi, d) in w.iter_mut().zip(fz.iter()) {
                 *wi += d;
             }
-            transform(&k.t, &w, &mut z, n);
+            transform(&k.t, w, z, n);
             newt += 1;
-            if faccon * dyno <= fnewt {
-                break;
+            if self.faccon * dyno <= self.fnewt {
+                return Ok(Ok(newt));
             }
         }
-        if let Some(fac) = failure {
-            fails_on_w += 1;
-            trial_failures += 1;
-            if trial_failures > MAX_TRIAL_FAILURES {
-                return Err(last_trial_error);
-            }
-            stats.steps_rejected += 1;
-            reject = true;
-            h = hs * fac;
-            continue 'steps;
+    }
+}
+
+impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
+    fn order(&self) -> usize {
+        5
+    }
+    fn max_trial_failures(&self) -> usize {
+        30
+    }
+    fn f0(&mut self) -> &mut [f64] {
+        &mut self.f0
+    }
+    fn start(&mut self, sys: &mut S, t: f64, y: &[f64]) -> Result<(), Error> {
+        self.newton = Some(NewtonSystems::new(sys, t, y)?);
+        Ok(())
+    }
+    fn attempt(&mut self, sys: &mut S, stats: &mut Stats, st: &Settings, t: f64, t1: f64, hs: f64, y: &[f64], ynew: &mut [f64]) -> Result<Trial, Error> {
+        let n = y.len();
+        let Some(newton) = self.newton.as_mut() else {
+            return Err(Error::invalid("radau", "not started", "the stepper's start was not called"));
+        };
+        if self.need_w {
+            let differenced = self.differenced_left > 0;
+            self.differenced_left = self.differenced_left.saturating_sub(1);
+            newton.update(sys, stats, t, y, &self.f0, differenced)?;
+            (self.need_w, self.fails_on_w, self.w_from_hook) = (false, 0, newton.half.is_some() && !differenced);
+        } else if self.fails_on_w >= 3 && self.w_from_hook {
+            newton.update(sys, stats, t, y, &self.f0, true)?;
+            (self.fails_on_w, self.w_from_hook, self.differenced_left) = (0, false, DIFFERENCED_SPELL);
         }
-        trial_failures = 0;
+        let k = &self.k;
+        let (fac1, alphn, betan) = (k.u1 / hs, k.alpha / hs, k.beta / hs);
+        newton.factor(fac1, alphn, betan);
+        self.starting_values(hs);
+        for i in 0..n {
+            self.scal[i] = st.atol + st.rtol * y[i].abs();
+        }
+        let newt = match self.newton(sys, stats, t, t1, hs, y, (fac1, alphn, betan))? {
+            Ok(newt) => newt,
+            Err((error, fac)) => {
+                self.fails_on_w += 1;
+                self.reject = true;
+                return Ok(Trial::Failed { error, h_next: hs * fac });
+            }
+        };
 
         // Error estimate (Hairer's ESTRAD): (σ₁I − W)⁻¹ (f0 + Σ d_i z_i / h), and once more
         // through f on the first or a rejected step when it is large.
+        let Some(newton) = self.newton.as_mut() else {
+            return Err(Error::invalid("radau", "not started", "the stepper's start was not called"));
+        };
+        let (k, z, f0, errv, e_comb, ytmp, buf, scal) = (&self.k, &self.z, &self.f0, &mut self.errv, &mut self.e_comb, &mut self.ytmp, &mut self.buf, &self.scal);
         for i in 0..n {
             e_comb[i] = (k.d[0] * z[i] + k.d[1] * z[n + i] + k.d[2] * z[2 * n + i]) / hs;
             errv[i] = f0[i] + e_comb[i];
         }
-        newton.solve_real(&mut errv);
-        let mut err = rms(&errv, &scal);
-        if err >= 1.0 && (first || reject) {
+        newton.solve_real(errv);
+        let mut err = rms(errv, scal);
+        if err >= 1.0 && (self.first || self.reject) {
             for i in 0..n {
                 ytmp[i] = y[i] + errv[i];
             }
-            if sys.rhs(t, &ytmp, &mut buf).is_ok() && all_finite(&buf) {
+            if sys.rhs(t, ytmp, buf).is_ok() && all_finite(buf) {
                 stats.rhs_evals += 1;
                 for i in 0..n {
                     errv[i] = buf[i] + e_comb[i];
                 }
-                newton.solve_real(&mut errv);
-                err = rms(&errv, &scal);
+                newton.solve_real(errv);
+                err = rms(errv, scal);
             }
         }
         if !err.is_finite() {
-            stats.steps_rejected += 1;
-            reject = true;
-            h = 0.25 * hs;
-            continue;
+            self.reject = true;
+            return Ok(Trial::Rejected { h_next: 0.25 * hs });
         }
-        let fac = safe.min(cfac / (newt + 2 * NIT) as f64);
-        let mut quot = (err.powf(0.25) / fac).clamp(fac_grow, fac_shrink);
-        if err < 1.0 {
-            if !first {
-                let facgus = ((h_acc / hs) * (err * err / err_acc).powf(0.25) / safe).clamp(fac_grow, fac_shrink);
-                quot = quot.max(facgus);
-            }
-            h_acc = hs;
-            err_acc = err.max(1e-2);
-            first = false;
-            // y1 = y + Z3 (stiffly accurate); dense output through the stages.
-            for i in 0..n {
-                let (z1, z2, z3) = (z[i], z[n + i], z[2 * n + i]);
-                ynew[i] = y[i] + z3;
-                let cont = &mut dense.cont;
-                cont[i] = ynew[i];
-                cont[n + i] = (z2 - z3) / c2m1;
-                let ak = (z1 - z2) / c1mc2;
-                let acont3 = (ak - z1 / c1) / c2;
-                cont[2 * n + i] = (ak - cont[n + i]) / c1m1;
-                cont[3 * n + i] = cont[2 * n + i] - acont3;
-            }
-            dense.t0 = t;
-            dense.t1 = t1;
-            h_old = hs;
-            if !all_finite(&ynew) {
-                return Err(non_finite(t));
-            }
-            if let Some(h_switch) = step_to_switch(sys, st, stats, t, &y, t1, &ynew, &dense)? {
-                redo_of = Some(hs);
-                h = h_switch;
-                continue;
-            }
-            if finish_accepted(sys, stats, (hs, &mut t, t1, last), &mut y, &mut ynew, &dense, (t_out, &mut next_out), &mut buf, &mut f0)? {
-                return Ok(());
-            }
-            need_w = true;
-            h = size_after_accept(hs, quot, &mut reject);
-        } else {
-            stats.steps_rejected += 1;
-            reject = true;
-            h = if first { 0.1 * hs } else { hs / quot };
+        let fac = Self::SAFE.min(Self::SAFE * (1 + 2 * NIT) as f64 / (newt + 2 * NIT) as f64);
+        let mut quot = (err.powf(0.25) / fac).clamp(Self::FAC_GROW, Self::FAC_SHRINK);
+        if err >= 1.0 {
+            self.reject = true;
+            return Ok(Trial::Rejected { h_next: if self.first { 0.1 * hs } else { hs / quot } });
         }
+        if !self.first {
+            let facgus = ((self.h_acc / hs) * (err * err / self.err_acc).powf(0.25) / Self::SAFE).clamp(Self::FAC_GROW, Self::FAC_SHRINK);
+            quot = quot.max(facgus);
+        }
+        self.h_acc = hs;
+        self.err_acc = err.max(1e-2);
+        self.first = false;
+        self.quot = quot;
+        // y1 = y + Z3 (stiffly accurate); dense output through the stages.
+        let (c1, c2) = (k.c[0], k.c[1]);
+        let (c1m1, c2m1, c1mc2) = (c1 - 1.0, c2 - 1.0, c1 - c2);
+        let cont = &mut self.dense.cont;
+        for i in 0..n {
+            let (z1, z2, z3) = (z[i], z[n + i], z[2 * n + i]);
+            ynew[i] = y[i] + z3;
+            cont[i] = ynew[i];
+            cont[n + i] = (z2 - z3) / c2m1;
+            let ak = (z1 - z2) / c1mc2;
+            let acont3 = (ak - z1 / c1) / c2;
+            cont[2 * n + i] = (ak - cont[n + i]) / c1m1;
+            cont[3 * n + i] = cont[2 * n + i] - acont3;
+        }
+        self.dense.t0 = t;
+        self.dense.t1 = t1;
+        self.h_old = hs;
+        Ok(Trial::Passed)
+    }
+    fn dense(&self) -> &dyn DenseOutput {
+        &self.dense
+    }
+    fn redo(&mut self, h: f64) {
+        self.redo_of = Some(h);
+    }
+    fn accepted(&mut self, h: f64) -> f64 {
+        self.need_w = true;
+        size_after_accept(h, self.quot, &mut self.reject)
     }
 }
 

@@ -24,9 +24,8 @@ use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve}
 use faer::perm::PermRef;
 use faer::{Mat, Par};
 
-use super::controller::initial_step;
-use super::driver::{all_finite, emit_initial, finish_accepted, fresh_rhs, non_finite, plan_step, size_after_accept, step_to_switch};
-use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
+use super::driver::{non_finite, size_after_accept, Stepper, Trial};
+use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
 /// Coefficients of RODAS4 (Hairer's `ROCOE`, `METH = 1`).
@@ -170,80 +169,98 @@ fn weighted(out: &mut [f64], w: &[f64], u: &[f64]) {
     }
 }
 
-/// The RODAS4 driver loop (Hairer's `ROSCOR`), with the same contract as the explicit drivers:
-/// outputs from the dense output, `step_accepted` after every accepted step, errors
-/// `StepSizeUnderflow` / `NonFinite` / `TooManySteps`. The input has been validated.
-pub(super) fn drive_rodas4<S: OdeSystem>(
-    sys: &mut S,
-    span: Span<'_>,
-    st: &Settings,
-    stats: &mut Stats,
-) -> Result<(), Error> {
-    let Span { t0, y0, t_end, t_out } = span;
-    use rodas4::*;
-    let n = y0.len();
-    // Work vectors, allocated once.
-    let mut y = y0.to_vec();
-    let mut ynew = vec![0.0; n];
-    let mut f0 = vec![0.0; n]; // f(t, y)
-    let mut ft = vec![0.0; n]; // ∂f/∂t
-    let mut dy = vec![0.0; n];
-    let mut ysafe = vec![0.0; n];
-    let mut u = vec![0.0; 6 * n];
-    let mut buf = vec![0.0; n];
-    let mut jac = Mat::<f64>::zeros(n, n);
-    let mut lu = Lu::new(n);
-    let mut dense = RodasDense { t0, t1: t0, y0: vec![0.0; n], y1: vec![0.0; n], r2: vec![0.0; n], r3: vec![0.0; n] };
+/// The RODAS4 stepper (the step of Hairer's `ROSCOR`): `J` and `∂f/∂t` recomputed after every
+/// accepted step and kept on rejections; a trial whose error is not finite (a singular or
+/// hopeless iteration matrix) is retried with half the step, up to four times in a row.
+pub(super) struct Rodas4 {
+    f0: Vec<f64>,
+    /// `∂f/∂t`.
+    ft: Vec<f64>,
+    dy: Vec<f64>,
+    ysafe: Vec<f64>,
+    /// Stage increments `u_1..u_6`.
+    u: Vec<f64>,
+    jac: Mat<f64>,
+    lu: Lu,
+    dense: RodasDense,
+    need_jac: bool,
+    /// Step-size control of RODAS: `h_new/h ∈ [1/5, 6]`, safety 0.9, Gustafsson's predictive
+    /// controller after the first accepted step.
+    h_acc: f64,
+    err_acc: f64,
+    reject: bool,
+    /// `h/h_new` proposed by the last step that passed.
+    quot: f64,
+}
 
-    let mut next_out = emit_initial(sys, t_out, t0, y0)?;
-    if t_end == t0 {
-        return Ok(());
+impl Rodas4 {
+    const SAFE: f64 = 0.9;
+    const FAC_LO: f64 = 1.0 / 6.0;
+    const FAC_HI: f64 = 5.0;
+
+    pub(super) fn new(n: usize) -> Self {
+        Rodas4 {
+            f0: vec![0.0; n],
+            ft: vec![0.0; n],
+            dy: vec![0.0; n],
+            ysafe: vec![0.0; n],
+            u: vec![0.0; 6 * n],
+            jac: Mat::zeros(n, n),
+            lu: Lu::new(n),
+            dense: RodasDense { t0: 0.0, t1: 0.0, y0: vec![0.0; n], y1: vec![0.0; n], r2: vec![0.0; n], r3: vec![0.0; n] },
+            need_jac: true,
+            h_acc: 0.0,
+            err_acc: 1.0,
+            reject: false,
+            quot: 1.0,
+        }
     }
-    let mut t = t0;
-    fresh_rhs(sys, stats, t, &y, &mut f0)?;
-    let mut h = match st.h0 {
-        Some(h0) => h0,
-        None => {
-            let h = initial_step(sys, t, &y, &f0, 4, st.h_max.min(t_end - t0), st.rtol, st.atol, &mut ynew, &mut dy)?;
-            stats.rhs_evals += 1;
-            h.max(st.h_min)
+
+    /// `∂f/∂t` and `J = ∂f/∂y` at `(t, y)` by forward differences (RODAS's increments).
+    fn jacobian<S: OdeSystem>(&mut self, sys: &mut S, stats: &mut Stats, t: f64, y: &[f64]) -> Result<(), Error> {
+        let n = y.len();
+        let (f0, ft, dy) = (&self.f0, &mut self.ft, &mut self.dy);
+        let delt = (UROUND * t.abs().max(1e-5)).sqrt();
+        sys.rhs(t + delt, y, ft)?;
+        for i in 0..n {
+            ft[i] = (ft[i] - f0[i]) / delt;
         }
-    };
-    // Step-size control of RODAS: h_new/h ∈ [1/5, 6], safety 0.9, Gustafsson's predictive
-    // controller after the first accepted step.
-    let (fac_lo, fac_hi, safe) = (1.0 / 6.0, 5.0, 0.9);
-    let (mut h_acc, mut err_acc) = (h, 1.0f64);
-    let mut reject = false;
-    let mut need_jac = true;
-    let mut singular = 0usize;
-
-    loop {
-        let (hs, t1, last) = plan_step(t, h, t_end, st, stats, || None)?;
-
-        if need_jac {
-            // ∂f/∂t and J = ∂f/∂y by forward differences (RODAS's increments).
-            let delt = (UROUND * t.abs().max(1e-5)).sqrt();
-            sys.rhs(t + delt, &y, &mut ft)?;
+        self.ysafe.copy_from_slice(y);
+        for j in 0..n {
+            self.ysafe[j] = y[j] + sys.difference_step(j, y);
+            let delt = self.ysafe[j] - y[j]; // the step actually taken
+            sys.rhs(t, &self.ysafe, dy)?;
+            self.ysafe[j] = y[j];
             for i in 0..n {
-                ft[i] = (ft[i] - f0[i]) / delt;
+                self.jac[(i, j)] = (dy[i] - f0[i]) / delt;
             }
-            ysafe.copy_from_slice(&y);
-            for j in 0..n {
-                ysafe[j] = y[j] + sys.difference_step(j, &y);
-                let delt = ysafe[j] - y[j]; // the step actually taken
-                sys.rhs(t, &ysafe, &mut dy)?;
-                ysafe[j] = y[j];
-                for i in 0..n {
-                    jac[(i, j)] = (dy[i] - f0[i]) / delt;
-                }
-            }
-            stats.rhs_evals += n + 1;
-            stats.jacobians += 1;
-            need_jac = false;
         }
+        stats.rhs_evals += n + 1;
+        stats.jacobians += 1;
+        Ok(())
+    }
+}
 
+impl<S: OdeSystem> Stepper<S> for Rodas4 {
+    fn order(&self) -> usize {
+        4
+    }
+    fn max_trial_failures(&self) -> usize {
+        4
+    }
+    fn f0(&mut self) -> &mut [f64] {
+        &mut self.f0
+    }
+    fn attempt(&mut self, sys: &mut S, stats: &mut Stats, st: &Settings, t: f64, t1: f64, hs: f64, y: &[f64], ynew: &mut [f64]) -> Result<Trial, Error> {
+        use rodas4::*;
+        let n = y.len();
+        if self.need_jac {
+            self.jacobian(sys, stats, t, y)?;
+            self.need_jac = false;
+        }
+        let (f0, ft, dy, u, lu) = (&self.f0, &self.ft, &mut self.dy, &mut self.u, &mut self.lu);
         let fac = 1.0 / (hs * GAMMA);
-        lu.factor(&jac, fac);
+        lu.factor(&self.jac, fac);
         let hd: [f64; 4] = [hs * D[0], hs * D[1], hs * D[2], hs * D[3]];
         // Stage 1.
         for i in 0..n {
@@ -256,18 +273,18 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
         let stage_t = [t + C2 * hs, t + C3 * hs, t + C4 * hs, t1, t1];
         for s in 1..6 {
             if s < 5 {
-                lincomb(&mut ynew, &y, stage_a[s - 1], &u);
+                lincomb(ynew, y, stage_a[s - 1], u);
             } else {
                 // Embedded solution y + Σ a5j u_j + u_5, already in ynew after stage 5.
                 for i in 0..n {
                     ynew[i] += u[4 * n + i];
                 }
             }
-            sys.rhs(stage_t[s - 1], &ynew, &mut dy)?;
+            sys.rhs(stage_t[s - 1], ynew, dy)?;
             stats.rhs_evals += 1;
             let (done, cur) = u.split_at_mut(s * n);
             let cur = &mut cur[..n];
-            cur.copy_from_slice(&dy);
+            cur.copy_from_slice(dy);
             if s < 4 {
                 let hds = hd[s];
                 for i in 0..n {
@@ -294,49 +311,38 @@ pub(super) fn drive_rodas4<S: OdeSystem>(
         }
         let err = (err / n.max(1) as f64).sqrt();
         if !err.is_finite() {
-            // A singular or hopeless iteration matrix: halve the step a few times (RODAS), then give up.
-            singular += 1;
-            if singular >= 5 || !all_finite(&f0) {
-                return Err(non_finite(t));
-            }
-            stats.steps_rejected += 1;
-            reject = true;
-            h = 0.5 * hs;
-            continue;
+            // A singular or hopeless iteration matrix: halve the step (RODAS).
+            self.reject = true;
+            return Ok(Trial::Failed { error: non_finite(t), h_next: 0.5 * hs });
         }
-        singular = 0;
-        let mut q = (err.powf(0.25) / safe).clamp(fac_lo, fac_hi);
-        if err <= 1.0 {
-            if stats.steps_accepted > 0 {
-                let qg = ((h_acc / hs) * (err * err / err_acc).powf(0.25) / safe).clamp(fac_lo, fac_hi);
-                q = q.max(qg);
-            }
-            h_acc = hs;
-            err_acc = err.max(1e-2);
-            if !all_finite(&ynew) {
-                return Err(non_finite(t));
-            }
-            // Dense output of [t, t1].
-            dense.t0 = t;
-            dense.t1 = t1;
-            dense.y0.copy_from_slice(&y);
-            dense.y1.copy_from_slice(&ynew);
-            weighted(&mut dense.r2, &D2, &u);
-            weighted(&mut dense.r3, &D3, &u);
-            if let Some(h_switch) = step_to_switch(sys, st, stats, t, &y, t1, &ynew, &dense)? {
-                h = h_switch;
-                continue;
-            }
-            if finish_accepted(sys, stats, (hs, &mut t, t1, last), &mut y, &mut ynew, &dense, (t_out, &mut next_out), &mut buf, &mut f0)? {
-                return Ok(());
-            }
-            need_jac = true;
-            h = size_after_accept(hs, q, &mut reject);
-        } else {
-            stats.steps_rejected += 1;
-            reject = true;
-            h = hs / q;
+        let mut q = (err.powf(0.25) / Self::SAFE).clamp(Self::FAC_LO, Self::FAC_HI);
+        if err > 1.0 {
+            self.reject = true;
+            return Ok(Trial::Rejected { h_next: hs / q });
         }
+        if stats.steps_accepted > 0 {
+            let qg = ((self.h_acc / hs) * (err * err / self.err_acc).powf(0.25) / Self::SAFE).clamp(Self::FAC_LO, Self::FAC_HI);
+            q = q.max(qg);
+        }
+        self.h_acc = hs;
+        self.err_acc = err.max(1e-2);
+        self.quot = q;
+        // Dense output of [t, t1].
+        let dense = &mut self.dense;
+        dense.t0 = t;
+        dense.t1 = t1;
+        dense.y0.copy_from_slice(y);
+        dense.y1.copy_from_slice(ynew);
+        weighted(&mut dense.r2, &D2, u);
+        weighted(&mut dense.r3, &D3, u);
+        Ok(Trial::Passed)
+    }
+    fn dense(&self) -> &dyn DenseOutput {
+        &self.dense
+    }
+    fn accepted(&mut self, h: f64) -> f64 {
+        self.need_jac = true;
+        size_after_accept(h, self.quot, &mut self.reject)
     }
 }
 
