@@ -19,6 +19,8 @@ pub mod laws;
 pub mod model;
 pub mod monitor;
 pub mod record;
+#[cfg(feature = "serde")]
+pub mod settings;
 pub mod simulate;
 pub mod system;
 pub mod wear;

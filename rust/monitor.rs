@@ -12,6 +12,7 @@
 /// What is monitored: a derivative of a body coordinate, or a quantity of a clearance joint
 /// (then [`MonitorSpec::coordinate`] is the joint's index).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(rename_all = "snake_case"))]
 pub enum Quantity {
     Displacement,
     Velocity,
@@ -36,6 +37,7 @@ impl Quantity {
 /// A smooth reference curve: values and their time derivatives at increasing knots, evaluated by
 /// cubic Hermite interpolation (held constant outside the knots).
 #[derive(Debug, Clone, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(deny_unknown_fields))]
 pub struct Reference {
     pub t: Vec<f64>,
     pub value: Vec<f64>,
@@ -67,20 +69,69 @@ impl Reference {
 
 /// What to monitor (`RunSettings::monitor`).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(deny_unknown_fields))]
 pub struct MonitorSpec {
     /// Index of the coordinate in q (3 per body: x, y, θ), or of the clearance joint for a
     /// joint quantity.
     pub coordinate: usize,
     pub quantity: Quantity,
+    #[cfg_attr(feature = "serde", serde(default))]
     pub reference: Option<Reference>,
     /// Start of the analysed window [s] and the width [s] and number of its bins.
     pub t_start: f64,
     pub bin_width: f64,
+    #[cfg_attr(feature = "serde", serde(default = "one"))]
     pub bins: usize,
     /// |error| above this is an exceedance (first passage); `None`: not tracked.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub limit: Option<f64>,
-    /// Dense-output samples per accepted step (the step's end included).
+    /// Dense-output samples per accepted step (the step's end included; ≥ 1).
+    #[cfg_attr(feature = "serde", serde(default = "eight"))]
     pub samples_per_step: usize,
+}
+
+#[cfg(feature = "serde")]
+fn one() -> usize {
+    1
+}
+
+#[cfg(feature = "serde")]
+fn eight() -> usize {
+    8
+}
+
+impl MonitorSpec {
+    /// Checks what serde cannot: the reference's three columns agree and its knots increase,
+    /// the window and bins make sense. Errors name `monitors[i].<field>`.
+    pub fn validate(&self, i: usize) -> crate::error::Result<()> {
+        use crate::error::Error;
+        let field = |f: &str| format!("monitors[{i}].{f}");
+        if let Some(r) = &self.reference {
+            if r.value.len() != r.t.len() || r.rate.len() != r.t.len() {
+                let lens = format!("t: {}, value: {}, rate: {}", r.t.len(), r.value.len(), r.rate.len());
+                return Err(Error::invalid(field("reference"), lens, "t, value and rate must have the same length"));
+            }
+            if r.t.windows(2).any(|w| !(w[1] > w[0])) || r.t.iter().chain(&r.value).chain(&r.rate).any(|v| !v.is_finite()) {
+                return Err(Error::invalid(field("reference.t"), "[…]", "must be finite and increase strictly"));
+            }
+        }
+        if !self.t_start.is_finite() {
+            return Err(Error::invalid(field("t_start"), self.t_start, "must be finite"));
+        }
+        if !(self.bin_width.is_finite() && self.bin_width > 0.0) {
+            return Err(Error::invalid(field("bin_width"), self.bin_width, "must be finite and > 0"));
+        }
+        if self.bins == 0 {
+            return Err(Error::invalid(field("bins"), 0, "must be ≥ 1"));
+        }
+        if self.samples_per_step == 0 {
+            return Err(Error::invalid(field("samples_per_step"), 0, "must be ≥ 1"));
+        }
+        if self.limit.is_some_and(f64::is_nan) {
+            return Err(Error::invalid(field("limit"), f64::NAN, "must be a number (∞ for none)"));
+        }
+        Ok(())
+    }
 }
 
 /// What the monitor found over the analysed window.

@@ -5,6 +5,7 @@ use crate::system::Workspace;
 
 /// Which channels a run stores (only those are computed at output times).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(default, deny_unknown_fields))]
 pub struct Channels {
     /// q and q̇ of every body.
     pub states: bool,

@@ -91,6 +91,9 @@ impl RunSettings {
                 return Err(Error::invalid(format!("t_out[{}]", k + 1), w[1], "output times must increase strictly"));
             }
         }
+        for (i, m) in self.monitors.iter().enumerate() {
+            m.validate(i)?;
+        }
         Ok(())
     }
 }

@@ -1,9 +1,64 @@
 """Type stub of the native module ``clearsim._core`` (Rust, pyo3). Use the ``clearsim`` facade."""
 
-from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+import sys
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
+
+if sys.version_info >= (3, 11):
+    from typing import NotRequired, TypedDict
+else:
+    from typing_extensions import NotRequired, TypedDict
+
+class Channels(TypedDict, total=False):
+    """Which channels a run stores (absent: states, accelerations, joints, violation)."""
+
+    states: bool
+    accelerations: bool
+    reactions: bool
+    joints: bool
+    violation: bool
+    energy: bool
+
+class Reference(TypedDict):
+    """A reference curve for a monitor: values and rates at strictly increasing times [s]."""
+
+    t: Sequence[float]
+    value: Sequence[float]
+    rate: Sequence[float]
+
+class Monitor(TypedDict):
+    """One monitored output (rust/monitor.rs): a body coordinate's error against a reference,
+    or a clearance joint's quantity, in time bins from ``t_start`` [s]."""
+
+    coordinate: int
+    quantity: str  # displacement, velocity, acceleration, eccentricity, force, contact_force, film_force
+    t_start: float
+    bin_width: float
+    bins: NotRequired[int]
+    limit: NotRequired[Optional[float]]
+    reference: NotRequired[Optional[Reference]]
+    samples_per_step: NotRequired[int]
+
+class RunSettings(TypedDict):
+    """The settings dict of one run (rust/settings.rs; built by ``Mechanism.run_settings``).
+    Unknown keys are an ``InputError``."""
+
+    method: str  # rk45 (dopri5), dop853, rodas4, radau (radau5), rk4
+    t_end: float
+    t0: NotRequired[float]
+    step: NotRequired[float]
+    rtol: NotRequired[float]
+    atol: NotRequired[float]
+    h0: NotRequired[float]
+    h_max: NotRequired[float]
+    h_min: NotRequired[float]
+    max_steps: NotRequired[int]
+    t_out: NotRequired[Sequence[float]]
+    channels: NotRequired[Channels]
+    max_seconds: NotRequired[float]
+    monitors: NotRequired[List[Monitor]]
 
 __version__: str
 JOINT_COLUMNS: List[str]
@@ -23,7 +78,7 @@ class CompiledModel:
     def initial_state(self, t0: float) -> npt.NDArray[np.float64]: ...
     def rhs(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def jacobian(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
-    def simulate(self, settings: Dict[str, Any], progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
+    def simulate(self, settings: RunSettings, progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
     def idealized(self) -> "CompiledModel": ...
 
 def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
@@ -31,7 +86,7 @@ def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
 
 def run_batch(
     descriptions: List[Union[str, Dict[str, Any]]],
-    settings: Union[Dict[str, Any], List[Dict[str, Any]]],
+    settings: Union[RunSettings, List[RunSettings]],
     threads: int = 0,
 ) -> List[Union[Dict[str, Any], BaseException]]: ...
 

@@ -443,3 +443,36 @@ def test_run_options_name_every_run_setting():
 
     params = [p for p in inspect.signature(cs.Mechanism.run_settings).parameters.values() if p.kind is p.KEYWORD_ONLY]
     assert sorted(p.name for p in params) == sorted(RunOptions.__annotations__)
+
+
+def test_run_settings_enter_the_core_through_serde_and_bad_ones_are_named():
+    """The settings dict crosses the binding the way a description does (serde): an unknown
+    key, a wrong type or an inconsistent monitor is an InputError naming its path, and values
+    JSON cannot carry (∞, numpy arrays and scalars) arrive intact."""
+    m = models.slider_crank(joints="dry")
+    compiled = m.compile()
+    good = m.run_settings(0.002, dt_out=1e-3)
+    spec = {"coordinate": 4, "quantity": "displacement", "t_start": 0.0, "bin_width": 1e-3, "bins": np.int64(2),
+            "limit": math.inf, "samples_per_step": 8}
+    raw = compiled.simulate(dict(good, monitors=[spec], max_seconds=math.inf))
+    assert raw["t"].shape == (3,)
+    assert raw["monitors"][0]["first_passage"] != raw["monitors"][0]["first_passage"]  # never: NaN
+
+    def error(settings: Any) -> cs.InputError:
+        with pytest.raises(cs.InputError) as info:
+            compiled.simulate(settings)
+        return info.value
+
+    e = error(dict(good, rtoll=1e-3))
+    assert e.field == "rtoll" and "unknown field `rtoll`" in str(e)
+    e = error(dict(good, method="euler"))
+    assert e.field == "method" and "unknown variant `euler`" in str(e)
+    e = error(dict(good, channels={"states": "yes"}))
+    assert e.field == "channels.states" and "expected a boolean" in str(e)
+    e = error(dict(good, monitors=[dict(spec, quantity="speed")]))
+    assert e.field == "monitors[0].quantity"
+    bad_ref = {"t": np.array([0.0, 1.0]), "value": np.array([0.0]), "rate": np.zeros(2)}
+    e = error(dict(good, monitors=[dict(spec, reference=bad_ref)]))
+    assert e.field == "monitors[0].reference" and "same length" in str(e)
+    e = error(dict(good, monitors=[dict(spec, bins=0)]))
+    assert e.field == "monitors[0].bins"

@@ -1,6 +1,7 @@
-//! The pyo3 glue: the only file that knows about Python (feature `python`).
+//! The pyo3 glue: the only module that knows about Python (feature `python`).
 //!
-//! Descriptions arrive as plain dicts built by `python/clearsim/mechanism.py`; results leave as
+//! Descriptions and run settings arrive as plain data built by `python/clearsim/mechanism.py`
+//! and `running.py` and enter the core through serde (`de.rs` for settings); results leave as
 //! dicts of numpy arrays. Every [`Error`] becomes a Python exception of `clearsim.errors` in
 //! [`to_pyerr`], and nowhere else. The GIL is released while integrating.
 
@@ -16,10 +17,10 @@ use pyo3::types::{PyDict, PyList};
 use crate::batch::run_batch;
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
-use crate::integrate::{Method, OdeSystem, Settings};
+use crate::integrate::OdeSystem;
 use crate::model::*;
-use crate::monitor::{MonitorSpec, Quantity, Reference};
 use crate::record::{Channels, JOINT_COLUMNS};
+use crate::settings::RunSettingsDesc;
 use crate::simulate::{simulate, MechanismSystem, RunOutput, RunSettings};
 use crate::system::Workspace;
 
@@ -71,68 +72,21 @@ fn input_error(py: Python<'_>, field: &str, value: impl std::fmt::Display, reaso
     to_pyerr(py, &Error::invalid(field, value, reason))
 }
 
-// ---------------------------------------------------------------- reading plain dicts
+// ---------------------------------------------------------------- reading plain data
 
-struct Reader<'a, 'py> {
-    d: &'a Bound<'py, PyDict>,
-    ctx: String,
-}
+mod de;
 
-impl<'a, 'py> Reader<'a, 'py> {
-    fn new(d: &'a Bound<'py, PyDict>, ctx: impl Into<String>) -> Self {
-        Reader { d, ctx: ctx.into() }
-    }
-    fn field(&self, key: &str) -> String {
-        if self.ctx.is_empty() { key.to_string() } else { format!("{}.{}", self.ctx, key) }
-    }
-    fn any(&self, key: &str) -> PyResult<Bound<'py, PyAny>> {
-        match self.d.get_item(key)? {
-            Some(v) => Ok(v),
-            None => Err(input_error(self.d.py(), &self.field(key), "<missing>", "is required")),
-        }
-    }
-    fn opt(&self, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
-        Ok(self.d.get_item(key)?.filter(|v| !v.is_none()))
-    }
-    fn f64(&self, key: &str) -> PyResult<f64> {
-        let v = self.any(key)?;
-        v.extract::<f64>().map_err(|_| input_error(self.d.py(), &self.field(key), v.repr().map(|r| r.to_string()).unwrap_or_default(), "must be a number"))
-    }
-    fn f64_or(&self, key: &str, default: f64) -> PyResult<f64> {
-        match self.opt(key)? {
-            Some(_) => self.f64(key),
-            None => Ok(default),
-        }
-    }
-    fn opt_f64(&self, key: &str) -> PyResult<Option<f64>> {
-        match self.opt(key)? {
-            Some(_) => self.f64(key).map(Some),
-            None => Ok(None),
-        }
-    }
-    fn bool_or(&self, key: &str, default: bool) -> PyResult<bool> {
-        match self.opt(key)? {
-            Some(v) => v.extract::<bool>().map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be true or false")),
-            None => Ok(default),
-        }
-    }
-    fn string(&self, key: &str) -> PyResult<String> {
-        let v = self.any(key)?;
-        v.extract::<String>().map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be a string"))
-    }
-    fn vec(&self, key: &str) -> PyResult<Vec<f64>> {
-        let v = self.any(key)?;
-        // A float64 numpy array is copied as one block (a monitor's reference holds ~10⁴
-        // values per sample; element by element it cost ~30 ms a Monte Carlo sample).
-        if let Ok(a) = v.extract::<PyReadonlyArray1<f64>>() {
-            return Ok(a.as_slice().map(|s| s.to_vec()).unwrap_or_else(|_| a.as_array().to_vec()));
-        }
-        v.extract::<Vec<f64>>().map_err(|_| input_error(self.d.py(), &self.field(key), v, "must be a sequence of numbers"))
-    }
-    fn dict(&self, key: &str) -> PyResult<Bound<'py, PyDict>> {
-        let v = self.any(key)?;
-        v.cast_into::<PyDict>().map_err(|_| input_error(self.d.py(), &self.field(key), "<not a dict>", "must be a mapping"))
-    }
+/// Run settings from Python plain data (the dict `Mechanism.run_settings` builds), through serde
+/// ([`crate::settings::RunSettingsDesc`]) and validated. A key or value that does not fit is an
+/// `InputError` naming its path (`monitors[0].quantity`).
+fn read_settings(d: &Bound<'_, PyAny>) -> PyResult<RunSettings> {
+    let py = d.py();
+    let desc: RunSettingsDesc = serde_path_to_error::deserialize(de::PyData(d.clone())).map_err(|e| {
+        let path = e.path().to_string();
+        let field = if path == "." { "settings".to_string() } else { path };
+        to_pyerr(py, &Error::invalid(field, "…", e.inner().to_string()))
+    })?;
+    desc.into_settings().map_err(|e| to_pyerr(py, &e))
 }
 
 /// A description from Python: a JSON string, or plain data (dicts, lists, numbers, strings).
@@ -204,118 +158,6 @@ fn plain_value(obj: &Bound<'_, PyAny>, field: &str, top: bool) -> PyResult<serde
         return Ok(Value::Array(items));
     }
     Err(input_error(py, if field.is_empty() { "description" } else { field }, obj.repr()?, "must be plain data (dicts, lists, numbers, strings)"))
-}
-
-fn read_settings(d: &Bound<'_, PyDict>) -> PyResult<RunSettings> {
-    let py = d.py();
-    let r = Reader::new(d, "");
-    let method = match r.string("method")?.as_str() {
-        "rk45" | "dopri5" => Method::Dopri5,
-        "dop853" => Method::Dop853,
-        "rodas4" => Method::Rodas4,
-        "radau" | "radau5" => Method::Radau5,
-        "rk4" => Method::Rk4 { step: r.f64("step")? },
-        other => return Err(input_error(py, "integrator", other, "must be 'rk45', 'dop853', 'rk4', 'radau' or 'rodas4'")),
-    };
-    let base = Settings::default();
-    let ode = Settings {
-        rtol: r.f64_or("rtol", base.rtol)?,
-        atol: r.f64_or("atol", base.atol)?,
-        h0: r.opt_f64("h0")?,
-        h_max: r.f64_or("h_max", base.h_max)?,
-        h_min: r.f64_or("h_min", base.h_min)?,
-        max_steps: match r.opt("max_steps")? {
-            Some(v) => v.extract::<usize>().map_err(|_| input_error(py, "max_steps", v, "must be a positive integer"))?,
-            None => base.max_steps,
-        },
-    };
-    let t_out: Vec<f64> = match r.opt("t_out")? {
-        Some(v) => match v.extract::<PyReadonlyArray1<f64>>() {
-            Ok(a) => a.as_slice().map(|s| s.to_vec()).unwrap_or_else(|_| a.as_array().to_vec()),
-            Err(_) => r.vec("t_out")?,
-        },
-        None => vec![],
-    };
-    let ch = Channels::default();
-    let channels = match r.opt("channels")? {
-        None => ch,
-        Some(_) => {
-            let c = r.dict("channels")?;
-            let cr = Reader::new(&c, "outputs");
-            Channels {
-                states: cr.bool_or("states", ch.states)?,
-                accelerations: cr.bool_or("accelerations", ch.accelerations)?,
-                reactions: cr.bool_or("reactions", ch.reactions)?,
-                joints: cr.bool_or("joints", ch.joints)?,
-                violation: cr.bool_or("violation", ch.violation)?,
-                energy: cr.bool_or("energy", ch.energy)?,
-            }
-        }
-    };
-    let max_wall_time = r.opt_f64("max_seconds")?;
-    let monitors = match r.opt("monitors")? {
-        None => Vec::new(),
-        Some(v) => {
-            let list = v.cast::<PyList>().map_err(|_| input_error(py, "monitors", "…", "must be a list of dicts"))?;
-            let mut out = Vec::with_capacity(list.len());
-            for item in list.iter() {
-                let d = item.cast::<PyDict>().map_err(|_| input_error(py, "monitors", "…", "must be a list of dicts"))?;
-                out.push(read_monitor(d)?);
-            }
-            out
-        }
-    };
-    Ok(RunSettings { method, ode, t0: r.f64_or("t0", 0.0)?, t_end: r.f64("t_end")?, t_out, channels, max_wall_time, monitors })
-}
-
-/// The `monitor` entry of the run settings (built by `clearsim.montecarlo`).
-fn read_monitor(d: &Bound<'_, PyDict>) -> PyResult<MonitorSpec> {
-    let py = d.py();
-    let r = Reader::new(d, "monitor");
-    let quantity = match r.string("quantity")?.as_str() {
-        "displacement" => Quantity::Displacement,
-        "velocity" => Quantity::Velocity,
-        "acceleration" => Quantity::Acceleration,
-        "eccentricity" => Quantity::Eccentricity,
-        "force" => Quantity::Force,
-        "contact_force" => Quantity::ContactForce,
-        "film_force" => Quantity::FilmForce,
-        other => {
-            let known = "displacement, velocity, acceleration, eccentricity, force, contact_force or film_force";
-            return Err(input_error(py, "monitor.quantity", other, &format!("must be one of {known}")));
-        }
-    };
-    let reference = match r.opt("reference")? {
-        None => None,
-        Some(_) => {
-            let rd = r.dict("reference")?;
-            let rr = Reader::new(&rd, "monitor.reference");
-            let reference = Reference { t: rr.vec("t")?, value: rr.vec("value")?, rate: rr.vec("rate")? };
-            if reference.value.len() != reference.t.len() || reference.rate.len() != reference.t.len() {
-                return Err(input_error(py, "monitor.reference", reference.t.len(), "t, value and rate must have the same length"));
-            }
-            if reference.t.windows(2).any(|w| !(w[1] > w[0])) {
-                return Err(input_error(py, "monitor.reference.t", "[…]", "must increase strictly"));
-            }
-            Some(reference)
-        }
-    };
-    let count = |key: &str, default: usize| -> PyResult<usize> {
-        match r.opt(key)? {
-            Some(v) => v.extract::<usize>().map_err(|_| input_error(py, &format!("monitor.{key}"), v, "must be a non-negative integer")),
-            None => Ok(default),
-        }
-    };
-    Ok(MonitorSpec {
-        coordinate: count("coordinate", usize::MAX)?,
-        quantity,
-        reference,
-        t_start: r.f64("t_start")?,
-        bin_width: r.f64("bin_width")?,
-        bins: count("bins", 1)?,
-        limit: r.opt_f64("limit")?,
-        samples_per_step: count("samples_per_step", 8)?.max(1),
-    })
 }
 
 // ---------------------------------------------------------------- results
@@ -530,7 +372,7 @@ impl CompiledModel {
     /// if given, is called with the simulated time reached [s] about every 50 ms.
     #[pyo3(signature = (settings, progress=None))]
     fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyDict>> {
-        let rs = read_settings(settings)?;
+        let rs = read_settings(settings.as_any())?;
         let model = &self.model;
         let stop = make_stop(progress);
         let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
@@ -577,13 +419,13 @@ fn compile(py: Python<'_>, description: &Bound<'_, PyAny>) -> PyResult<CompiledM
 fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
     let settings: Vec<RunSettings> = if let Ok(d) = settings.cast::<PyDict>() {
-        vec![read_settings(d)?]
+        vec![read_settings(d.as_any())?]
     } else {
         let list: Vec<Bound<'py, PyDict>> = settings.extract().map_err(|_| input_error(py, "settings", "<not a dict or list of dicts>", "must be a dict or a list of dicts"))?;
         if list.len() != descs.len() {
             return Err(input_error(py, "settings", format!("{} entries", list.len()), &format!("must have one entry per description ({})", descs.len())));
         }
-        list.iter().map(|d| read_settings(d)).collect::<PyResult<Vec<_>>>()?
+        list.iter().map(|d| read_settings(d.as_any())).collect::<PyResult<Vec<_>>>()?
     };
     for rs in &settings {
         rs.validate().map_err(|e| to_pyerr(py, &e))?;
