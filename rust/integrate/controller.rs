@@ -123,6 +123,74 @@ impl Controller {
     }
 }
 
+/// Gustafsson's predictive step-size controller of the stiff codes (Hairer–Wanner IV.8,
+/// eq. 8.25; as in Hairer's RODAS and RADAU5): `h_new = h / q` with
+/// `q = clamp(err^(1/4)/safety, q_min, q_max)`, and after the first accepted step
+/// `q = max(q, clamp((h_acc/h)(err²/err_acc)^(1/4)/safety, …))` from the last accepted step
+/// `(h_acc, err_acc)`. A step that passes may still be redone (a switching point); the size
+/// after a real acceptance is [`Predictive::size_after_accept`], which does not grow right after
+/// a rejected or failed trial.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Predictive {
+    /// Safety factor of the predictive term (0.9).
+    pub safety: f64,
+    /// Bounds of `q = h/h_new`: `h_new/h ∈ [1/q_max, 1/q_min]`.
+    pub q_min: f64,
+    pub q_max: f64,
+    h_acc: f64,
+    err_acc: f64,
+    rejected: bool,
+    quot: f64,
+}
+
+impl Predictive {
+    /// RODAS: `h_new/h ∈ [1/5, 6]`.
+    pub fn rodas() -> Self {
+        Predictive::new(1.0 / 6.0, 5.0)
+    }
+    /// RADAU5: `h_new/h ∈ [1/5, 8]`.
+    pub fn radau5() -> Self {
+        Predictive::new(1.0 / 8.0, 5.0)
+    }
+    fn new(q_min: f64, q_max: f64) -> Self {
+        Predictive { safety: 0.9, q_min, q_max, h_acc: 0.0, err_acc: 1.0, rejected: false, quot: 1.0 }
+    }
+
+    /// Decide on a trial of size `h` with error `err`; `safety` scales the error term of this
+    /// step (RADAU5 lowers it when the Newton iteration needed many iterations) and `predict`
+    /// turns the predictive term on (after the first accepted step). An accepted decision's
+    /// `h_next` is the plain proposal; use [`Predictive::size_after_accept`] once the step is kept.
+    pub fn decide(&mut self, err: f64, h: f64, safety: f64, predict: bool) -> Decision {
+        let mut q = (err.powf(0.25) / safety).clamp(self.q_min, self.q_max);
+        if err > 1.0 {
+            self.rejected = true;
+            return Decision::Reject { h_next: h / q };
+        }
+        if predict {
+            let qg = ((self.h_acc / h) * (err * err / self.err_acc).powf(0.25) / self.safety).clamp(self.q_min, self.q_max);
+            q = q.max(qg);
+        }
+        self.h_acc = h;
+        self.err_acc = err.max(1e-2);
+        self.quot = q;
+        Decision::Accept { h_next: h / q }
+    }
+
+    /// A trial failed (not finite, Newton diverged): like a rejection, the next accepted step
+    /// may not grow.
+    pub fn failed(&mut self) {
+        self.rejected = true;
+    }
+
+    /// The size after the step of size `h` that passed last was kept: `h/q`, but no growth
+    /// right after a rejection.
+    pub fn size_after_accept(&mut self, h: f64) -> f64 {
+        let h_next = if self.rejected { (h / self.quot).min(h) } else { h / self.quot };
+        self.rejected = false;
+        h_next
+    }
+}
+
 /// Automatic initial step (Hairer I, §II.4 "Starting Step Size"; `HINIT` of DOPRI5/DOP853).
 ///
 /// With `d0 = ‖y0‖`, `d1 = ‖f0‖` (RMS norms scaled by `atol + rtol |y0|`): `h0 = 0.01 d0/d1`
@@ -299,5 +367,27 @@ mod tests {
         // Zero state and derivative: fall back to small positive steps.
         let h0 = initial_step(&mut sys, 0.0, &[0.0], &[0.0], 8, 1.0, 1e-6, 1e-6, &mut y1, &mut f1).unwrap();
         assert!(h0 > 0.0 && h0.is_finite());
+    }
+
+    #[test]
+    fn predictive_controller_shrinks_on_rejection_and_does_not_grow_right_after() {
+        let mut c = Predictive::rodas();
+        // Rejected with err = 16: q = 2/0.9 → h/2.22.
+        match c.decide(16.0, 1.0, 0.9, false) {
+            Decision::Reject { h_next } => assert!((h_next - 0.45).abs() < 1e-12, "{h_next}"),
+            d => panic!("{d:?}"),
+        }
+        // Passed with a tiny error: would grow 6×, but not right after the rejection.
+        assert!(matches!(c.decide(1e-8, 0.45, 0.9, false), Decision::Accept { h_next } if (h_next - 0.45 * 6.0).abs() < 1e-12));
+        assert_eq!(c.size_after_accept(0.45), 0.45);
+        // Next one grows; the predictive term (err rising from 1e-2 to 0.5) holds it back.
+        assert!(matches!(c.decide(1e-8, 0.45, 0.9, true), Decision::Accept { .. }));
+        assert!((c.size_after_accept(0.45) - 2.7).abs() < 1e-12);
+        c.decide(0.5, 1.0, 0.9, true);
+        let plain = 1.0 / (0.5f64.powf(0.25) / 0.9);
+        let h = c.size_after_accept(1.0);
+        assert!(h < plain, "{h} vs {plain}");
+        let q = (0.45 / 1.0) * (0.25f64 / 1e-2).powf(0.25) / 0.9;
+        assert!((h - 1.0 / q).abs() < 1e-12, "{h} vs {}", 1.0 / q);
     }
 }

@@ -153,15 +153,6 @@ pub(super) fn step_to_switch<S: OdeSystem>(
     Ok(h)
 }
 
-/// The step size after an accepted step of the stiff drivers: `hs/quot`, but no growth right
-/// after a rejection (Hairer's RODAS and RADAU5); clears `reject`.
-pub(super) fn size_after_accept(hs: f64, quot: f64, reject: &mut bool) -> f64 {
-    let h = if *reject { (hs / quot).min(hs) } else { hs / quot };
-    *reject = false;
-    h
-}
-
-
 /// What a trial step came to.
 #[derive(Debug)]
 pub(super) enum Trial {

@@ -25,7 +25,8 @@
 
 use faer::Mat;
 
-use super::driver::{all_finite, non_finite, size_after_accept, Stepper, Trial};
+use super::controller::{Decision, Predictive};
+use super::driver::{all_finite, non_finite, Stepper, Trial};
 use super::stiff::Lu;
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
@@ -353,14 +354,15 @@ pub(super) struct Radau5Stepper {
     newton: Option<NewtonSystems>,
     /// Newton stopping tolerance (Hairer's `FNEWT`).
     fnewt: f64,
-    h_acc: f64,
-    err_acc: f64,
+    /// Gustafsson's predictive controller after the first accepted step.
+    ctrl: Predictive,
     /// The last accepted step (for extrapolating the stages).
     h_old: f64,
     first: bool,
     /// Size of the step just abandoned to end on a switching point: the redone step starts from
     /// the same `t`, inside the abandoned step's collocation polynomial (in `dense`).
     redo_of: Option<f64>,
+    /// The last trial was rejected or failed (then the error estimate is checked once more).
     reject: bool,
     need_w: bool,
     /// Failed trial steps since `W` was last built, and whether it came from the system's hook:
@@ -370,16 +372,9 @@ pub(super) struct Radau5Stepper {
     w_from_hook: bool,
     differenced_left: usize,
     faccon: f64,
-    /// `h/h_new` proposed by the last step that passed.
-    quot: f64,
 }
 
 impl Radau5Stepper {
-    const SAFE: f64 = 0.9;
-    /// `h_new/h ∈ [1/5, 8]`.
-    const FAC_GROW: f64 = 1.0 / 8.0;
-    const FAC_SHRINK: f64 = 5.0;
-
     pub(super) fn new(n: usize, st: &Settings) -> Self {
         let k = Radau5::new();
         let (c1m1, c2m1) = (k.c[0] - 1.0, k.c[1] - 1.0);
@@ -397,8 +392,7 @@ impl Radau5Stepper {
             dense: RadauDense { t0: 0.0, t1: 0.0, c1m1, c2m1, cont: vec![0.0; 4 * n] },
             newton: None,
             fnewt: (10.0 * f64::EPSILON / st.rtol).max(0.03f64.min(st.rtol.sqrt())),
-            h_acc: 0.0,
-            err_acc: 1.0,
+            ctrl: Predictive::radau5(),
             h_old: 0.0,
             first: true,
             redo_of: None,
@@ -408,7 +402,6 @@ impl Radau5Stepper {
             w_from_hook: false,
             differenced_left: 0,
             faccon: 1.0,
-            quot: 1.0,
         }
     }
 
@@ -574,6 +567,7 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
             Err((error, fac)) => {
                 self.fails_on_w += 1;
                 self.reject = true;
+                self.ctrl.failed();
                 return Ok(Trial::Failed { error, h_next: hs * fac });
             }
         };
@@ -605,22 +599,16 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
         }
         if !err.is_finite() {
             self.reject = true;
+            self.ctrl.failed();
             return Ok(Trial::Rejected { h_next: 0.25 * hs });
         }
-        let fac = Self::SAFE.min(Self::SAFE * (1 + 2 * NIT) as f64 / (newt + 2 * NIT) as f64);
-        let mut quot = (err.powf(0.25) / fac).clamp(Self::FAC_GROW, Self::FAC_SHRINK);
-        if err >= 1.0 {
+        // Fewer Newton iterations, a bolder step (Hairer's FAC).
+        let safety = self.ctrl.safety.min(self.ctrl.safety * (1 + 2 * NIT) as f64 / (newt + 2 * NIT) as f64);
+        if let Decision::Reject { h_next } = self.ctrl.decide(err, hs, safety, !self.first) {
             self.reject = true;
-            return Ok(Trial::Rejected { h_next: if self.first { 0.1 * hs } else { hs / quot } });
+            return Ok(Trial::Rejected { h_next: if self.first { 0.1 * hs } else { h_next } });
         }
-        if !self.first {
-            let facgus = ((self.h_acc / hs) * (err * err / self.err_acc).powf(0.25) / Self::SAFE).clamp(Self::FAC_GROW, Self::FAC_SHRINK);
-            quot = quot.max(facgus);
-        }
-        self.h_acc = hs;
-        self.err_acc = err.max(1e-2);
         self.first = false;
-        self.quot = quot;
         // y1 = y + Z3 (stiffly accurate); dense output through the stages.
         let (c1, c2) = (k.c[0], k.c[1]);
         let (c1m1, c2m1, c1mc2) = (c1 - 1.0, c2 - 1.0, c1 - c2);
@@ -648,7 +636,8 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
     }
     fn accepted(&mut self, h: f64) -> f64 {
         self.need_w = true;
-        size_after_accept(h, self.quot, &mut self.reject)
+        self.reject = false;
+        self.ctrl.size_after_accept(h)
     }
 }
 

@@ -24,7 +24,8 @@ use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve}
 use faer::perm::PermRef;
 use faer::{Mat, Par};
 
-use super::driver::{non_finite, size_after_accept, Stepper, Trial};
+use super::controller::{Decision, Predictive};
+use super::driver::{non_finite, Stepper, Trial};
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
@@ -184,20 +185,11 @@ pub(super) struct Rodas4 {
     lu: Lu,
     dense: RodasDense,
     need_jac: bool,
-    /// Step-size control of RODAS: `h_new/h ∈ [1/5, 6]`, safety 0.9, Gustafsson's predictive
-    /// controller after the first accepted step.
-    h_acc: f64,
-    err_acc: f64,
-    reject: bool,
-    /// `h/h_new` proposed by the last step that passed.
-    quot: f64,
+    /// Step-size control of RODAS: Gustafsson's predictive controller after the first accepted step.
+    ctrl: Predictive,
 }
 
 impl Rodas4 {
-    const SAFE: f64 = 0.9;
-    const FAC_LO: f64 = 1.0 / 6.0;
-    const FAC_HI: f64 = 5.0;
-
     pub(super) fn new(n: usize) -> Self {
         Rodas4 {
             f0: vec![0.0; n],
@@ -209,10 +201,7 @@ impl Rodas4 {
             lu: Lu::new(n),
             dense: RodasDense { t0: 0.0, t1: 0.0, y0: vec![0.0; n], y1: vec![0.0; n], r2: vec![0.0; n], r3: vec![0.0; n] },
             need_jac: true,
-            h_acc: 0.0,
-            err_acc: 1.0,
-            reject: false,
-            quot: 1.0,
+            ctrl: Predictive::rodas(),
         }
     }
 
@@ -312,21 +301,12 @@ impl<S: OdeSystem> Stepper<S> for Rodas4 {
         let err = (err / n.max(1) as f64).sqrt();
         if !err.is_finite() {
             // A singular or hopeless iteration matrix: halve the step (RODAS).
-            self.reject = true;
+            self.ctrl.failed();
             return Ok(Trial::Failed { error: non_finite(t), h_next: 0.5 * hs });
         }
-        let mut q = (err.powf(0.25) / Self::SAFE).clamp(Self::FAC_LO, Self::FAC_HI);
-        if err > 1.0 {
-            self.reject = true;
-            return Ok(Trial::Rejected { h_next: hs / q });
+        if let Decision::Reject { h_next } = self.ctrl.decide(err, hs, self.ctrl.safety, stats.steps_accepted > 0) {
+            return Ok(Trial::Rejected { h_next });
         }
-        if stats.steps_accepted > 0 {
-            let qg = ((self.h_acc / hs) * (err * err / self.err_acc).powf(0.25) / Self::SAFE).clamp(Self::FAC_LO, Self::FAC_HI);
-            q = q.max(qg);
-        }
-        self.h_acc = hs;
-        self.err_acc = err.max(1e-2);
-        self.quot = q;
         // Dense output of [t, t1].
         let dense = &mut self.dense;
         dense.t0 = t;
@@ -342,7 +322,7 @@ impl<S: OdeSystem> Stepper<S> for Rodas4 {
     }
     fn accepted(&mut self, h: f64) -> f64 {
         self.need_jac = true;
-        size_after_accept(h, self.quot, &mut self.reject)
+        self.ctrl.size_after_accept(h)
     }
 }
 
