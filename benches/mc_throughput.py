@@ -25,7 +25,7 @@ def main() -> None:
 
         start = time.perf_counter()
         mc = clearsim.monte_carlo(
-            build, {"clearance": Normal(0.5e-3, 0.02e-3)}, n, omega=-5 * math.pi, body="slider9", axis="y",
+            build, {"clearance": Normal(0.5e-3, 0.02e-3)}, n, omega=-5 * math.pi, body="slider9", component="y",
             allowable=dict(PAPER_ALLOWABLE), progress=False, seed=0,
         )  # fmt: skip
         wall = time.perf_counter() - start

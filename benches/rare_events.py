@@ -28,7 +28,7 @@ def main() -> None:
     study = rel.Study(
         build,
         inputs={"cA": rel.Normal(0.5e-3, 0.05e-3), "cB": rel.Normal(0.5e-3, 0.05e-3)},
-        output=rel.Output(body="slider9", axis="y", quantity="displacement"),
+        output=rel.Output(body="slider9", component="y", quantity="displacement"),
         limit=limit, omega=-5 * math.pi, cycles=1.0, progress=False,
     )  # fmt: skip
     print(f"{study}  (2 cores: {clearsim._core.__name__})")

@@ -19,7 +19,7 @@ def study(kind, cycles):
 
     return rel.Study(
         build, inputs={"cA": rel.Normal(0.5e-3, 0.02e-3), "cB": rel.Normal(0.5e-3, 0.02e-3)},
-        output=rel.Output(body="slider9", axis="y", quantity="acceleration"), limit=1000.0,
+        output=rel.Output(body="slider9", component="y", quantity="acceleration"), limit=1000.0,
         omega=-5 * math.pi, cycles=cycles, progress=False,
     )  # fmt: skip
 

@@ -10,10 +10,10 @@ use crate::monitor::MonitorSpec;
 use crate::record::Channels;
 use crate::simulate::RunSettings;
 
-/// The integrator's name (README "Choosing an integrator").
+/// The integrator's name, as the Python API spells it (README "Choosing an integrator").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
-pub enum MethodName {
+pub enum IntegratorName {
     /// Dormand–Prince 5(4).
     #[serde(alias = "dopri5")]
     Rk45,
@@ -30,7 +30,7 @@ pub enum MethodName {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunSettingsDesc {
-    pub method: MethodName,
+    pub integrator: IntegratorName,
     /// Fixed step of `rk4` [s].
     #[serde(default)]
     pub step: Option<f64>,
@@ -52,9 +52,9 @@ pub struct RunSettingsDesc {
     /// Output times (increasing, within `[t0, t_end]`).
     #[serde(default)]
     pub t_out: Vec<f64>,
-    /// Which channels to store (`None`: [`Channels::default`]).
+    /// Which outputs to store (`None`: [`Channels::default`]).
     #[serde(default)]
-    pub channels: Option<Channels>,
+    pub outputs: Option<Channels>,
     /// Wall-time budget of the run [s].
     #[serde(default)]
     pub max_seconds: Option<f64>,
@@ -65,12 +65,12 @@ pub struct RunSettingsDesc {
 impl RunSettingsDesc {
     /// The settings the core runs with, validated ([`RunSettings::validate`]).
     pub fn into_settings(self) -> Result<RunSettings> {
-        let method = match self.method {
-            MethodName::Rk45 => Method::Dopri5,
-            MethodName::Dop853 => Method::Dop853,
-            MethodName::Rodas4 => Method::Rodas4,
-            MethodName::Radau => Method::Radau5,
-            MethodName::Rk4 => Method::Rk4 { step: self.step.ok_or_else(|| Error::invalid("step", "None", "the rk4 integrator needs a fixed step [s]"))? },
+        let method = match self.integrator {
+            IntegratorName::Rk45 => Method::Dopri5,
+            IntegratorName::Dop853 => Method::Dop853,
+            IntegratorName::Rodas4 => Method::Rodas4,
+            IntegratorName::Radau => Method::Radau5,
+            IntegratorName::Rk4 => Method::Rk4 { step: self.step.ok_or_else(|| Error::invalid("step", "None", "the rk4 integrator needs a fixed step [s]"))? },
         };
         let base = Settings::default();
         let ode = Settings {
@@ -87,7 +87,7 @@ impl RunSettingsDesc {
             t0: self.t0,
             t_end: self.t_end,
             t_out: self.t_out,
-            channels: self.channels.unwrap_or_default(),
+            channels: self.outputs.unwrap_or_default(),
             max_wall_time: self.max_seconds,
             monitors: self.monitors,
         };
@@ -108,15 +108,15 @@ mod tests {
 
     #[test]
     fn defaults_and_names() {
-        let rs = read(serde_json::json!({"method": "radau", "t_end": 0.1})).unwrap();
+        let rs = read(serde_json::json!({"integrator": "radau", "t_end": 0.1})).unwrap();
         assert_eq!(rs.method, Method::Radau5);
         assert_eq!(rs.ode, Settings::default());
         assert_eq!(rs.channels, Channels::default());
-        let rs = read(serde_json::json!({"method": "rk4", "step": 1e-4, "t_end": 0.1, "channels": {"energy": true},
+        let rs = read(serde_json::json!({"integrator": "rk4", "step": 1e-4, "t_end": 0.1, "outputs": {"energy": true},
             "monitors": [{"coordinate": 3, "quantity": "contact_force", "t_start": 0.0, "bin_width": 0.01}]}))
         .unwrap();
         assert_eq!(rs.method, Method::Rk4 { step: 1e-4 });
-        assert!(rs.channels.energy && rs.channels.states, "unnamed channels keep their defaults");
+        assert!(rs.channels.energy && rs.channels.states, "unnamed outputs keep their defaults");
         assert_eq!(rs.monitors[0].quantity, Quantity::ContactForce);
         assert_eq!((rs.monitors[0].bins, rs.monitors[0].samples_per_step), (1, 8));
     }
@@ -124,10 +124,10 @@ mod tests {
     #[test]
     fn bad_settings_are_named() {
         let err = |v| read(v).unwrap_err().to_string();
-        assert!(err(serde_json::json!({"method": "euler", "t_end": 0.1})).contains("unknown variant `euler`"));
-        assert!(err(serde_json::json!({"method": "rk4", "t_end": 0.1})).contains("needs a fixed step"));
-        assert!(err(serde_json::json!({"method": "rk45", "t_end": 0.1, "rtoll": 1e-3})).contains("unknown field `rtoll`"));
-        let e = err(serde_json::json!({"method": "rk45", "t_end": 0.1, "monitors": [{"coordinate": 0, "quantity": "displacement",
+        assert!(err(serde_json::json!({"integrator": "euler", "t_end": 0.1})).contains("unknown variant `euler`"));
+        assert!(err(serde_json::json!({"integrator": "rk4", "t_end": 0.1})).contains("needs a fixed step"));
+        assert!(err(serde_json::json!({"integrator": "rk45", "t_end": 0.1, "rtoll": 1e-3})).contains("unknown field `rtoll`"));
+        let e = err(serde_json::json!({"integrator": "rk45", "t_end": 0.1, "monitors": [{"coordinate": 0, "quantity": "displacement",
             "t_start": 0.0, "bin_width": 0.01, "reference": {"t": [0.0, 1.0], "value": [0.0], "rate": [0.0, 0.0]}}]}));
         assert!(e.contains("monitors[0].reference") && e.contains("same length"), "{e}");
     }

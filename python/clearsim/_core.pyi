@@ -11,8 +11,8 @@ if sys.version_info >= (3, 11):
 else:
     from typing_extensions import NotRequired, TypedDict
 
-class Channels(TypedDict, total=False):
-    """Which channels a run stores (absent: states, accelerations, joints, violation)."""
+class Outputs(TypedDict, total=False):
+    """Which outputs a run stores (absent: states, accelerations, joints, violation)."""
 
     states: bool
     accelerations: bool
@@ -45,7 +45,7 @@ class RunSettings(TypedDict):
     """The settings dict of one run (rust/settings.rs; built by ``Mechanism.run_settings``).
     Unknown keys are an ``InputError``."""
 
-    method: str  # rk45 (dopri5), dop853, rodas4, radau (radau5), rk4
+    integrator: str  # rk45 (dopri5), dop853, rodas4, radau (radau5), rk4
     t_end: float
     t0: NotRequired[float]
     step: NotRequired[float]
@@ -56,7 +56,7 @@ class RunSettings(TypedDict):
     h_min: NotRequired[float]
     max_steps: NotRequired[int]
     t_out: NotRequired[Sequence[float]]
-    channels: NotRequired[Channels]
+    outputs: NotRequired[Outputs]
     max_seconds: NotRequired[float]
     monitors: NotRequired[List[Monitor]]
 

@@ -19,8 +19,9 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _core
-from .errors import InputError, SimulationError, check_positive
+from .errors import InputError, SimulationError, check_choice, check_positive, renamed
 from .mechanism import Mechanism
+from .running import COMPONENTS
 from .reliability import (
     Distribution,
     Estimate,
@@ -31,17 +32,15 @@ from .reliability import (
     normal_cdf,
     reliability_index,
     wilson_interval,
-    first_passage_probability,
     mc_bin_reliability,
     sample_inputs,
 )
+from .reliability.model import check_on_failure
 
 QUANTITIES = {"displacement": "q", "velocity": "qd", "acceleration": "qdd"}
-AXES = {"x": 0, "y": 1, "theta": 2}
-ON_FAILURE = ("fail", "exclude", "raise")
 #: Points per crank cycle of the ideal reference trajectory the errors are measured against.
 REFERENCE_POINTS_PER_CYCLE = 7200
-#: Units of an error, per quantity and axis (x, y: translation; theta: rotation).
+#: Units of an error, per quantity and component (x, y: translation; theta: rotation).
 UNITS = {
     ("displacement", False): "m", ("velocity", False): "m/s", ("acceleration", False): "m/s²",
     ("displacement", True): "rad", ("velocity", True): "rad/s", ("acceleration", True): "rad/s²",
@@ -155,7 +154,7 @@ def monte_carlo(
     cycles: float = 1.0,
     skip_cycles: float = 0.0,
     body: Optional[str] = None,
-    axis: Optional[str] = None,
+    component: Optional[str] = None,
     allowable: Optional[Mapping[str, Tuple[float, float]]] = None,
     quantities: Optional[Sequence[str]] = None,
     on_failure: str = "fail",
@@ -171,6 +170,7 @@ def monte_carlo(
     integrator: str = "auto",
     rtol: float = 1e-6,
     atol: float = 1e-9,
+    axis: Optional[str] = None,
 ) -> MonteCarloResult:
     """Monte Carlo reliability of one output of a mechanism with random inputs.
 
@@ -187,9 +187,9 @@ def monte_carlo(
         The drive speed [rad/s] that defines the crank angle: the name of a sampled input, or a
         number. Each sample runs ``skip_cycles + cycles`` crank turns; the first ``skip_cycles``
         (start-up transient) are not analysed.
-    body, axis:
+    body, component:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
-        error against the ideal mechanism.
+        error against the ideal mechanism. (``axis=`` is the old name of ``component=``.)
     allowable:
         Required: ``{quantity: (lower, upper)}`` allowable |error| range of each analysed
         quantity (``"displacement"``, ``"velocity"``, ``"acceleration"``) in that quantity's unit:
@@ -221,10 +221,9 @@ def monte_carlo(
         raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
     if body is None:
         raise InputError("missing body: name the body whose error is analysed (there is no default)", field="body", value=None)
-    if axis not in AXES:
-        raise InputError(f"invalid axis = {axis!r}: must be one of x, y, theta (there is no default)", field="axis", value=axis)
-    if on_failure not in ON_FAILURE:
-        raise InputError(f"invalid on_failure = {on_failure!r}: must be one of {', '.join(ON_FAILURE)}", field="on_failure", value=on_failure)
+    component = renamed("axis", "component", axis, component)
+    check_choice("component", component, COMPONENTS, "(there is no default)")
+    check_on_failure(on_failure)
     if not allowable:
         raise InputError(
             "missing allowable: give {quantity: (lower, upper)} for each analysed quantity, in its unit "
@@ -236,8 +235,8 @@ def monte_carlo(
         if q not in QUANTITIES:
             raise InputError(f"invalid quantity = {q!r}: must be one of {', '.join(QUANTITIES)}", field="quantities", value=q)
         if q not in allowable:
-            unit = UNITS[(q, axis == "theta")]
-            raise InputError(f"missing allowable[{q!r}]: the limit of the {axis} {q} error [{unit}] is required", field=f"allowable.{q}", value=None)
+            unit = UNITS[(q, component == "theta")]
+            raise InputError(f"missing allowable[{q!r}]: the limit of the {component} {q} error [{unit}] is required", field=f"allowable.{q}", value=None)
     cycles = check_positive("cycles", cycles)
     if skip_cycles < 0:
         raise InputError(f"invalid skip_cycles = {skip_cycles!r}: must not be negative", field="skip_cycles", value=skip_cycles)
@@ -287,7 +286,7 @@ def monte_carlo(
     if body not in names:
         raise InputError(f"invalid body = {body!r}: no such body (known: {', '.join(names)})", field="body", value=body)
     b = names.index(body)
-    col = 3 * b + AXES[axis]
+    col = 3 * b + COMPONENTS.index(component)
     keys = list(ideal_jobs)
     ideal_raws = dict(zip(keys, _run_all([ideal_jobs[k][0] for k in keys], [ideal_jobs[k][1] for k in keys], executor, chunk_size, progress, "ideal mechanisms")))
 

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Tuple, TypedDic
 import numpy as np
 
 from . import _core
-from .errors import InputError, InterruptedRun, check_finite, check_positive
+from .errors import InputError, InterruptedRun, check_choice, check_finite, check_positive
 from .result import Result
 
 if TYPE_CHECKING:
@@ -35,6 +35,9 @@ class RunOptions(TypedDict, total=False):
     max_steps: int
     max_seconds: Optional[float]  # [s] of wall time
 
+#: The components of a body's pose q = (x, y, θ), in the order of the state and of every result
+#: array: x, y [m] and theta [rad] (one word for them throughout: "component").
+COMPONENTS = ("x", "y", "theta")
 INTEGRATORS = ("auto", "rk45", "rk4", "dop853", "radau", "rodas4")
 OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation", "energy")
 DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
@@ -69,16 +72,14 @@ class Running:
         """Length of the state y = (q, q̇): 6 per body."""
         return 6 * len(self._bodies)
 
-    def state_index(self, body: str, coordinate: str, velocity: bool = False) -> int:
-        """Index in the state y = (q, q̇) of ``body``'s ``coordinate`` (``"x"``, ``"y"`` [m] or
-        ``"theta"`` [rad]; with ``velocity=True`` its rate, m/s or rad/s). In ``m.rhs(t, y)``
-        the same index gives its rate (position) or acceleration (velocity)."""
+    def state_index(self, body: str, component: str, velocity: bool = False) -> int:
+        """Index in the state y = (q, q̇) of ``body``'s pose ``component`` (``"x"``, ``"y"`` [m]
+        or ``"theta"`` [rad]; with ``velocity=True`` its rate, m/s or rad/s). In
+        ``m.rhs(t, y)`` the same index gives its rate (position) or acceleration (velocity)."""
         b = self._body("body", body, allow_ground=False)
         assert b is not None
-        axes = ("x", "y", "theta")
-        if coordinate not in axes:
-            raise InputError(f"invalid coordinate = {coordinate!r}: must be one of x, y, theta", field="coordinate", value=coordinate)
-        return 3 * b + axes.index(coordinate) + (3 * len(self._bodies) if velocity else 0)
+        check_choice("component", component, COMPONENTS)
+        return 3 * b + COMPONENTS.index(component) + (3 * len(self._bodies) if velocity else 0)
 
     def plot(self, t: float = 0.0, *, magnify: Optional[float] = None, ax: Any = None) -> Any:
         """A figure of the mechanism as assembled at time ``t`` [s]: bodies, joints, drivers,
@@ -138,10 +139,7 @@ class Running:
         t_end = check_finite("t_end", t_end)
         if t_end <= t0:
             raise InputError(f"invalid t_end = {t_end!r}: must be greater than t0 = {t0}", field="t_end", value=t_end)
-        if integrator not in INTEGRATORS:
-            raise InputError(
-                f"invalid integrator = {integrator!r}: must be one of {', '.join(INTEGRATORS)}", field="integrator", value=integrator
-            )
+        check_choice("integrator", integrator, INTEGRATORS)
         if integrator == "auto":
             integrator = self.default_integrator
         rtol = check_positive("rtol", rtol)
@@ -179,7 +177,7 @@ class Running:
                 f"invalid outputs = {sorted(unknown)!r}: known outputs are {', '.join(OUTPUTS)}", field="outputs", value=sorted(unknown)
             )
         settings: Dict[str, Any] = {
-            "method": integrator,
+            "integrator": integrator,
             "rtol": rtol,
             "atol": atol,
             "t0": t0,
@@ -187,7 +185,7 @@ class Running:
             "t_out": np.ascontiguousarray(grid),
             "h_min": check_positive("h_min", h_min),
             "max_steps": _positive_int("max_steps", max_steps),
-            "channels": {k: (k in wanted) for k in OUTPUTS},
+            "outputs": {k: (k in wanted) for k in OUTPUTS},
         }
         if step is not None:
             settings["step"] = step
@@ -290,7 +288,7 @@ class Running:
         res = Result(raw, self.body_names, self.clearance_joint_names)
         res.description = self.description()
         if settings is not None:
-            res.stats["integrator"] = settings["method"]
+            res.stats["integrator"] = settings["integrator"]
         self._check_assembly_shift(res)
         err = raw.get("error")
         if err is not None:

@@ -141,7 +141,7 @@ from . import _core
 from .errors import InputError, SimulationError
 from .joints import Dry, Lubricated
 from .mechanism import Mechanism
-from .running import OUTPUTS
+from .running import COMPONENTS, OUTPUTS
 from .result import Result
 from .toml_reader import REQUIRED, Source, Table, dotted_key, read_toml
 
@@ -153,7 +153,6 @@ BODY_QUANTITIES: Dict[str, Tuple[str, str, str]] = {
     "velocity": ("m/s", "m/s", "rad/s"),
     "acceleration": ("m/s^2", "m/s^2", "rad/s^2"),
 }
-COMPONENTS = ("x", "y", "theta")
 #: Clearance-joint quantities: their columns (name, unit).
 JOINT_QUANTITIES: Dict[str, Tuple[Tuple[str, str], ...]] = {
     "eccentricity": (("ex", "m"), ("ey", "m"), ("eps", "-")),

@@ -19,7 +19,7 @@ ALLOW = {"displacement": (0.0, 2e-4), "velocity": (0.0, 0.5), "acceleration": (0
 
 
 def test_monte_carlo_runs_and_reports_intervals():
-    mc = clearsim.monte_carlo(build, DISTS, 8, omega="omega", body="slider", axis="x", allowable=ALLOW, progress=False, seed=1)
+    mc = clearsim.monte_carlo(build, DISTS, 8, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=1)
     assert mc.ok.all() and not mc.failures
     assert mc.errors["acceleration"].shape == (8, 361)
     for q in ("displacement", "velocity", "acceleration"):
@@ -36,11 +36,11 @@ def test_monte_carlo_runs_and_reports_intervals():
 
 def test_monte_carlo_with_dask_executor_matches_local_batch():
     distributed = pytest.importorskip("dask.distributed")
-    local = clearsim.monte_carlo(build, DISTS, 4, omega="omega", body="slider", axis="x", allowable=ALLOW, progress=False, seed=3)
+    local = clearsim.monte_carlo(build, DISTS, 4, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=3)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
             remote = clearsim.monte_carlo(
-                build, DISTS, 4, omega="omega", body="slider", axis="x", allowable=ALLOW, progress=False, seed=3,
+                build, DISTS, 4, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=3,
                 executor=client.get_executor(), chunk_size=2,
             )
     for q in local.errors:
@@ -49,17 +49,17 @@ def test_monte_carlo_with_dask_executor_matches_local_batch():
 
 def test_bad_omega_name_is_an_input_error():
     with pytest.raises(clearsim.InputError, match="omega"):
-        clearsim.monte_carlo(build, {"clearance": 0.3e-3}, 2, omega="speed", body="slider", axis="x", allowable=ALLOW, progress=False)
+        clearsim.monte_carlo(build, {"clearance": 0.3e-3}, 2, omega="speed", body="slider", component="x", allowable=ALLOW, progress=False)
 
 
 @pytest.mark.parametrize(
     "kwargs, field, message",
     [
-        ({"axis": "x", "allowable": ALLOW}, "body", "missing body"),
-        ({"body": "slider", "allowable": ALLOW}, "axis", "no default"),
-        ({"body": "slider", "axis": "x"}, "allowable", "missing allowable"),
-        ({"body": "slider", "axis": "theta", "allowable": {"velocity": (0, 1.0)}, "quantities": ["displacement"]}, "allowable.displacement", r"\[rad\]"),
-        ({"body": "slider", "axis": "x", "allowable": ALLOW, "on_failure": "ignore"}, "on_failure", "fail, exclude, raise"),
+        ({"component": "x", "allowable": ALLOW}, "body", "missing body"),
+        ({"body": "slider", "allowable": ALLOW}, "component", "no default"),
+        ({"body": "slider", "component": "x"}, "allowable", "missing allowable"),
+        ({"body": "slider", "component": "theta", "allowable": {"velocity": (0, 1.0)}, "quantities": ["displacement"]}, "allowable.displacement", r"\[rad\]"),
+        ({"body": "slider", "component": "x", "allowable": ALLOW, "on_failure": "ignore"}, "on_failure", "fail, exclude, raise"),
     ],
 )
 def test_limits_and_output_are_explicit(kwargs, field, message):
@@ -74,7 +74,7 @@ def test_pooled_fosm_is_the_time_average_of_a_dense_grid():
     """The monitor's FOSM moments (∫|e|dt/∫dt per bin) against sample moments of the errors on
     a dense stored grid (a second method): they agree to the grid's quadrature error."""
     dists = {"clearance": Uniform(0.3e-3, 0.5e-3), "omega": 5000 * 2 * math.pi / 60}
-    mc = clearsim.monte_carlo(build, dists, 4, omega="omega", body="slider", axis="x", allowable={"displacement": (0.0, 2e-4)},
+    mc = clearsim.monte_carlo(build, dists, 4, omega="omega", body="slider", component="x", allowable={"displacement": (0.0, 2e-4)},
                               progress=False, seed=3, bin_width=36.0, points_per_cycle=7200)  # fmt: skip
     e = np.abs(mc.errors["displacement"])[:, :-1]  # drop the window's end point (it opens no segment)
     per_bin = e.reshape(e.shape[0], 10, -1)
@@ -95,7 +95,7 @@ def test_failed_samples_are_counted_with_their_reason():
     with 'raise' the first failure is raised naming the sample."""
     # A completed sample takes < 1 000 steps; a locked one would run on with its journal many
     # clearances deep: the step budget stops it.
-    common = dict(omega="omega", body="slider", axis="x", allowable={"displacement": (0.0, 1.0)}, progress=False, seed=2, max_steps=20_000)
+    common = dict(omega="omega", body="slider", component="x", allowable={"displacement": (0.0, 1.0)}, progress=False, seed=2, max_steps=20_000)
     n = 12
     mc = clearsim.monte_carlo(_locking, DISTS, n, **common)
     locked = mc.inputs["clearance"] > 0.4e-3
@@ -115,7 +115,7 @@ def test_failed_samples_are_counted_with_their_reason():
 
 
 def test_a_step_budget_fails_samples_with_that_reason():
-    common = dict(omega="omega", body="slider", axis="x", allowable={"displacement": (0.0, 1.0)}, progress=False, seed=2)
+    common = dict(omega="omega", body="slider", component="x", allowable={"displacement": (0.0, 1.0)}, progress=False, seed=2)
     with pytest.raises(clearsim.SimulationError, match=r"no Monte Carlo sample completed \(4 failed\).*maximum number of steps \(40\)"):
         clearsim.monte_carlo(build, DISTS, 4, max_steps=40, **common)
 
@@ -135,7 +135,7 @@ def test_answers_do_not_depend_on_the_output_density():
     peaks between its samples (issue: 0.81 vs 1.00)."""
     dists = {"clearance": Uniform(0.3e-3, 0.5e-3), "omega": 5000 * 2 * math.pi / 60}
     allow = {"acceleration": (0.0, 2.8e5)}  # m/s²: within the range of the impact peaks
-    common = dict(omega="omega", body="slider", axis="x", allowable=allow, progress=False, seed=4, bin_width=36.0)
+    common = dict(omega="omega", body="slider", component="x", allowable=allow, progress=False, seed=4, bin_width=36.0)
     coarse = clearsim.monte_carlo(build, dists, 8, points_per_cycle=36, **common)
     fine = clearsim.monte_carlo(build, dists, 8, points_per_cycle=3600, **common)
     np.testing.assert_allclose(coarse.peaks["acceleration"], fine.peaks["acceleration"], rtol=1e-6)

@@ -109,7 +109,7 @@ def study(limit, quantity="displacement", cycles=0.25, **kw):
     return rel.Study(
         nine_bar,
         inputs={"cA": rel.Normal(0.5e-3, 0.05e-3), "cB": rel.Normal(0.5e-3, 0.05e-3)},
-        output=rel.Output(body="slider9", axis="y", quantity=quantity),
+        output=rel.Output(body="slider9", component="y", quantity=quantity),
         limit=limit, omega=OMEGA, cycles=cycles, progress=False, **kw,
     )  # fmt: skip
 
@@ -154,7 +154,7 @@ def test_failed_samples_are_counted_with_their_reason():
     def crank(r):
         return clearsim.models.slider_crank("dry", clearance=0.5e-3, crank_length=r)
 
-    st = rel.Study(crank, inputs={"r": rel.Uniform(0.04, 0.2)}, output=rel.Output(body="slider", axis="x"), limit=1.0, omega=2 * math.pi * 5000 / 60, cycles=0.2, progress=False, max_seconds=20)
+    st = rel.Study(crank, inputs={"r": rel.Uniform(0.04, 0.2)}, output=rel.Output(body="slider", component="x"), limit=1.0, omega=2 * math.pi * 5000 / 60, cycles=0.2, progress=False, max_seconds=20)
     mc = st.monte_carlo(12, seed=0, on_failure="fail")
     r = mc.inputs["r"]
     failed = [k for k, _ in mc.failures]
@@ -170,14 +170,27 @@ def test_failed_samples_are_counted_with_their_reason():
 
 def test_limits_and_outputs_are_required_and_named():
     with pytest.raises(InputError) as e:
-        rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", axis="y"), omega=OMEGA)
+        rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", component="y"), omega=OMEGA)
     assert e.value.field == "limit"
     with pytest.raises(InputError) as e:
         rel.Output(body="slider9")
-    assert e.value.field == "Output.axis"
+    assert e.value.field == "Output.component"
     with pytest.raises(InputError) as e:
         rel.Output(joint="B", quantity="displacement")
     assert e.value.field == "Output.quantity"
     with pytest.raises(InputError) as e:
-        rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", axis="y"), limit=1e-3)
+        rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", component="y"), limit=1e-3)
     assert e.value.field == "omega"
+
+
+def test_the_old_name_axis_still_works_with_a_warning_and_not_beside_component():
+    """One word for x, y, theta throughout: ``component`` (scenes, Output, monte_carlo,
+    state_index); ``axis=`` is accepted with a DeprecationWarning, and giving both is an error."""
+    with pytest.warns(DeprecationWarning, match="Output.axis= is now called component="):
+        out = rel.Output(body="slider9", axis="y")
+    assert out == rel.Output(body="slider9", component="y") and out.component == "y" and out.axis is None
+    with pytest.raises(clearsim.InputError) as e:
+        rel.Output(body="slider9", axis="y", component="x")
+    assert e.value.field == "Output.axis"
+    with pytest.raises(clearsim.InputError, match="must be one of x, y, theta"):
+        rel.Output(body="slider9", component="z")

@@ -41,7 +41,7 @@ def test_state_index_names_the_entries_a_run_records():
             assert y0[m.state_index(body, coord, velocity=True)] == pytest.approx(res.velocity(body)[0, c], abs=1e-9)
     dy = m.rhs(0.0, y0)
     assert dy[m.state_index("slider9", "y", velocity=True)] == pytest.approx(res.acceleration("slider9")[0, 1], rel=1e-9)
-    with pytest.raises(InputError, match="coordinate = 'z'"):
+    with pytest.raises(InputError, match="component = 'z'"):
         m.state_index("slider9", "z")
     with pytest.raises(InputError, match="no such body"):
         m.state_index("ground", "x")

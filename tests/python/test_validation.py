@@ -465,10 +465,10 @@ def test_run_settings_enter_the_core_through_serde_and_bad_ones_are_named():
 
     e = error(dict(good, rtoll=1e-3))
     assert e.field == "rtoll" and "unknown field `rtoll`" in str(e)
-    e = error(dict(good, method="euler"))
-    assert e.field == "method" and "unknown variant `euler`" in str(e)
-    e = error(dict(good, channels={"states": "yes"}))
-    assert e.field == "channels.states" and "expected a boolean" in str(e)
+    e = error(dict(good, integrator="euler"))
+    assert e.field == "integrator" and "unknown variant `euler`" in str(e)
+    e = error(dict(good, outputs={"states": "yes"}))
+    assert e.field == "outputs.states" and "expected a boolean" in str(e)
     e = error(dict(good, monitors=[dict(spec, quantity="speed")]))
     assert e.field == "monitors[0].quantity"
     bad_ref = {"t": np.array([0.0, 1.0]), "value": np.array([0.0]), "rate": np.zeros(2)}

@@ -4,7 +4,7 @@ The study of one output with random inputs::
 
     from clearsim import reliability as rel
     study = rel.Study(build, inputs={"clearance": rel.Normal(0.5e-3, 0.02e-3), "viscosity": 0.4},
-                      output=rel.Output(body="slider9", axis="y", quantity="displacement"),
+                      output=rel.Output(body="slider9", component="y", quantity="displacement"),
                       limit=1e-3, omega=-5 * np.pi, cycles=1.0)
     study.monte_carlo(n)   study.form()   study.importance_sampling(cov=0.1)   study.subset()
     study.sobol(n)         study.tolerance("clearance", reliability=0.999)      study.fosm()

@@ -11,16 +11,14 @@ from typing import Any, Callable, Dict, Mapping
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, check_choice
 from .distributions import Distribution, as_distribution
 
 ON_FAILURE = ("fail", "exclude", "raise")
 
 
 def check_on_failure(on_failure: Any) -> str:
-    if on_failure not in ON_FAILURE:
-        raise InputError(f"invalid on_failure = {on_failure!r}: must be one of {', '.join(ON_FAILURE)}", field="on_failure", value=on_failure)
-    return str(on_failure)
+    return str(check_choice("on_failure", on_failure, ON_FAILURE))
 
 
 class Model:

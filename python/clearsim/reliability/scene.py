@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
 from .distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
+from ..running import COMPONENTS
 from .study import BODY_QUANTITIES, JOINT_QUANTITIES, Output, Study
 
 METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fosm")
@@ -75,7 +76,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
         if "body" not in t:
             raise t.error(None, "missing key 'body' (with component) or 'joint' in [study]: the analysed output")
         body = t.string("body", choices=mech.body_names)
-        output = Output(body=body, axis=t.string("component", choices=("x", "y", "theta")), quantity=t.string("quantity", choices=BODY_QUANTITIES))
+        output = Output(body=body, component=t.string("component", choices=COMPONENTS), quantity=t.string("quantity", choices=BODY_QUANTITIES))
     if "limit" not in t:
         raise t.error(None, f"missing key 'limit' in [study]: the largest acceptable {output.label} [{output.unit}] (there is no default)")
     limit = t.number("limit")

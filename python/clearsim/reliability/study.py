@@ -21,19 +21,18 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
-from scipy import special
 
-from ..errors import InputError, SimulationError, check_finite, check_positive
-from .distributions import Distribution, as_distribution, input_stream
-from .model import ON_FAILURE, Model, check_on_failure
-from .estimates import Estimate, failure_reasons, wilson_interval
+from ..errors import InputError, SimulationError, check_choice, check_finite, check_positive, renamed
+from ..running import COMPONENTS
+from .distributions import input_stream
+from .model import Model, check_on_failure
+from .estimates import failure_reasons, wilson_interval
 from .fosm import FosmResult, allowable_statistics, normal_cdf, reliability_index
 
 __all__ = ["Output", "Study", "Evaluation", "MonteCarloEstimate", "FosmResult"]
 
 BODY_QUANTITIES = ("displacement", "velocity", "acceleration")
 JOINT_QUANTITIES = ("eccentricity", "force", "contact_force", "film_force")
-AXES = {"x": 0, "y": 1, "theta": 2}
 #: Points per crank cycle of the ideal reference trajectory that body errors are measured
 #: against (cubic Hermite in between).
 REFERENCE_POINTS_PER_CYCLE = 7200
@@ -46,9 +45,9 @@ class Output:
     """The analysed output: a body coordinate's error against the ideal mechanism, or a clearance
     joint's quantity.
 
-    ``Output(body="slider9", axis="y", quantity="displacement" | "velocity" | "acceleration")``:
-    |response − ideal response| in m, m/s, m/s² (``axis="x"``/``"y"``) or rad, rad/s, rad/s²
-    (``axis="theta"``).
+    ``Output(body="slider9", component="y", quantity="displacement" | "velocity" | "acceleration")``:
+    |response − ideal response| in m, m/s, m/s² (``component="x"``/``"y"``) or rad, rad/s,
+    rad/s² (``component="theta"``). ``axis=`` is the old name of ``component=``.
 
     ``Output(joint="B", quantity="eccentricity" | "force" | "contact_force" | "film_force")``:
     the eccentricity ratio ε = e/c [-], the magnitude of the joint's total force [N], its dry
@@ -56,21 +55,24 @@ class Output:
     """
 
     body: Optional[str] = None
-    axis: Optional[str] = None
+    component: Optional[str] = None
     joint: Optional[str] = None
     quantity: str = "displacement"
+    #: Old name of ``component``.
+    axis: Optional[str] = None
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "component", renamed("axis", "component", self.axis, self.component, "Output."))
+        object.__setattr__(self, "axis", None)
         if (self.body is None) == (self.joint is None):
-            raise InputError("invalid Output: give exactly one of body= (with axis=) or joint=", field="Output.body", value=self.body)
+            raise InputError("invalid Output: give exactly one of body= (with component=) or joint=", field="Output.body", value=self.body)
         if self.body is not None:
-            if self.axis not in AXES:
-                raise InputError(f"invalid Output.axis = {self.axis!r}: must be one of x, y, theta (there is no default)", field="Output.axis", value=self.axis)
+            check_choice("Output.component", self.component, COMPONENTS, "(there is no default)")
             if self.quantity not in BODY_QUANTITIES:
                 raise InputError(f"invalid Output.quantity = {self.quantity!r}: a body output is one of {', '.join(BODY_QUANTITIES)}", field="Output.quantity", value=self.quantity)
         else:
-            if self.axis is not None:
-                raise InputError(f"invalid Output.axis = {self.axis!r}: a joint output has no axis", field="Output.axis", value=self.axis)
+            if self.component is not None:
+                raise InputError(f"invalid Output.component = {self.component!r}: a joint output has no component", field="Output.component", value=self.component)
             if self.quantity not in JOINT_QUANTITIES:
                 raise InputError(f"invalid Output.quantity = {self.quantity!r}: a joint output is one of {', '.join(JOINT_QUANTITIES)}", field="Output.quantity", value=self.quantity)
 
@@ -79,14 +81,14 @@ class Output:
         """Unit of the output (and of its limit)."""
         if self.joint is not None:
             return "-" if self.quantity == "eccentricity" else "N"
-        base = "rad" if self.axis == "theta" else "m"
+        base = "rad" if self.component == "theta" else "m"
         return {"displacement": base, "velocity": f"{base}/s", "acceleration": f"{base}/s²"}[self.quantity]
 
     @property
     def label(self) -> str:
         if self.joint is not None:
             return f"{self.quantity} of joint {self.joint}"
-        return f"{self.axis} {self.quantity} error of {self.body}"
+        return f"{self.component} {self.quantity} error of {self.body}"
 
 
 @dataclass
@@ -246,7 +248,7 @@ class Study(Model):
             names = m.body_names
             if self.output.body not in names:
                 raise InputError(f"invalid Output.body = {self.output.body!r}: no such body (known: {', '.join(names)})", field="Output.body", value=self.output.body)
-            return 3 * names.index(self.output.body) + AXES[str(self.output.axis)]
+            return 3 * names.index(self.output.body) + COMPONENTS.index(str(self.output.component))
         names = m.clearance_joint_names
         if self.output.joint not in names:
             raise InputError(f"invalid Output.joint = {self.output.joint!r}: no such clearance joint (known: {', '.join(names) or 'none'})", field="Output.joint", value=self.output.joint)
@@ -355,8 +357,7 @@ class Study(Model):
         stream seeded by ``(seed, name)``. ``on_failure``: ``"fail"`` (default: a failed run
         counts as an exceedance), ``"exclude"`` (left out; ``bounds`` brackets p_f) or
         ``"raise"``."""
-        if on_failure not in ON_FAILURE:
-            raise InputError(f"invalid on_failure = {on_failure!r}: must be one of {', '.join(ON_FAILURE)}", field="on_failure", value=on_failure)
+        check_on_failure(on_failure)
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
             raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
         start = time.perf_counter()

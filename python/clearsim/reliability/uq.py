@@ -18,7 +18,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 from scipy import optimize, special
 
-from ..errors import InputError, SimulationError, check_positive
+from ..errors import InputError, check_positive
 from .model import Model, check_on_failure
 
 __all__ = ["FormResult", "SamplingResult", "SobolResult", "ToleranceResult", "form", "importance_sampling", "subset", "sobol", "tolerance"]
