@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Dict, Optional
 
-from .errors import InputError, check_finite, check_positive
+from .errors import InputError, check_choice, check_finite, check_positive
 
 NORMAL_LAWS = ("lankarani_nikravesh", "hertz", "hunt_crossley", "flores")
 
@@ -117,12 +117,7 @@ class Dry:
     def __post_init__(self) -> None:
         if self.wear is not None and not isinstance(self.wear, Archard):
             raise InputError(f"invalid wear = {self.wear!r}: must be clearsim.Archard(...) or None", field="wear", value=self.wear)
-        if self.normal_law not in NORMAL_LAWS:
-            raise InputError(
-                f"invalid normal_law = {self.normal_law!r}: must be one of {', '.join(NORMAL_LAWS)}",
-                field="normal_law",
-                value=self.normal_law,
-            )
+        check_choice("normal_law", self.normal_law, NORMAL_LAWS)
         if self.stiffness_form not in ("internal", "paper_printed"):
             raise InputError(
                 f"invalid stiffness_form = {self.stiffness_form!r}: must be 'internal' or 'paper_printed'",
@@ -212,10 +207,7 @@ class Lubricated:
     dry: Dry = field(default_factory=Dry)
 
     def __post_init__(self) -> None:
-        if self.film not in FILM_MODELS:
-            raise InputError(
-                f"invalid film = {self.film!r}: must be one of {', '.join(FILM_MODELS)}", field="film", value=self.film
-            )
+        check_choice("film", self.film, FILM_MODELS)
         check_positive("viscosity", self.viscosity)
         check_positive("length", self.length)
         _check_range("eps0", self.eps0, 0.0, 1.0, False, True)

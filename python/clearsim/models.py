@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Dict, Mapping, Optional, Tuple, Union
 
-from .errors import InputError
+from .errors import InputError, check_choice
 from .joints import Dry, Lubricated
 from .mechanism import Mechanism
 
@@ -13,9 +13,7 @@ JOINT_KINDS = ("ideal", "dry", "lubricated")
 
 
 def _kind(joints: str) -> str:
-    if joints not in JOINT_KINDS:
-        raise InputError(f"invalid joints = {joints!r}: must be one of {', '.join(JOINT_KINDS)}", field="joints", value=joints)
-    return joints
+    return str(check_choice("joints", joints, JOINT_KINDS))
 
 
 def _link(m: Mechanism, name: str, mass: float, inertia: float, p: Tuple[float, float], q: Tuple[float, float]) -> float:

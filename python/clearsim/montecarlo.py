@@ -232,8 +232,7 @@ def monte_carlo(
         )  # fmt: skip
     quantities = list(allowable) if quantities is None else list(quantities)
     for q in quantities:
-        if q not in QUANTITIES:
-            raise InputError(f"invalid quantity = {q!r}: must be one of {', '.join(QUANTITIES)}", field="quantities", value=q)
+        check_choice("quantities", q, list(QUANTITIES))
         if q not in allowable:
             unit = UNITS[(q, component == "theta")]
             raise InputError(f"missing allowable[{q!r}]: the limit of the {component} {q} error [{unit}] is required", field=f"allowable.{q}", value=None)

@@ -7,7 +7,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from . import _core
-from .errors import InputError
+from .errors import InputError, check_choice
 
 JOINT_COLUMNS: List[str] = list(_core.JOINT_COLUMNS)
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
@@ -185,8 +185,7 @@ class Result:
         ``quantity`` = ``"displacement"`` [m, m, rad], ``"velocity"`` [m/s, m/s, rad/s] or
         ``"acceleration"`` [m/s², m/s², rad/s²]."""
         getters = {"displacement": Result.position, "velocity": Result.velocity, "acceleration": Result.acceleration}
-        if quantity not in getters:
-            raise InputError(f"invalid quantity = {quantity!r}: must be one of {', '.join(getters)}", field="quantity", value=quantity)
+        check_choice("quantity", quantity, list(getters))
         n = min(len(self.t), len(ideal.t))
         if not np.allclose(self.t[:n], ideal.t[:n], rtol=0, atol=1e-12 * (1 + abs(float(self.t[n - 1])) if n else 1)):
             raise InputError("invalid ideal: it was not run on the same output grid", field="ideal", value=ideal)

@@ -31,7 +31,7 @@ from typing import List
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, check_choice
 from .paper_files import RELIABILITY_HEADER, _error_files, _orbit_files, _reliability_files, _summary_csvs, _write_csv
 from .paper_report import _films_section, _report
 from .paper_runs import CASES, CLEARANCE_CASES, CLEARANCE_STUDY, FILMS, Case, FILM_RUN_BUDGET_S, GRID_DEG, GRID_DEG_QUICK, QUANTITIES, SPEED_STUDY, _analyse, _film_runs, _ideal_key, _max_ecc, _run_all
@@ -81,8 +81,7 @@ def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progres
 
     from ..joints import FILM_MODELS
 
-    if film not in FILM_MODELS:
-        raise InputError(f"invalid film = {film!r}: must be one of {', '.join(FILM_MODELS)}", field="film", value=film)
+    check_choice("film", film, FILM_MODELS)
     runs = _run_all(cycles, grid_deg, progress, film)
     an = {key: _analyse(runs[key].case, runs[key], runs[_ideal_key(CASES[key])], cycles) for key in CLEARANCE_CASES}
     films = _film_runs(runs, cycles, grid_deg, progress, film, FILM_RUN_BUDGET_S) if compare_films else None
