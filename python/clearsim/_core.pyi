@@ -1,7 +1,7 @@
 """Type stub of the native module ``clearsim._core`` (Rust, pyo3). Use the ``clearsim`` facade."""
 
 import sys
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -78,15 +78,15 @@ class CompiledModel:
     def initial_state(self, t0: float) -> npt.NDArray[np.float64]: ...
     def rhs(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def jacobian(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
-    def simulate(self, settings: RunSettings, progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
+    def simulate(self, settings: Union[RunSettings, Mapping[str, Any]], progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
     def idealized(self) -> "CompiledModel": ...
 
 def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
     """Validate and compile a description (plain data or its JSON text), read by serde."""
 
 def run_batch(
-    descriptions: List[Union[str, Dict[str, Any]]],
-    settings: Union[RunSettings, List[RunSettings]],
+    descriptions: Sequence[Union[str, Mapping[str, Any]]],
+    settings: Union[RunSettings, Mapping[str, Any], Sequence[Union[RunSettings, Mapping[str, Any]]]],
     threads: int = 0,
 ) -> List[Union[Dict[str, Any], BaseException]]: ...
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, Optional, Sequence, Tuple, TypedDict
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, TypedDict
 
 import numpy as np
 
@@ -60,6 +60,19 @@ class Running:
     """What a :class:`clearsim.Mechanism` does with its description: compile, run, check."""
 
     _compiled: Any
+    if TYPE_CHECKING:  # provided by Mechanism (mechanism.py)
+        from .mechanism import Mechanism
+
+        _bodies: List[Dict[str, Any]]
+        _clearance: List[Dict[str, Any]]
+
+        @property
+        def body_names(self) -> List[str]: ...
+        @property
+        def clearance_joint_names(self) -> List[str]: ...
+        def description(self) -> Dict[str, Any]: ...
+        def idealized(self) -> "Mechanism": ...
+        def _body(self, field: str, name: str, allow_ground: bool = True) -> Optional[int]: ...
 
     def compile(self) -> "_core.CompiledModel":
         """The compiled Rust model (cached until the mechanism changes)."""
@@ -259,10 +272,12 @@ class Running:
         # ``integrator="auto"`` resolves per mechanism: the ideal one has no film.
         ideal_settings = ideal.run_settings(t_end, **kwargs)
         raws = _core.run_batch([self.description(), ideal.description()], [settings, ideal_settings], 0)
-        for raw in raws:
-            if isinstance(raw, BaseException):
-                raise raw
-        return self._finish(raws[0], settings), ideal._finish(raws[1], ideal_settings)
+        actual, twin = raws
+        if isinstance(actual, BaseException):
+            raise actual
+        if isinstance(twin, BaseException):
+            raise twin
+        return self._finish(actual, settings), ideal._finish(twin, ideal_settings)
 
     def _check_assembly_shift(self, res: Result) -> None:
         """Warn when the assembly moved a body far from the pose given: a joint point given in
