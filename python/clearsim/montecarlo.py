@@ -10,7 +10,6 @@ intervals, next to FOSM.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from dataclasses import dataclass, field
@@ -272,14 +271,8 @@ def monte_carlo(
         t_ref = t0 + period * cycles * np.arange(n_out * refine + 1) / (n_out * refine)
         t_ref[::refine] = t_out  # the output grid exactly, its end included
         run = dict(t_out=t_out, integrator=integrator, rtol=rtol, atol=atol, outputs=outputs, **budget)
-        ideal = m.idealized()
-        ideal_desc = ideal.description()
-        key = json.dumps(ideal_desc, sort_keys=True, default=_plain) + f"|{t0!r}|{float(t_out[-1])!r}|{len(t_ref)}"
-        if key not in ideal_jobs:
-            # ``integrator="auto"`` resolves per mechanism (the ideal twin has no film); the
-            # reference is computed to a tenth of the samples' tolerances.
-            ideal_run = dict(run, t_out=t_ref, outputs=["states", "accelerations"], rtol=rtol / 10, atol=atol / 10)
-            ideal_jobs[key] = (ideal_desc, ideal.run_settings(float(t_out[-1]), **ideal_run))
+        key, ideal_desc, ideal_settings = m.reference_job(t_ref, integrator=integrator, rtol=rtol, atol=atol, **budget)
+        ideal_jobs.setdefault(key, (ideal_desc, ideal_settings))
         samples.append((m, m.run_settings(float(t_out[-1]), **run), key))
         names = m.body_names
     if body not in names:
@@ -403,15 +396,6 @@ def _run_all(
 
 def _failed(raw: Any) -> bool:
     return isinstance(raw, BaseException) or raw.get("error") is not None
-
-
-def _plain(value: Any) -> Any:
-    """JSON form of the numpy values inside a description (to key the ideal runs)."""
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    raise TypeError(f"cannot key a description holding {type(value).__name__}")
 
 
 def _on_grid(raw: Dict[str, Any], refine: int) -> Dict[str, Any]:

@@ -6,6 +6,7 @@ and ``simulate_with_ideal``. SI units throughout.
 
 from __future__ import annotations
 
+import json
 import math
 import warnings
 from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, TypedDict
@@ -263,6 +264,22 @@ class Running:
             raw = compiled.simulate(settings, advance)
         return self._finish(raw, settings)
 
+    def reference_job(self, t_ref: Sequence[float], **kwargs: Unpack[RunOptions]) -> Tuple[str, Dict[str, Any], Dict[str, Any]]:
+        """The run of the ideal counterpart that errors are measured against (docs/physics.md
+        §5), as ``(key, description, settings)`` for :func:`clearsim.run_descriptions`: states
+        and accelerations on the grid ``t_ref`` [s], at a tenth of ``rtol`` and ``atol``
+        (``integrator="auto"`` resolves for the ideal mechanism, which has no film). Mechanisms
+        whose ideal counterparts are equal get the same ``key``, so a batch runs it once
+        (random clearances do not change it)."""
+        ideal = self.idealized()
+        desc = ideal.description()
+        t_ref = np.asarray(t_ref, dtype=float)
+        options: Dict[str, Any] = dict(kwargs, t_out=t_ref, outputs=["states", "accelerations"])
+        options["rtol"] = options.get("rtol", 1e-6) / 10
+        options["atol"] = options.get("atol", 1e-9) / 10
+        key = json.dumps(desc, sort_keys=True, default=_plain) + f"|{t_ref[0]!r}|{t_ref[-1]!r}|{len(t_ref)}"
+        return key, desc, ideal.run_settings(float(t_ref[-1]), **options)
+
     def simulate_with_ideal(self, t_end: float, **kwargs: Unpack[RunOptions]) -> Tuple[Result, Result]:
         """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
         settings on the same output grid, in parallel in the Rust core. Returns
@@ -316,3 +333,12 @@ class Running:
 
 
 __all__ = ["RunOptions", "Running", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]
+
+
+def _plain(value: Any) -> Any:
+    """JSON form of the numpy values inside a description (to key the ideal runs)."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"cannot key a description holding {type(value).__name__}")

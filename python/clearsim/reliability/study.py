@@ -14,7 +14,6 @@ OpenTURNS (``pip install clearsim[uq]``), which works in the standard normal spa
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from dataclasses import dataclass, field
@@ -257,15 +256,9 @@ class Study(Model):
     def _reference(self, m: Any, t0: float, t1: float, period: float) -> Any:
         """The ideal mechanism's response that body errors are measured against (run once per
         distinct ideal mechanism and window; random clearances do not change it)."""
-        ideal = m.idealized()
-        desc = ideal.description()
-        from ..montecarlo import _plain
-
-        key = json.dumps(desc, sort_keys=True, default=_plain) + f"|{t0!r}|{t1!r}"
+        n = max(2, int(math.ceil(REFERENCE_POINTS_PER_CYCLE * (t1 - t0) / period)))
+        key, desc, settings = m.reference_job(np.linspace(t0, t1, n + 1), **self.run_options)
         if key not in self._ideal:
-            n = max(2, int(math.ceil(REFERENCE_POINTS_PER_CYCLE * (t1 - t0) / period)))
-            opts = dict(self.run_options, rtol=self.run_options["rtol"] / 10, atol=self.run_options["atol"] / 10)
-            settings = ideal.run_settings(t1, t_out=np.linspace(t0, t1, n + 1), outputs=["states", "accelerations"], **opts)
             from .. import _core
 
             raw = _core.run_batch([desc], [settings], 1)[0]
