@@ -168,20 +168,36 @@ fn short_arc_integral(eps: f64, eps_dot: f64, wedge: f64, e1: &ArcEnd, e2: &ArcE
     })
 }
 
+/// What both long-bearing integrals start with: the positive-pressure arc of the state. No arc
+/// (the whole film cavitated) or a short one (Gauss–Legendre) gives the force at once; a long
+/// arc is left to the caller's method, with the clamped ε and the force scale `p₀ R L`.
+enum Arc {
+    Done((f64, f64)),
+    Long { eps: f64, e1: ArcEnd, e2: ArcEnd, scale: f64 },
+}
+
+fn long_arc(g: &BearingGeometry, s: FilmState) -> Arc {
+    let eps = s.clamped_eps();
+    let Some((e1, e2)) = positive_arc(eps, s.eps_dot, s.wedge) else {
+        return Arc::Done((0.0, 0.0));
+    };
+    let scale = pressure_scale(g) * g.journal_radius * g.length;
+    if e2.theta - e1.theta < SHORT_ARC {
+        let (fx, fy) = short_arc_integral(eps, s.eps_dot, s.wedge, &e1, &e2);
+        return Arc::Done((scale * fx, scale * fy));
+    }
+    Arc::Long { eps, e1, e2, scale }
+}
+
 /// Long-bearing film force `(F_ξ, F_η)` [N] on the journal (docs/physics.md §4): `R L ∫ p⁺ (cosθ, sinθ) dθ`
 /// over the exact positive-pressure arc, in closed form (see the module doc; arcs shorter than
 /// 0.5 rad by Gauss–Legendre). Finite for every finite input: ε is clamped to [0, 1 − 1e-9];
 /// ε = 0 uses the exact limit of the squeeze term.
 pub fn long_bearing_force(g: &BearingGeometry, s: FilmState) -> (f64, f64) {
-    let eps = s.clamped_eps();
-    let Some((e1, e2)) = positive_arc(eps, s.eps_dot, s.wedge) else {
-        return (0.0, 0.0);
+    let (eps, e1, e2, scale) = match long_arc(g, s) {
+        Arc::Done(force) => return force,
+        Arc::Long { eps, e1, e2, scale } => (eps, e1, e2, scale),
     };
-    let scale = pressure_scale(g) * g.journal_radius * g.length;
-    if e2.theta - e1.theta < SHORT_ARC {
-        let (fx, fy) = short_arc_integral(eps, s.eps_dot, s.wedge, &e1, &e2);
-        return (scale * fx, scale * fy);
-    }
     let beta2 = (1.0 - eps) * (1.0 + eps);
     let beta = beta2.sqrt();
     let beta3 = beta2 * beta;
@@ -253,15 +269,10 @@ pub fn long_bearing_centre_limit(g: &BearingGeometry, s: FilmState) -> (f64, f64
 /// `d = acosh(1/ε)` (the distance of the poles of p from the real axis), so every panel sees
 /// its nearest pole at ≳ its own length. Reference method (~1e-12 relative); slower.
 pub fn long_bearing_force_quadrature(g: &BearingGeometry, s: FilmState) -> (f64, f64) {
-    let eps = s.clamped_eps();
-    let Some((e1, e2)) = positive_arc(eps, s.eps_dot, s.wedge) else {
-        return (0.0, 0.0);
+    let (eps, e1, e2, scale) = match long_arc(g, s) {
+        Arc::Done(force) => return force,
+        Arc::Long { eps, e1, e2, scale } => (eps, e1, e2, scale),
     };
-    let scale = pressure_scale(g) * g.journal_radius * g.length;
-    if e2.theta - e1.theta < SHORT_ARC {
-        let (fx, fy) = short_arc_integral(eps, s.eps_dot, s.wedge, &e1, &e2);
-        return (scale * fx, scale * fy);
-    }
     let (t1, t2) = (e1.theta, e2.theta);
     // Pole distance d = acosh(1/ε) = ln((1 + √(1−ε²))/ε); +∞ at ε = 0.
     let d = if eps > 0.0 { ((1.0 + ((1.0 - eps) * (1.0 + eps)).sqrt()) / eps).ln() } else { f64::INFINITY };
