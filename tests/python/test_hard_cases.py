@@ -309,6 +309,14 @@ CASES: List[Case] = [
     _micrometre_case("1 µm", "slider_crank", "R/c = 9500, the smallest clearance of the range: the journal stays within 1e-4 c of the centre"),
     _micrometre_case("1 µm", "nine_bar", "both nine-bar journals in 1 µm films"),
     Case(
+        "lubricated c = 1 µm, finite bearing, in a whirl (ε = 0.05)",
+        "the journal starts off-centre and whirls at about half the crank speed; the Reynolds-condition film (finite, L/D = 2.1) keeps a positive squeeze damping there, where the long bearing's half-Sommerfeld film does not (docs/hard_cases.md, below); default settings, 1 revolution",
+        lambda: with_initial_eccentricity(
+            models.slider_crank("lubricated", clearance=1e-6, lubricated=cs.Lubricated(viscosity=0.4, length=0.04, film="finite")),
+            "rod-slider", (0.05e-6, 0.0)),
+        SC_REV, dict(dt_out=SC_REV / 200), check=_check_micrometre_film,
+    ),
+    Case(
         "lubricated, starts in contact (ε = 1.03)",
         "start inside the transition band with penetration: no spurious impact blow-up",
         lambda: with_initial_eccentricity(models.slider_crank("lubricated"), "rod-slider", (1.03 * C, 0.0)),
