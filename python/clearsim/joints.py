@@ -185,7 +185,10 @@ class Lubricated:
         +40 % | +100 % at L/D = 2, +17 % | +47 % at L/D = 2.5 (ε = 0.5), −12 % | +26 % at L/D = 4
         and −31 % | +12 % at L/D = 8; the short form is +3 % at L/D = 1/4, +20 % at L/D = 1/2 and
         +69 % at L/D = 1 (ε = 0.5), and worse at larger ε. Neither closed form is accurate between
-        L/D ≈ 1/2 and 8: use ``"finite"`` there.
+        L/D ≈ 1/2 and 8: use ``"finite"`` there. Also for clearances of a few µm: a journal whirling
+        at half the shaft speed sees a negative squeeze damping in the long bearing's
+        half-Sommerfeld film, and with c ≤ 3 µm (R ≈ 10 mm) the run crawls; the finite film damps
+        (docs/hard_cases.md).
     eps0, m:
         Below ε0 both film components are scaled by (ε/ε0)^m (P15–P16, made continuous at
         ε0: docs/physics.md §4).
