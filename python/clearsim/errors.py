@@ -25,7 +25,7 @@ class ClearsimError(Exception):
         return (_rebuild_error, (self.__class__, self.args[0] if self.args else "", dict(self.__dict__)))
 
 
-def _rebuild_error(cls: type, message: str, info: Dict[str, Any]) -> "ClearsimError":
+def _rebuild_error(cls: "type[ClearsimError]", message: str, info: Dict[str, Any]) -> "ClearsimError":
     err = cls.__new__(cls)
     Exception.__init__(err, message)
     err.__dict__.update(info)

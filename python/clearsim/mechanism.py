@@ -240,6 +240,7 @@ class Mechanism(Running):
         to the body's angle), or θ = Σ cₖ tᵏ (``polynomial``), or θ sampled at ``times`` and
         interpolated by a natural cubic spline (``times``, ``angles``)."""
         b = self._body("body", body, allow_ground=False)
+        assert b is not None  # allow_ground=False: a body index, never the ground's None
         given = sum(x is not None for x in (omega, polynomial, times))
         if given != 1:
             raise InputError(

@@ -143,7 +143,8 @@ def nine_bar(
         unknown = set(clearance) - {"A", "B"}
         if unknown or len(clearance) != 2:
             raise InputError(f"invalid clearance = {dict(clearance)!r}: give both joints' clearances as {{'A': c_A, 'B': c_B}} [m]", field="clearance", value=dict(clearance))
-        c_a, c_b = clearance["A"], clearance["B"]
+        c_a: Optional[float] = clearance["A"]
+        c_b: Optional[float] = clearance["B"]
     else:
         c_a = c_b = clearance
     P = NINE_BAR_POINTS

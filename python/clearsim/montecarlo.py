@@ -238,7 +238,17 @@ def monte_carlo(
     cycles = check_positive("cycles", cycles)
     if skip_cycles < 0:
         raise InputError(f"invalid skip_cycles = {skip_cycles!r}: must not be negative", field="skip_cycles", value=skip_cycles)
-    limits = {q: tuple(allowable[q]) for q in quantities}
+    limits: Dict[str, Tuple[float, float]] = {}
+    for q in quantities:
+        pair = allowable[q]
+        try:
+            lo, hi = (float(v) for v in pair)
+        except (TypeError, ValueError):
+            lo = hi = math.nan
+        if not lo < hi:
+            unit = UNITS[(q, component == "theta")]
+            raise InputError(f"invalid allowable[{q!r}] = {pair!r}: give (lower, upper) with lower < upper [{unit}]", field=f"allowable.{q}", value=pair)
+        limits[q] = (lo, hi)
     inputs = sample_inputs(distributions, n, seed)
     if isinstance(omega, str):
         if omega not in inputs:
@@ -314,14 +324,14 @@ def monte_carlo(
             continue
         ok[k] = True
         for i, q in enumerate(quantities):
-            key = QUANTITIES[q]
-            errs[q].append(actual[key][:, col] - ideal[key][:, col])
+            channel = QUANTITIES[q]
+            errs[q].append(actual[channel][:, col] - ideal[channel][:, col])
             monitored[q].append(actual["monitors"][i])
         angles.append(np.degrees(abs(omegas[k]) * (actual["t"] - actual["t"][0])))
     if failures and on_failure == "raise":
         k, reason = failures[0]
-        params = ", ".join(f"{name}={float(v[k]):.6g}" for name, v in inputs.items())
-        raise SimulationError(f"Monte Carlo sample {k} ({params}) failed: {reason}; {len(failures)} of {n} samples failed", reason=reason)
+        sample_text = ", ".join(f"{name}={float(v[k]):.6g}" for name, v in inputs.items())
+        raise SimulationError(f"Monte Carlo sample {k} ({sample_text}) failed: {reason}; {len(failures)} of {n} samples failed", reason=reason)
     if not ok.any():
         raise SimulationError(f"no Monte Carlo sample completed ({n} failed); first failure: {failures[0][1]}", reason=failures[0][1])
     n_failed = len(failures) if on_failure == "fail" else 0
@@ -464,7 +474,8 @@ def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, A
         sigma_s = np.sqrt(np.maximum(integral[1] / integral[2] - mu_s**2, 0.0))
     old = b.fosm
     beta = reliability_index(old.mu_S, old.sigma_S, mu_s, sigma_s)
-    b.fosm = FosmResult(old.bin_starts, old.bin_centres, old.cycle, count, mu_s, sigma_s, beta, normal_cdf(beta), old.mu_S, old.sigma_S, old.bin_width)
+    beta = np.asarray(beta, dtype=float)
+    b.fosm = FosmResult(old.bin_starts, old.bin_centres, old.cycle, count, mu_s, sigma_s, beta, np.asarray(normal_cdf(beta), dtype=float), old.mu_S, old.sigma_S, old.bin_width)
 
 
 def _progress(total: int, enabled: bool, what: str) -> Any:

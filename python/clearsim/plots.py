@@ -18,7 +18,7 @@ from __future__ import annotations
 import contextlib
 import math
 from pathlib import Path
-from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Tuple, Union, cast
 
 import matplotlib as mpl
 import numpy as np
@@ -102,7 +102,7 @@ _SYMLOG_RATIO = 50.0  # peak ratio between series above which a panel switches t
 @contextlib.contextmanager
 def style() -> Iterator[None]:
     """Context manager applying :data:`RC` (restores the previous rcParams on exit)."""
-    with mpl.rc_context(RC):
+    with mpl.rc_context(cast(Any, RC)):  # the stubs want each key as a literal
         yield
 
 
@@ -141,8 +141,10 @@ def _legend_above(ax: Axes, handles: Optional[Sequence[Any]] = None, labels: Opt
         handles, labels = ax.get_legend_handles_labels()
     if not handles:
         return
+    if labels is None:
+        labels = [str(h.get_label()) for h in handles]
     n = len(handles)
-    ax.legend(handles, labels, loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=ncol or min(n, 3), borderaxespad=0.2, handlelength=2.6)
+    ax.legend(list(handles), list(labels), loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=ncol or min(n, 3), borderaxespad=0.2, handlelength=2.6)
 
 
 def _quantity(quantity: str, quantity_info: Optional[Mapping[str, Tuple[str, str, float]]]) -> Tuple[str, str, float]:
@@ -255,7 +257,7 @@ def plot_error_histories(
 def plot_journal_orbits(
     orbits: Mapping[str, Tuple[Any, Any]],
     clearance: Union[float, Mapping[str, float]],
-    transition_band: Union[None, float, Mapping[str, float]] = None,
+    transition_band: Union[None, float, Mapping[str, Optional[float]]] = None,
     ncols: Optional[int] = None,
     title: Optional[str] = None,
 ) -> Figure:
@@ -406,12 +408,12 @@ def _label_minima(ax: Axes, minima: List[Tuple[float, float, str, Any]]) -> None
     :data:`_LABEL_OFFSETS` whose box overlaps no label placed before and stays inside the axes."""
     if not minima:
         return
-    fig = ax.figure
+    fig = cast(Figure, ax.figure)
     if not hasattr(fig.canvas, "get_renderer"):  # a bare Figure: measure text with Agg
         from matplotlib.backends.backend_agg import FigureCanvasAgg
 
         FigureCanvasAgg(fig)
-    renderer = fig.canvas.get_renderer()
+    renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]  # Agg and the GUI canvases have it
     frame = ax.get_window_extent(renderer)
     placed: List[Any] = []
     for a, r, text, color in sorted(minima, key=lambda m: (m[1], m[0])):
@@ -482,7 +484,8 @@ def plot_reliability_panels(
         handles = [Line2D([], [], color=s["color"], linestyle=s["linestyle"], marker=s["marker"]) for s in styles.values()]
         # With a title on top, the shared legend goes below the panels so the two never overlap.
         where = "lower" if title else "upper"
-        fig.legend(handles, list(styles), loc=f"outside {where} center" if _outside_ok() else f"{where} center", ncol=min(len(handles), 4))
+        loc: Any = f"outside {where} center" if _outside_ok() else f"{where} center"  # a literal of the stubs
+        fig.legend(handles, list(styles), loc=loc, ncol=min(len(handles), 4))
         if title:
             fig.suptitle(title)
     return fig
@@ -698,7 +701,7 @@ def plot_wear(result: Any, joint: str, title: Optional[str] = None) -> Figure:
             ax.plot(closed_a, closed_d, color=f"C{k}", lw=1.2)
             ax.set_title(f"{surface}: max {depth.max() * 1e6:.3g} µm", fontsize=10, pad=12)
             ax.tick_params(labelsize=8)
-            ax.set_rlabel_position(112.5)
+            ax.set_rlabel_position(112.5)  # type: ignore[attr-defined]  # a PolarAxes
             ax.yaxis.set_major_locator(mpl.ticker.MaxNLocator(3))
         fig.suptitle(title or f"Wear of clearance joint '{joint}' (volume {result.wear_volume(joint):.3g} m³)", fontsize=11)
 

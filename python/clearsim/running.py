@@ -273,12 +273,12 @@ class Running:
         (random clearances do not change it)."""
         ideal = self.idealized()
         desc = ideal.description()
-        t_ref = np.asarray(t_ref, dtype=float)
-        options: Dict[str, Any] = dict(kwargs, t_out=t_ref, outputs=["states", "accelerations"])
+        grid = np.asarray(t_ref, dtype=float)
+        options: Dict[str, Any] = dict(kwargs, t_out=grid, outputs=["states", "accelerations"])
         options["rtol"] = options.get("rtol", 1e-6) / 10
         options["atol"] = options.get("atol", 1e-9) / 10
-        key = json.dumps(desc, sort_keys=True, default=_plain) + f"|{t_ref[0]!r}|{t_ref[-1]!r}|{len(t_ref)}"
-        return key, desc, ideal.run_settings(float(t_ref[-1]), **options)
+        key = json.dumps(desc, sort_keys=True, default=_plain) + f"|{grid[0]!r}|{grid[-1]!r}|{len(grid)}"
+        return key, desc, ideal.run_settings(float(grid[-1]), **options)
 
     def simulate_with_ideal(self, t_end: float, **kwargs: Unpack[RunOptions]) -> Tuple[Result, Result]:
         """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same

@@ -618,8 +618,8 @@ def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationS
     try:
         m.run_settings(sim.t_end, **sim.kwargs())
     except InputError as err:
-        key = err.field if err.field in t else ("cycles" if err.field == "t_end" and cycles is not None else None)
-        raise t.error(key, err.reason, err.value) from None
+        field = err.field if err.field in t else ("cycles" if err.field == "t_end" and cycles is not None else None)
+        raise t.error(field, err.reason, err.value) from None
     return sim
 
 

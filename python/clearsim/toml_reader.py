@@ -59,8 +59,9 @@ class Source:
         k = 0
         while k < len(where):
             prefix += (str(where[k]),)
-            nth = where[k + 1] if k + 1 < len(where) and isinstance(where[k + 1], int) else 0
-            k += 2 if k + 1 < len(where) and isinstance(where[k + 1], int) else 1
+            following = where[k + 1] if k + 1 < len(where) else None
+            nth = following if isinstance(following, int) else 0
+            k += 2 if isinstance(following, int) else 1
             matches = [h for h, (n, _array, parts) in enumerate(self.headers) if start <= n < end and parts == prefix]
             if nth >= len(matches):
                 break

@@ -60,6 +60,9 @@ def test_bad_omega_name_is_an_input_error():
         ({"body": "slider", "component": "x"}, "allowable", "missing allowable"),
         ({"body": "slider", "component": "theta", "allowable": {"velocity": (0, 1.0)}, "quantities": ["displacement"]}, "allowable.displacement", r"\[rad\]"),
         ({"body": "slider", "component": "x", "allowable": ALLOW, "on_failure": "ignore"}, "on_failure", "fail, exclude, raise"),
+        ({"body": "slider", "component": "x", "allowable": {"displacement": (2e-4, 0.0)}}, "allowable.displacement", r"lower < upper \[m\]"),
+        ({"body": "slider", "component": "x", "allowable": {"displacement": 2e-4}}, "allowable.displacement", "give \\(lower, upper\\)"),
+        ({"body": "slider", "component": "x", "allowable": {"displacement": (0.0, 1e-4, 2e-4)}}, "allowable.displacement", "lower < upper"),
     ],
 )
 def test_limits_and_output_are_explicit(kwargs, field, message):

@@ -363,5 +363,7 @@ def sample_inputs(distributions: Mapping[str, Union[Distribution, float]], n: in
     """
     n = _check_n(n)
     if seed is None:
-        seed = int(np.random.SeedSequence().entropy) % (2**63)  # type: ignore[operator]
+        entropy = np.random.SeedSequence().entropy
+        assert isinstance(entropy, int)  # a fresh SeedSequence draws one int
+        seed = entropy % (2**63)
     return {name: as_distribution(name, dist).sample(n, input_stream(seed, name)) for name, dist in distributions.items()}

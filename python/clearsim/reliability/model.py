@@ -7,7 +7,7 @@ check the methods against closed forms)."""
 from __future__ import annotations
 
 import copy
-from typing import Any, Callable, Dict, Mapping
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence
 
 import numpy as np
 
@@ -67,11 +67,12 @@ class Model:
     def limit_state(self, u: Any, on_failure: str = "fail") -> np.ndarray:  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def form(self, **kw: Any) -> Any:
-        """FORM (:func:`clearsim.reliability.uq.form`)."""
+    def form(self, *, start: Optional[Sequence[float]] = None, step: float = 0.05, max_iterations: int = 50, on_failure: str = "fail") -> Any:
+        """FORM (OpenTURNS): design point, Hasofer–Lind β, p_f ≈ Φ(−β) and importance factors.
+        See :func:`clearsim.reliability.uq.form`."""
         from . import uq
 
-        return uq.form(self, **kw)
+        return uq.form(self, start=start, step=step, max_iterations=max_iterations, on_failure=on_failure)
 
     def with_input(self, name: str, value: Any) -> "Model":
         """A copy with input ``name`` replaced (caches shared, run count kept)."""

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -423,12 +423,6 @@ class Study(Model):
         centres = np.minimum(starts + 0.5 * width, 0.5 * (starts + np.minimum(starts + width, 360.0)))
         return FosmResult(starts, centres, np.zeros(per_cycle, dtype=int), count, mu_s, sigma_s, beta, np.asarray(normal_cdf(beta)), mu_S, sigma_S, width)
 
-    def form(self, *, start: Optional[Sequence[float]] = None, step: float = 0.05, max_iterations: int = 50, on_failure: str = "fail") -> Any:
-        """FORM (OpenTURNS): design point, Hasofer–Lind β, p_f ≈ Φ(−β) and importance factors.
-        See :func:`clearsim.reliability.uq.form`."""
-        from . import uq
-
-        return uq.form(self, start=start, step=step, max_iterations=max_iterations, on_failure=on_failure)
 
     def importance_sampling(self, cov: float = 0.1, max_runs: int = 20000, seed: Optional[int] = 0, *, design_point: Any = None, block: int = 64, on_failure: str = "fail") -> Any:
         """Importance sampling around the FORM design point until the estimate's coefficient of

@@ -196,12 +196,12 @@ def _discussion(runs: Dict[str, Run], an: Dict[str, Analysis], trends: List[Tren
     why2 = ""
     small, large = an["lub-c0.3-5pi"], an["lub-c0.5-5pi"]
     fs, fl = small.pooled["acceleration"], large.pooled["acceleration"]
-    pk = small.peak_analysed_at
-    if fs is not None and fl is not None and not fl.min_reliability < fs.min_reliability and pk is not None:
-        near = [_closest_approach(runs[key], a, pk.angle % 360.0) for key, a in (("lub-c0.3-5pi", small), ("lub-c0.5-5pi", large))]
+    peak = small.peak_analysed_at
+    if fs is not None and fl is not None and not fl.min_reliability < fs.min_reliability and peak is not None:
+        near = [_closest_approach(runs[key], a, peak.angle % 360.0) for key, a in (("lub-c0.3-5pi", small), ("lub-c0.5-5pi", large))]
         why2 = (
-            f" The lubricated 0.3 mm run's largest acceleration error in the analysed cycles ({pk.value:.4g} m/s² at "
-            f"t = {pk.time:.4f} s, {pk.angle % 360.0:.0f}° into its cycle) comes as its journals pass close to the bearing "
+            f" The lubricated 0.3 mm run's largest acceleration error in the analysed cycles ({peak.value:.4g} m/s² at "
+            f"t = {peak.time:.4f} s, {peak.angle % 360.0:.0f}° into its cycle) comes as its journals pass close to the bearing "
             f"centre while the joint loads reverse; closest approach within ±{BIN_WIDTH:g}° of that angle: e/c = {near[0]} "
             f"(0.5 mm run: {near[1]}). Near the centre the film's load capacity vanishes."
         )
