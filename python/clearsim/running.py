@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Ty
 import numpy as np
 
 from . import _core
-from .errors import InputError, InterruptedRun, check_choice, check_finite, check_positive
+from .errors import InputError, InterruptedRun, SimulationError, check_choice, check_finite, check_positive
 from .result import Result
 
 if TYPE_CHECKING:
@@ -328,8 +328,35 @@ class Running:
             if isinstance(err, InterruptedRun):
                 warnings.warn(f"clearsim: {err}; returning the partial result", RuntimeWarning, stacklevel=3)
                 return res
+            hint = self._micrometre_film_hint(err)
+            if hint:
+                err.args = (f"{err.args[0] if err.args else ''}; {hint}",)
             raise err
         return res
+
+    def _micrometre_film_hint(self, err: SimulationError) -> Optional[str]:
+        """What to try when a run in a µm film (R/c ≥ 2 500) stalls: the long film's whirl near the
+        centre, or a release at rest against the wall (docs/hard_cases.md, after the table)."""
+        stalled = any(s in str(err) for s in ("wall-time budget", "maximum number of steps", "step size underflow"))
+        joint = next((j for j in self.description()["clearance_joints"] if j["name"] == err.joint), None)
+        if not stalled or joint is None or joint["model"]["kind"] != "lubricated" or err.eccentricity is None:
+            return None
+        ratio = joint["journal_radius"] / joint["clearance"]
+        if ratio < 2500:
+            return None
+        where = f"joint '{joint['name']}' has a {joint['clearance'] * 1e6:.3g} µm film (R/c = {ratio:.0f})"
+        if err.eccentricity >= 0.9:
+            return (
+                f"hint: {where} and its journal sits against the wall; released there at rest, a µm film pushes with "
+                "a force so large and so nonlinear that the first steps cannot converge: start it centred or off the "
+                "wall (docs/hard_cases.md)"
+            )
+        if joint["model"]["film"] == "long" and err.eccentricity < 0.5:
+            return (
+                f"hint: {where}; a journal whirling near the centre of a µm long-bearing (half-Sommerfeld) film meets a "
+                "negative squeeze damping and the run crawls: film='finite' damps it (docs/hard_cases.md)"
+            )
+        return None
 
 
 __all__ = ["RunOptions", "Running", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]

@@ -568,3 +568,24 @@ def test_ctrl_c_returns_partial_result():
     assert info["finite"]
     assert info["wall"] < 5.0, "the run did not stop promptly"
     assert any("interrupted at t =" in w and "partial result" in w for w in info["warnings"])
+
+
+@pytest.mark.parametrize("start, budget, says", [(0.05, 1.0, "film='finite' damps it"), (0.99, None, "start it centred or off the wall")])
+def test_a_stalled_micrometre_film_says_what_to_try(start, budget, says):
+    """A 1 µm long-bearing film that stalls — in its whirl near the centre (stopped by the
+    wall-time budget) or released at rest against the wall (step-size underflow at t = 0) — says
+    what to try (docs/hard_cases.md); the diagnosis before it stays."""
+    m = with_initial_eccentricity(models.slider_crank("lubricated", clearance=1e-6), "rod-slider", (start * 1e-6, 0.0))
+    with pytest.raises(cs.SimulationError) as info:
+        m.simulate(SC_REV, dt_out=SC_REV / 200, progress=False, **({"max_seconds": budget} if budget else {}))
+    msg = str(info.value)
+    assert says in msg and "R/c = 9500" in msg and "joint 'rod-slider'" in msg
+    assert ("wall-time budget" if budget else "step size underflow") in msg
+    assert info.value.result is not None
+
+
+def test_no_hint_where_the_clearance_is_not_micrometre():
+    """The hint is for µm films only: a 0.5 mm joint that runs out of steps gets the bare diagnosis."""
+    with pytest.raises(cs.SimulationError) as info:
+        models.slider_crank("lubricated").simulate(SC_REV, progress=False, max_steps=5)
+    assert "hint" not in str(info.value)
