@@ -296,10 +296,11 @@ impl<'a> MechanismSystem<'a> {
 
     /// Feed the monitors `samples_per_step` points of the accepted step (t0, t1], the last at
     /// t1. Positions and velocities are read off the dense output. Accelerations come from the
-    /// KKT solve at t1 and, inside the step, from the time derivative of the dense velocity
-    /// (central difference over a quarter of the point spacing); the interior point where that
-    /// estimate deviates most from the reference is then solved exactly, so a peak inside a step
-    /// costs one KKT solve, not one per point.
+    /// step's own f(t1, y1) when the method has it (else a KKT solve at t1) and, inside the
+    /// step, from the time derivative of the dense velocity (central difference over a quarter
+    /// of the point spacing); the interior point where that estimate deviates most from the
+    /// reference is then solved exactly, so a peak inside a step costs one KKT solve, not one
+    /// per point.
     fn observe_step(&mut self, t0: f64, t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<()> {
         let nm = self.monitors.len();
         let k = self.monitors.iter().map(|m| m.spec.samples_per_step).max().unwrap_or(1).max(1);
@@ -308,35 +309,40 @@ impl<'a> MechanismSystem<'a> {
         let any_acc = self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration);
         if self.monitor_values.len() < k * nm {
             self.monitor_values.resize(k * nm, 0.0); // once per run
-            self.scratch2.resize(self.scratch.len(), 0.0);
         }
         let mut s = std::mem::take(&mut self.scratch);
-        let mut s2 = std::mem::take(&mut self.scratch2);
         let at = |i: usize| if i + 1 == k { t1 } else { t0 + h * (i + 1) as f64 / k as f64 };
+        // A joint quantity needs the whole state; body coordinates only their own component.
+        let whole_state = self.monitors.iter().any(|m| m.spec.quantity.of_joint());
+        let d = 0.25 * h / k as f64;
         for i in 0..k - 1 {
             let t = at(i);
-            dense.eval(t, &mut s);
-            for j in 0..nm {
-                self.monitor_values[i * nm + j] =
-                    if self.monitors[j].spec.quantity == Quantity::Acceleration { 0.0 } else { self.monitored_value(j, &s) };
+            if whole_state {
+                dense.eval(t, &mut s);
             }
-            if any_acc {
-                let d = 0.25 * h / k as f64;
-                dense.eval(t + d, &mut s2);
-                dense.eval(t - d, &mut s);
-                for (j, m) in self.monitors.iter().enumerate() {
-                    if m.spec.quantity == Quantity::Acceleration {
-                        let c = nq + m.spec.coordinate;
-                        self.monitor_values[i * nm + j] = (s2[c] - s[c]) / (2.0 * d);
-                    }
-                }
+            for j in 0..nm {
+                let spec = &self.monitors[j].spec;
+                let c = spec.coordinate;
+                self.monitor_values[i * nm + j] = match spec.quantity {
+                    Quantity::Displacement => dense.eval_component(t, c),
+                    Quantity::Velocity => dense.eval_component(t, nq + c),
+                    Quantity::Acceleration => (dense.eval_component(t + d, nq + c) - dense.eval_component(t - d, nq + c)) / (2.0 * d),
+                    _ => self.monitored_value(j, &s),
+                };
             }
         }
-        if any_acc {
+        // The acceleration at t1: the explicit methods' last stage f(t1, y1) holds it (same
+        // memory), otherwise one KKT solve.
+        let end_rate = if any_acc { dense.end_rate() } else { None };
+        if any_acc && end_rate.is_none() {
             self.ws.evaluate(self.model, &self.memory, t1, y1)?;
         }
         for j in 0..nm {
-            self.monitor_values[(k - 1) * nm + j] = self.monitored_value(j, y1);
+            let m = &self.monitors[j].spec;
+            self.monitor_values[(k - 1) * nm + j] = match end_rate {
+                Some(f1) if m.quantity == Quantity::Acceleration => f1[nq + m.coordinate],
+                _ => self.monitored_value(j, y1),
+            };
         }
         // Refine the largest interior acceleration error of each monitor with a KKT solve.
         let mut result = Ok(());
@@ -364,7 +370,6 @@ impl<'a> MechanismSystem<'a> {
             }
         }
         self.scratch = s;
-        self.scratch2 = s2;
         result?;
         for i in 0..k {
             for j in 0..nm {

@@ -29,6 +29,8 @@ pub struct ContinuousExtension {
     diff: Vec<f64>,
     /// Rows `r3, r4, …` (row-major, `MAX_ROWS × n`).
     r: Vec<f64>,
+    /// `f(t1, y1)`, the rate at the step's end that every fill receives.
+    f1: Vec<f64>,
 }
 
 const MAX_ROWS: usize = 6;
@@ -45,6 +47,7 @@ impl ContinuousExtension {
             y1: vec![0.0; n],
             diff: vec![0.0; n],
             r: vec![0.0; MAX_ROWS * n],
+            f1: vec![0.0; n],
         }
     }
 
@@ -56,6 +59,7 @@ impl ContinuousExtension {
         self.t1 = t1;
         self.y0.copy_from_slice(y0);
         self.y1.copy_from_slice(y1);
+        self.f1.copy_from_slice(f1);
         let (r3, rest) = self.r.split_at_mut(n);
         for i in 0..n {
             let d = y1[i] - y0[i];
@@ -113,27 +117,44 @@ impl DenseOutput for ContinuousExtension {
         (self.t0, self.t1)
     }
 
+    fn end_rate(&self) -> Option<&[f64]> {
+        (self.rows > 0).then_some(&self.f1[..])
+    }
+
     /// Evaluates the polynomial at `t` (extrapolates outside `[t0, t1]`).
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let n = self.n;
-        let span = self.t1 - self.t0;
-        let s = if span != 0.0 { (t - self.t0) / span } else { 0.0 };
-        let s1 = 1.0 - s;
-        for (i, o) in out.iter_mut().enumerate().take(n) {
-            // Innermost first: r_last, then r_{m} + w_m * acc with w = θ after odd rows
-            // (r3, r5, r7) and θ1 after even rows (r4, r6).
-            let mut acc = 0.0;
-            for row in (0..self.rows).rev() {
-                let w = if row % 2 == 0 { s } else { s1 };
-                acc = self.r[row * n + i] + w * acc;
-            }
-            let lin = if s <= 0.5 {
-                self.y0[i] + s * self.diff[i]
-            } else {
-                self.y1[i] - s1 * self.diff[i]
-            };
-            *o = lin + s * s1 * acc;
+        let s = self.fraction(t);
+        for (i, o) in out.iter_mut().enumerate().take(self.n) {
+            *o = self.component(s, i);
         }
+    }
+
+    fn eval_component(&self, t: f64, i: usize) -> f64 {
+        self.component(self.fraction(t), i)
+    }
+}
+
+impl ContinuousExtension {
+    /// `θ = (t − t0)/(t1 − t0)`.
+    fn fraction(&self, t: f64) -> f64 {
+        let span = self.t1 - self.t0;
+        if span != 0.0 { (t - self.t0) / span } else { 0.0 }
+    }
+
+    /// Component `i` of the nested form at `θ = s`.
+    #[inline]
+    fn component(&self, s: f64, i: usize) -> f64 {
+        let n = self.n;
+        let s1 = 1.0 - s;
+        // Innermost first: r_last, then r_{m} + w_m * acc with w = θ after odd rows
+        // (r3, r5, r7) and θ1 after even rows (r4, r6).
+        let mut acc = 0.0;
+        for row in (0..self.rows).rev() {
+            let w = if row % 2 == 0 { s } else { s1 };
+            acc = self.r[row * n + i] + w * acc;
+        }
+        let lin = if s <= 0.5 { self.y0[i] + s * self.diff[i] } else { self.y1[i] - s1 * self.diff[i] };
+        lin + s * s1 * acc
     }
 }
 
@@ -252,6 +273,16 @@ mod tests {
             d.eval(t1, &mut out);
             self.ends_exact &= out == y1;
             assert_eq!(d.interval(), (t0, t1));
+            // One component is what the whole evaluation writes there, and the end rate is
+            // f(t1, y1) itself (every explicit method computes it).
+            let tm = 0.37 * t0 + 0.63 * t1;
+            d.eval(tm, &mut out);
+            for (i, o) in out.iter().enumerate() {
+                self.ends_exact &= d.eval_component(tm, i) == *o;
+            }
+            let mut f1 = [0.0; 4];
+            Kepler.rhs(t1, y1, &mut f1)?;
+            self.ends_exact &= d.end_rate() == Some(&f1[..]);
             for (t, r) in &self.reference {
                 if *t > t0 && *t < t1 {
                     d.eval(*t, &mut out);
@@ -330,7 +361,7 @@ mod tests {
         ] {
             let (e1, x1) = one_step_error(method, h);
             let (e2, x2) = one_step_error(method, h / 2.0);
-            assert!(x1 && x2, "{method:?}: ends not reproduced exactly");
+            assert!(x1 && x2, "{method:?}: ends, components or end rate not reproduced exactly");
             let order = (e1 / e2).log2();
             assert!(
                 order > p - 0.4 && order < p + 0.8,

@@ -73,6 +73,15 @@ pub trait DenseOutput {
     fn interval(&self) -> (f64, f64);
     /// State at `t` in `[t0, t1]`, written to `out` (length `dim`). Allocates nothing.
     fn eval(&self, t: f64, out: &mut [f64]);
+    /// Component `i` of the state at `t` (what [`eval`](DenseOutput::eval) writes to
+    /// `out[i]`), for a caller that needs one coordinate of a large state.
+    fn eval_component(&self, t: f64, i: usize) -> f64;
+    /// `f(t1, y1)` at the step's end when the method computed it exactly (the explicit
+    /// Runge–Kutta methods' FSAL stage, with the memory the step was integrated with), so that
+    /// a system needing the rate there need not evaluate `f` again. Default: `None`.
+    fn end_rate(&self) -> Option<&[f64]> {
+        None
+    }
 }
 
 /// Which method to integrate with.

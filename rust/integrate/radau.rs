@@ -99,13 +99,28 @@ impl DenseOutput for RadauDense {
         (self.t0, self.t1)
     }
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let n = out.len();
-        let h = self.t1 - self.t0;
-        let s = if h != 0.0 { (t - self.t1) / h } else { 0.0 };
-        let c = &self.cont;
+        let s = self.fraction(t);
         for (i, o) in out.iter_mut().enumerate() {
-            *o = c[i] + s * (c[n + i] + (s - self.c2m1) * (c[2 * n + i] + (s - self.c1m1) * c[3 * n + i]));
+            *o = self.component(s, i);
         }
+    }
+    fn eval_component(&self, t: f64, i: usize) -> f64 {
+        self.component(self.fraction(t), i)
+    }
+}
+
+impl RadauDense {
+    /// `s = (t − t1)/h`.
+    fn fraction(&self, t: f64) -> f64 {
+        let h = self.t1 - self.t0;
+        if h != 0.0 { (t - self.t1) / h } else { 0.0 }
+    }
+
+    #[inline]
+    fn component(&self, s: f64, i: usize) -> f64 {
+        let c = &self.cont;
+        let n = c.len() / 4;
+        c[i] + s * (c[n + i] + (s - self.c2m1) * (c[2 * n + i] + (s - self.c1m1) * c[3 * n + i]))
     }
 }
 
@@ -727,6 +742,9 @@ mod tests {
             assert!(b.iter().zip(y0).all(|(a, c)| (a - c).abs() <= 1e-12 * (1.0 + c.abs())), "{b:?} vs {y0:?}");
             d.eval(t1, &mut b);
             assert!(b.iter().zip(y1).all(|(a, c)| (a - c).abs() <= 1e-14 * (1.0 + c.abs())));
+            let tm = 0.3 * t0 + 0.7 * t1;
+            d.eval(tm, &mut b);
+            assert!(b.iter().enumerate().all(|(i, v)| d.eval_component(tm, i) == *v));
             Ok(false)
         }
         fn output(&mut self, t: f64, y: &[f64]) -> Result<(), Error> {

@@ -85,12 +85,27 @@ impl DenseOutput for RodasDense {
         (self.t0, self.t1)
     }
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let span = self.t1 - self.t0;
-        let s = if span != 0.0 { (t - self.t0) / span } else { 0.0 };
-        let s1 = 1.0 - s;
+        let s = self.fraction(t);
         for (i, o) in out.iter_mut().enumerate().take(self.y0.len()) {
-            *o = s1 * self.y0[i] + s * (self.y1[i] + s1 * (self.r2[i] + s * self.r3[i]));
+            *o = self.component(s, i);
         }
+    }
+    fn eval_component(&self, t: f64, i: usize) -> f64 {
+        self.component(self.fraction(t), i)
+    }
+}
+
+impl RodasDense {
+    /// `θ = (t − t0)/(t1 − t0)`.
+    fn fraction(&self, t: f64) -> f64 {
+        let span = self.t1 - self.t0;
+        if span != 0.0 { (t - self.t0) / span } else { 0.0 }
+    }
+
+    #[inline]
+    fn component(&self, s: f64, i: usize) -> f64 {
+        let s1 = 1.0 - s;
+        s1 * self.y0[i] + s * (self.y1[i] + s1 * (self.r2[i] + s * self.r3[i]))
     }
 }
 
@@ -364,6 +379,9 @@ mod tests {
             assert!(b.iter().zip(y0).all(|(a, c)| (a - c).abs() <= 1e-14 * (1.0 + c.abs())));
             d.eval(t1, &mut b);
             assert!(b.iter().zip(y1).all(|(a, c)| (a - c).abs() <= 1e-14 * (1.0 + c.abs())));
+            let tq = 0.3 * t0 + 0.7 * t1;
+            d.eval(tq, &mut b);
+            assert!(b.iter().enumerate().all(|(i, v)| d.eval_component(tq, i) == *v));
             if let Some(ex) = self.exact {
                 let tm = 0.5 * (t0 + t1);
                 d.eval(tm, &mut b);
