@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Ty
 import numpy as np
 
 from . import _core
-from .errors import InputError, InterruptedRun, SimulationError, check_choice, check_finite, check_positive
+from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError, check_choice, check_finite, check_positive
 from .result import Result
 
 if TYPE_CHECKING:
@@ -52,9 +52,31 @@ def _positive_int(field: str, value: Any) -> int:
     return int(value)
 
 
-#: A body moved by the assembly by more than this fraction of the mechanism's extent (or by
-#: more than 0.5 rad) gets a warning.
-ASSEMBLY_SHIFT = 0.2
+#: Largest rotation [rad] of a body by the assembly before the pose given counts as wrong.
+ASSEMBLY_TURN = 0.5
+
+
+def _joint_gaps(desc: Dict[str, Any]) -> List[Tuple[str, Tuple[Optional[int], Optional[int]], float]]:
+    """Per two-point joint (revolute and clearance joints), its name, its two bodies and the
+    distance [m] between its two points at the poses given (before assembly)."""
+    bodies = desc["bodies"]
+
+    def at(body: Optional[int], point: Sequence[float]) -> np.ndarray:
+        if body is None:
+            return np.asarray(point, dtype=float)
+        b = bodies[body]
+        c, s = math.cos(b.get("angle", 0.0)), math.sin(b.get("angle", 0.0))
+        return np.array([b["position"][0] + c * point[0] - s * point[1], b["position"][1] + s * point[0] + c * point[1]])
+
+    out = []
+    for j in desc["joints"]:
+        if j["kind"] == "revolute":
+            gap = float(np.hypot(*(at(j["body_a"], j["point_a"]) - at(j["body_b"], j["point_b"]))))
+            out.append((j["name"], (j["body_a"], j["body_b"]), gap))
+    for j in desc["clearance_joints"]:
+        gap = float(np.hypot(*(at(j["bearing_body"], j["bearing_point"]) - at(j["journal_body"], j["journal_point"]))))
+        out.append((j["name"], (j["bearing_body"], j["journal_body"]), gap))
+    return out
 
 
 class Running:
@@ -249,6 +271,7 @@ class Running:
         """
         settings = self.run_settings(t_end, **kwargs)
         compiled = self.compile()
+        self._checked_assembly(settings["t0"])
         from .progress import bar as progress_bar, progress_enabled
 
         if not (progress and progress_enabled()):
@@ -285,6 +308,7 @@ class Running:
         settings on the same output grid, in parallel in the Rust core. Returns
         ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (docs/physics.md §5)."""
         settings = self.run_settings(t_end, **kwargs)
+        self._checked_assembly(settings["t0"])
         ideal = self.idealized()
         # ``integrator="auto"`` resolves per mechanism: the ideal one has no film.
         ideal_settings = ideal.run_settings(t_end, **kwargs)
@@ -296,32 +320,64 @@ class Running:
             raise twin
         return self._finish(actual, settings), ideal._finish(twin, ideal_settings)
 
-    def _check_assembly_shift(self, res: Result) -> None:
-        """Warn when the assembly moved a body far from the pose given: a joint point given in
-        the global instead of the body frame, or a wrong length, is the usual cause."""
-        q0 = np.asarray(res.q0, dtype=float)
-        if q0.size != 3 * len(self._bodies) or not np.all(np.isfinite(q0)):
+    #: Largest distance the assembly may move a body from the pose given, as a fraction of the
+    #: mechanism's span (the extent of the bodies' positions); a larger move (or a turn of more
+    #: than 0.5 rad) is an :class:`AssemblyError` before the run. ``None`` accepts any pose.
+    assembly_tolerance: Optional[float] = 0.2
+
+    def check_assembly(self, t0: float = 0.0) -> np.ndarray:
+        """Assemble at ``t0`` [s] and check that no body moved far from the pose given (see
+        :attr:`assembly_tolerance`): a joint point given in the global instead of the body frame,
+        or a wrong length, is the usual cause. Returns q0; raises :class:`AssemblyError` naming
+        the body, how far it moved and the joint whose points lie furthest apart at the poses
+        given. Called by :meth:`simulate` before it runs."""
+        q0 = np.asarray(self.compile().initial_state(float(t0)), dtype=float)[: 3 * len(self._bodies)]
+        self._check_shift(q0, float(t0))
+        return q0
+
+    def _check_shift(self, q0: np.ndarray, t0: float) -> None:
+        tol = self.assembly_tolerance
+        if tol is None or not np.all(np.isfinite(q0)):
             return
         guess = np.array([[*b["position"], b.get("angle", 0.0)] for b in self._bodies], dtype=float)
         pos = guess[:, :2]
-        extent = max(float(np.ptp(pos[:, 0]) + np.ptp(pos[:, 1])), 1e-3) if len(pos) > 1 else 1.0
+        span = max(float(np.ptp(pos[:, 0]) + np.ptp(pos[:, 1])), 1e-3) if len(pos) > 1 else 1.0
         moved = np.hypot(q0[0::3] - guess[:, 0], q0[1::3] - guess[:, 1])
         turned = np.abs((q0[2::3] - guess[:, 2] + math.pi) % (2 * math.pi) - math.pi)
-        k = int(np.argmax(moved / extent + turned / 0.5))
-        if moved[k] > ASSEMBLY_SHIFT * extent or turned[k] > 0.5:
-            warnings.warn(
-                f"the assembly moved body '{self._bodies[k]['name']}' by {moved[k]:.3g} m and {math.degrees(turned[k]):.3g}° "
-                f"from the pose given (the mechanism spans {extent:.3g} m): check its joint points (body frame, not global) "
-                "and lengths",
-                stacklevel=4,
-            )
+        k = int(np.argmax(moved / span + turned / ASSEMBLY_TURN))
+        if moved[k] <= tol * span and turned[k] <= ASSEMBLY_TURN:
+            return
+        name = self._bodies[k]["name"]
+        gaps = _joint_gaps(self.description())
+        own = [g for g in gaps if k in g[1]]
+        culprit = max(own or gaps, key=lambda g: g[2], default=None)
+        joint = None
+        because = ""
+        if culprit is not None and culprit[2] > 0.05 * span:
+            joint = culprit[0]
+            because = f"; joint '{joint}' has its two points {culprit[2]:.3g} m apart at the poses given"
+        raise AssemblyError(
+            f"the assembly at t0 = {float(t0):g} s moves body '{name}' by {moved[k]:.3g} m and {math.degrees(turned[k]):.3g}° "
+            f"from the pose given (tolerance: {tol:g} × the mechanism's span {span:.3g} m, or {math.degrees(ASSEMBLY_TURN):.3g}°)"
+            f"{because}: check the joint points (body frame, not global) and the lengths, or give poses nearer the "
+            "assembled ones (m.assembly_tolerance = None accepts any)",
+            t=float(t0), joint=joint, body=name, moved=float(moved[k]), turned=float(turned[k]), result=None,
+        )  # fmt: skip
+
+    def _checked_assembly(self, t0: float) -> None:
+        """:meth:`check_assembly` before a run; an assembly that fails altogether is left to the
+        run, whose error carries the diagnosis and an empty partial result."""
+        try:
+            q0 = np.asarray(self.compile().initial_state(float(t0)), dtype=float)[: 3 * len(self._bodies)]
+        except ClearsimError:
+            return
+        self._check_shift(q0, float(t0))
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)
         res.description = self.description()
         if settings is not None:
             res.stats["integrator"] = settings["integrator"]
-        self._check_assembly_shift(res)
         err = raw.get("error")
         if err is not None:
             err.result = res

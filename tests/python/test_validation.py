@@ -8,6 +8,7 @@ names the field, and that the message contains both the field and the offending 
 from __future__ import annotations
 
 import math
+import warnings
 import textwrap
 from pathlib import Path
 from typing import Any, Callable, List, Tuple
@@ -386,9 +387,11 @@ def test_a_loop_that_cannot_close_names_a_joint():
         m.simulate(0.01, progress=False)
 
 
-def test_a_joint_point_in_the_wrong_frame_warns_how_far_the_assembly_moved():
+def test_a_joint_point_in_the_wrong_frame_is_an_assembly_error_before_the_run():
     """The rocker's pin given in global coordinates (1.0, 0.1) instead of its body frame: the
-    assembly has to move the rocker far, and says which body and how far."""
+    assembly would have to move the rocker far; before anything runs, an AssemblyError names
+    the body, how far it would move and the joint whose points lie apart at the poses given.
+    With ``assembly_tolerance = None`` the run goes ahead from the assembled pose."""
     m = cs.Mechanism(gravity=(0.0, 0.0))
     m.add_body("crank", mass=1.0, inertia=0.01, position=(0.05, 0.0))
     m.add_body("rod", mass=1.0, inertia=0.01, position=(0.25, 0.05))
@@ -398,7 +401,10 @@ def test_a_joint_point_in_the_wrong_frame_warns_how_far_the_assembly_moved():
     m.revolute("rod", (0.15, 0.05), "rocker", (0.05, 0.0), name="B")
     m.revolute("ground", (0.4, 0.0), "rocker", (-0.05, 0.0), name="O4")
     m.driver("crank", omega=1.0)
-    m.simulate(0.01, progress=False)  # the right frames: no warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        m.simulate(0.01, progress=False)  # the right frames: no error, no warning
+        assert m.check_assembly(0.0).shape == (9,)
     bad = cs.Mechanism(gravity=(0.0, 0.0))
     for b in m._bodies:
         bad.add_body(b["name"], mass=1.0, inertia=0.01, position=tuple(b["position"]), angle=b.get("angle", 0.0))
@@ -407,11 +413,28 @@ def test_a_joint_point_in_the_wrong_frame_warns_how_far_the_assembly_moved():
     bad.revolute("rod", (0.15, 0.05), "rocker", (0.4, 0.1), name="B")  # global, not body frame
     bad.revolute("ground", (0.4, 0.0), "rocker", (-0.05, 0.0), name="O4")
     bad.driver("crank", omega=1.0)
-    with pytest.warns(UserWarning, match=r"the assembly moved body '\w+' by .* m .*body frame"):
-        try:
-            bad.simulate(0.01, progress=False)
-        except cs.ClearsimError:
-            pass
+    with pytest.raises(cs.AssemblyError) as e:
+        bad.simulate(0.01, progress=False)
+    err = e.value
+    assert err.body in ("rod", "rocker") and err.joint == "B" and err.t == 0.0 and err.result is None
+    assert err.moved > 0.2 * 0.45
+    msg = str(err)
+    assert f"moves body '{err.body}' by" in msg and "joint 'B' has its two points" in msg and "body frame, not global" in msg
+    with pytest.raises(cs.AssemblyError, match="joint 'B'"):
+        bad.simulate_with_ideal(0.01)
+    from clearsim import reliability as rel
+
+    study = rel.Study(lambda load: bad, inputs={"load": rel.Normal(1.0, 0.1)}, output=rel.Output(body="rocker", component="theta"),
+                      limit=1.0, omega=1.0, cycles=0.01, progress=False)  # fmt: skip
+    with pytest.raises(cs.AssemblyError, match="joint 'B'"):
+        study.monte_carlo(4)
+    bad.assembly_tolerance = None
+    try:
+        bad.simulate(0.01, progress=False)
+    except cs.AssemblyError as other:  # pragma: no cover - the check must not fire
+        assert "moves body" not in str(other)
+    except cs.ClearsimError:
+        pass
 
 
 def test_a_link_can_be_given_by_its_ends():

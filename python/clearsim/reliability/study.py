@@ -226,6 +226,7 @@ class Study(Model):
         self.progress = progress
         self._counter = [0]  # simulations of the mechanism with clearances so far (ideal twins aside)
         self._ideal: Dict[str, Any] = {}
+        self._assembly_checked = False
 
     # ------------------------------------------------------------------ the model
     def __repr__(self) -> str:
@@ -280,6 +281,9 @@ class Study(Model):
             params = {name: float(v[k]) for name, v in points.items()}
             m = self.build(**params)
             t0, t1, period = self._window(params)
+            if not self._assembly_checked:
+                m._checked_assembly(t0)  # the first mechanism built: poses in the wrong frame
+                self._assembly_checked = True
             col = self._target(m)
             reference = None
             if self.output.body is not None:
