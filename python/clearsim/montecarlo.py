@@ -365,7 +365,7 @@ def monte_carlo(
         errors=errors,
         bins=bins,
         first_passage=passage,
-        allowable={q: tuple(limits[q]) for q in quantities},  # type: ignore[misc]
+        allowable={q: limits[q] for q in quantities},
         on_failure=on_failure,
         pf_bounds=bounds,
         peaks=peaks,
