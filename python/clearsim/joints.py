@@ -28,6 +28,10 @@ def _check_non_negative(field: str, value: Any) -> float:
         raise InputError(f"invalid {field} = {value!r}: must not be negative", field=field, value=value)
     return v
 FILM_MODELS = ("long", "short", "long_paper", "finite")
+#: R_j/c from which a lubricated joint counts as a µm film: a long-bearing film there can crawl in
+#: a whirl near the centre (measured: R_j = 9.5 mm crawls at c = 3 µm, finishes at 5 µm;
+#: docs/hard_cases.md), and a journal released at rest against the wall can stall at once.
+MICROMETRE_FILM_RATIO = 2500.0
 
 
 @dataclass(frozen=True)

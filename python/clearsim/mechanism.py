@@ -14,7 +14,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import forces as _forces
 from .errors import InputError, SimulationError, check_finite, check_positive
-from .joints import Dry, Lubricated
+from .joints import MICROMETRE_FILM_RATIO, Dry, Lubricated
 from .running import DEFAULT_OUTPUTS, INTEGRATORS, MAX_OUTPUTS, OUTPUTS, RunOptions, Running  # noqa: F401 (re-exported)
 
 GROUND = "ground"
@@ -327,6 +327,14 @@ class Mechanism(Running):
             )
         if not isinstance(model, (Dry, Lubricated)):
             raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
+        if isinstance(model, Lubricated) and model.film in ("long", "long_paper") and r_j / c >= MICROMETRE_FILM_RATIO:
+            warnings.warn(
+                f"clearance joint '{name}': a {model.film!r} film in a {c * 1e6:.3g} µm clearance (R_j/c = {r_j / c:.0f}): "
+                "a journal that whirls near the centre (started off-centre, say) meets the half-Sommerfeld film's negative "
+                "squeeze damping and the run can crawl (measured: c ≤ 3 µm at R_j ≈ 10 mm); film='finite' damps it "
+                "(docs/hard_cases.md)",
+                stacklevel=2,
+            )
         self._clearance.append(
             {
                 "name": self._new_name("clearance", name),

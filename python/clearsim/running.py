@@ -15,6 +15,7 @@ import numpy as np
 
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError, check_choice, check_finite, check_positive
+from .joints import MICROMETRE_FILM_RATIO
 from .result import Result
 
 if TYPE_CHECKING:
@@ -391,14 +392,14 @@ class Running:
         return res
 
     def _micrometre_film_hint(self, err: SimulationError) -> Optional[str]:
-        """What to try when a run in a µm film (R/c ≥ 2 500) stalls: the long film's whirl near the
+        """What to try when a run in a µm film (R/c ≥ MICROMETRE_FILM_RATIO) stalls: the long film's whirl near the
         centre, or a release at rest against the wall (docs/hard_cases.md, after the table)."""
         stalled = any(s in str(err) for s in ("wall-time budget", "maximum number of steps", "step size underflow"))
         joint = next((j for j in self.description()["clearance_joints"] if j["name"] == err.joint), None)
         if not stalled or joint is None or joint["model"]["kind"] != "lubricated" or err.eccentricity is None:
             return None
         ratio = joint["journal_radius"] / joint["clearance"]
-        if ratio < 2500:
+        if ratio < MICROMETRE_FILM_RATIO:
             return None
         where = f"joint '{joint['name']}' has a {joint['clearance'] * 1e6:.3g} µm film (R/c = {ratio:.0f})"
         if err.eccentricity >= 0.9:
