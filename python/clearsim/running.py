@@ -363,6 +363,7 @@ class Running:
             f"{because}: check the joint points (body frame, not global) and the lengths, or give poses nearer the "
             "assembled ones (m.assembly_tolerance = None accepts any)",
             t=float(t0), joint=joint, body=name, moved=float(moved[k]), turned=float(turned[k]), result=None,
+            field=f"joint '{joint}'" if joint else f"body '{name}'.position", value=culprit[2] if joint and culprit else float(moved[k]),
         )  # fmt: skip
 
     def _checked_assembly(self, t0: float) -> None:

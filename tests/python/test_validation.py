@@ -417,6 +417,7 @@ def test_a_joint_point_in_the_wrong_frame_is_an_assembly_error_before_the_run():
         bad.simulate(0.01, progress=False)
     err = e.value
     assert err.body in ("rod", "rocker") and err.joint == "B" and err.t == 0.0 and err.result is None
+    assert err.field == "joint 'B'" and err.value == pytest.approx(0.364, abs=1e-3)  # [m] apart at the poses given
     assert err.moved > 0.2 * 0.45
     msg = str(err)
     assert f"moves body '{err.body}' by" in msg and "joint 'B' has its two points" in msg and "body frame, not global" in msg
