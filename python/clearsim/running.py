@@ -383,10 +383,12 @@ class Running:
         err = raw.get("error")
         if err is not None:
             err.result = res
-            if isinstance(err, InterruptedRun):
-                warnings.warn(f"clearsim: {err}; returning the partial result", RuntimeWarning, stacklevel=3)
-                return res
             hint = self._micrometre_film_hint(err)
+            if isinstance(err, InterruptedRun):
+                # A crawl the user stopped by hand gets the same advice as one out of budget.
+                tail = f"; {hint}" if hint else ""
+                warnings.warn(f"clearsim: {err}; returning the partial result{tail}", RuntimeWarning, stacklevel=3)
+                return res
             if hint:
                 err.args = (f"{err.args[0] if err.args else ''}; {hint}",)
             raise err
@@ -395,7 +397,7 @@ class Running:
     def _micrometre_film_hint(self, err: SimulationError) -> Optional[str]:
         """What to try when a run in a µm film (R/c ≥ MICROMETRE_FILM_RATIO) stalls: the long film's whirl near the
         centre, or a release at rest against the wall (docs/hard_cases.md, after the table)."""
-        stalled = any(s in str(err) for s in ("wall-time budget", "maximum number of steps", "step size underflow"))
+        stalled = any(s in str(err) for s in ("wall-time budget", "maximum number of steps", "step size underflow", "interrupted"))
         joint = next((j for j in self.description()["clearance_joints"] if j["name"] == err.joint), None)
         if not stalled or joint is None or joint["model"]["kind"] != "lubricated" or err.eccentricity is None:
             return None

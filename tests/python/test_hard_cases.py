@@ -584,6 +584,27 @@ def test_a_stalled_micrometre_film_says_what_to_try(start, budget, says):
     assert info.value.result is not None
 
 
+def test_a_micrometre_film_stopped_by_hand_gets_the_hint_too():
+    """A crawling 1 µm long-film run that the user interrupts (Ctrl-C, here a progress callback
+    that raises KeyboardInterrupt) returns its partial result with a warning that carries the
+    same advice as a run out of budget."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the definition-time warning of a µm long film
+        m = with_initial_eccentricity(models.slider_crank("lubricated", clearance=1e-6), "rod-slider", (0.05e-6, 0.0))
+    settings = m.run_settings(SC_REV, dt_out=SC_REV / 200)
+
+    def stop(t):
+        raise KeyboardInterrupt
+
+    raw = m.compile().simulate(settings, stop)
+    assert isinstance(raw["error"], cs.InterruptedRun)
+    with pytest.warns(RuntimeWarning, match=r"interrupted at t = .*partial result; hint: joint 'rod-slider' has a 1 µm film.*film='finite'"):
+        res = m._finish(raw, settings)
+    assert not res.completed and len(res.t) >= 1
+
+
 def test_no_hint_where_the_clearance_is_not_micrometre():
     """The hint is for µm films only: a 0.5 mm joint that runs out of steps gets the bare diagnosis."""
     with pytest.raises(cs.SimulationError) as info:
