@@ -192,7 +192,9 @@ class Lubricated:
         L/D ≈ 1/2 and 8: use ``"finite"`` there. Also for clearances of a few µm: a journal whirling
         at half the shaft speed sees a negative squeeze damping in the long bearing's
         half-Sommerfeld film, and with c ≤ 3 µm (R ≈ 10 mm) the run crawls; the finite film damps
-        (docs/hard_cases.md).
+        (docs/hard_cases.md). A journal released at rest against the wall with the drive at speed
+        leaves it at default settings from c = 5 µm with the long film, 20 µm with the finite and
+        50 µm with the short (slider-crank, 5000 rpm, L = 40 mm): start µm films centred.
     eps0, m:
         Below ε0 both film components are scaled by (ε/ε0)^m (P15–P16, made continuous at
         ε0: docs/physics.md §4).

@@ -395,21 +395,30 @@ class Running:
         return res
 
     def _micrometre_film_hint(self, err: SimulationError) -> Optional[str]:
-        """What to try when a run in a µm film (R/c ≥ MICROMETRE_FILM_RATIO) stalls: the long film's whirl near the
-        centre, or a release at rest against the wall (docs/hard_cases.md, after the table)."""
+        """What to try when a lubricated run stalls where the film model, not the solver, sets the
+        pace (docs/hard_cases.md, after the table): a journal released at rest against the wall
+        that cannot leave it (any clearance: the short film up to 20 µm, the finite up to 1 µm, the
+        long up to 3 µm), and in a µm film (R/c ≥ MICROMETRE_FILM_RATIO) a half-speed whirl along the
+        wall or the long film's whirl near the centre."""
         stalled = any(s in str(err) for s in ("wall-time budget", "maximum number of steps", "step size underflow", "interrupted"))
         joint = next((j for j in self.description()["clearance_joints"] if j["name"] == err.joint), None)
         if not stalled or joint is None or joint["model"]["kind"] != "lubricated" or err.eccentricity is None:
             return None
         ratio = joint["journal_radius"] / joint["clearance"]
+        where = f"joint '{joint['name']}' has a {joint['clearance'] * 1e6:.3g} µm {joint['model']['film']!r} film (R/c = {ratio:.0f})"
+        if err.eccentricity >= 0.9 and err.t == 0.0:
+            return (
+                f"hint: {where} and its journal was released at rest against the wall with the drive already at speed: "
+                "the film pushes with a force so large and so nonlinear that the first steps cannot converge: start it "
+                "centred or off the wall (docs/hard_cases.md lists the clearances each film releases from)"
+            )
         if ratio < MICROMETRE_FILM_RATIO:
             return None
-        where = f"joint '{joint['name']}' has a {joint['clearance'] * 1e6:.3g} µm film (R/c = {ratio:.0f})"
         if err.eccentricity >= 0.9:
             return (
-                f"hint: {where} and its journal sits against the wall; released there at rest, a µm film pushes with "
-                "a force so large and so nonlinear that the first steps cannot converge: start it centred or off the "
-                "wall (docs/hard_cases.md)"
+                f"hint: {where} and its journal sits against the wall, likely whirling along it at half the shaft speed "
+                "(wedge ≈ 0, no load capacity) where the squeeze film is as stiff as at contact: start it centred or off "
+                "the wall (docs/hard_cases.md)"
             )
         if joint["model"]["film"] == "long" and err.eccentricity < 0.5:
             return (

@@ -600,9 +600,21 @@ def test_a_micrometre_film_stopped_by_hand_gets_the_hint_too():
 
     raw = m.compile().simulate(settings, stop)
     assert isinstance(raw["error"], cs.InterruptedRun)
-    with pytest.warns(RuntimeWarning, match=r"interrupted at t = .*partial result; hint: joint 'rod-slider' has a 1 µm film.*film='finite'"):
+    with pytest.warns(RuntimeWarning, match=r"interrupted at t = .*partial result; hint: joint 'rod-slider' has a 1 µm 'long' film.*film='finite'"):
         res = m._finish(raw, settings)
     assert not res.completed and len(res.t) >= 1
+
+
+def test_a_release_at_the_wall_that_cannot_start_says_so_at_any_clearance():
+    """The short film released at rest against the wall stops at t = 0 up to c = 20 µm
+    (docs/hard_cases.md): the diagnosis says the release is the trouble, whatever R/c."""
+    m = with_initial_eccentricity(models.slider_crank("lubricated", clearance=20e-6, lubricated=cs.Lubricated(viscosity=0.4, length=0.04, film="short")),
+                                  "rod-slider", (0.99 * 20e-6, 0.0))  # fmt: skip
+    with pytest.raises(cs.SimulationError) as info:
+        m.simulate(SC_REV, dt_out=SC_REV / 200, progress=False, max_seconds=10.0)
+    msg = str(info.value)
+    assert info.value.t == 0.0 and "step size underflow" in msg
+    assert "20 µm 'short' film (R/c = 475)" in msg and "released at rest against the wall" in msg and "start it centred or off the wall" in msg
 
 
 def test_no_hint_where_the_clearance_is_not_micrometre():
