@@ -429,6 +429,9 @@ def test_a_joint_point_in_the_wrong_frame_is_an_assembly_error_before_the_run():
                       limit=1.0, omega=1.0, cycles=0.01, progress=False)  # fmt: skip
     with pytest.raises(cs.AssemblyError, match="joint 'B'"):
         study.monte_carlo(4)
+    study._assembly_checked = False
+    with pytest.raises(cs.AssemblyError, match="joint 'B'"):
+        study.fosm()
     bad.assembly_tolerance = None
     try:
         bad.simulate(0.01, progress=False)

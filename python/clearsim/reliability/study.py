@@ -254,6 +254,13 @@ class Study(Model):
             raise InputError(f"invalid Output.joint = {self.output.joint!r}: no such clearance joint (known: {', '.join(names) or 'none'})", field="Output.joint", value=self.output.joint)
         return names.index(self.output.joint)
 
+    def _check_first_assembly(self, m: Any, t0: float) -> None:
+        """The pose check of ``Mechanism.simulate`` (a joint point in the wrong frame is an
+        AssemblyError), on the first mechanism the study builds."""
+        if not self._assembly_checked:
+            m._checked_assembly(t0)
+            self._assembly_checked = True
+
     def _reference(self, m: Any, t0: float, t1: float, period: float) -> Any:
         """The ideal mechanism's response that body errors are measured against (run once per
         distinct ideal mechanism and window; random clearances do not change it)."""
@@ -281,9 +288,7 @@ class Study(Model):
             params = {name: float(v[k]) for name, v in points.items()}
             m = self.build(**params)
             t0, t1, period = self._window(params)
-            if not self._assembly_checked:
-                m._checked_assembly(t0)  # the first mechanism built: poses in the wrong frame
-                self._assembly_checked = True
+            self._check_first_assembly(m, t0)
             col = self._target(m)
             reference = None
             if self.output.body is not None:
@@ -395,6 +400,7 @@ class Study(Model):
             params = self.nominal()
             m = self.build(**params)
             t0, t1, period = self._window(params)
+            self._check_first_assembly(m, t0)
             col = self._target(m)
             reference = self._reference(m, t0, t1, period) if self.output.body is not None else None
             if isinstance(reference, str):
