@@ -121,27 +121,7 @@ impl DenseOutput for ContinuousExtension {
         (self.rows > 0).then_some(&self.f1[..])
     }
 
-    /// Evaluates the polynomial at `t` (extrapolates outside `[t0, t1]`).
-    fn eval(&self, t: f64, out: &mut [f64]) {
-        let s = self.fraction(t);
-        for (i, o) in out.iter_mut().enumerate().take(self.n) {
-            *o = self.component(s, i);
-        }
-    }
-
-    fn eval_component(&self, t: f64, i: usize) -> f64 {
-        self.component(self.fraction(t), i)
-    }
-}
-
-impl ContinuousExtension {
-    /// `θ = (t − t0)/(t1 − t0)`.
-    fn fraction(&self, t: f64) -> f64 {
-        let span = self.t1 - self.t0;
-        if span != 0.0 { (t - self.t0) / span } else { 0.0 }
-    }
-
-    /// Component `i` of the nested form at `θ = s`.
+    /// Component `i` of the nested form at `θ = s` (extrapolates outside `[t0, t1]`).
     #[inline]
     fn component(&self, s: f64, i: usize) -> f64 {
         let n = self.n;

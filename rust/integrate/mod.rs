@@ -71,11 +71,27 @@ pub trait OdeSystem {
 pub trait DenseOutput {
     /// Interval `[t0, t1]` the extension covers.
     fn interval(&self) -> (f64, f64);
-    /// State at `t` in `[t0, t1]`, written to `out` (length `dim`). Allocates nothing.
-    fn eval(&self, t: f64, out: &mut [f64]);
+    /// The variable the polynomial is written in, at `t`. Default: `θ = (t − t0)/(t1 − t0)`
+    /// (0 for an empty interval).
+    fn fraction(&self, t: f64) -> f64 {
+        let (t0, t1) = self.interval();
+        if t1 != t0 { (t - t0) / (t1 - t0) } else { 0.0 }
+    }
+    /// Component `i` of the polynomial at `s` = [`fraction`](DenseOutput::fraction)`(t)`.
+    fn component(&self, s: f64, i: usize) -> f64;
+    /// State at `t` in `[t0, t1]` (extrapolated outside), written to `out` (length `dim`).
+    /// Allocates nothing.
+    fn eval(&self, t: f64, out: &mut [f64]) {
+        let s = self.fraction(t);
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.component(s, i);
+        }
+    }
     /// Component `i` of the state at `t` (what [`eval`](DenseOutput::eval) writes to
     /// `out[i]`), for a caller that needs one coordinate of a large state.
-    fn eval_component(&self, t: f64, i: usize) -> f64;
+    fn eval_component(&self, t: f64, i: usize) -> f64 {
+        self.component(self.fraction(t), i)
+    }
     /// `f(t1, y1)` at the step's end when the method computed it exactly (the explicit
     /// Runge–Kutta methods' FSAL stage, with the memory the step was integrated with), so that
     /// a system needing the rate there need not evaluate `f` again. Default: `None`.

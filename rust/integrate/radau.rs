@@ -98,24 +98,11 @@ impl DenseOutput for RadauDense {
     fn interval(&self) -> (f64, f64) {
         (self.t0, self.t1)
     }
-    fn eval(&self, t: f64, out: &mut [f64]) {
-        let s = self.fraction(t);
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.component(s, i);
-        }
-    }
-    fn eval_component(&self, t: f64, i: usize) -> f64 {
-        self.component(self.fraction(t), i)
-    }
-}
-
-impl RadauDense {
     /// `s = (t − t1)/h`.
     fn fraction(&self, t: f64) -> f64 {
         let h = self.t1 - self.t0;
         if h != 0.0 { (t - self.t1) / h } else { 0.0 }
     }
-
     #[inline]
     fn component(&self, s: f64, i: usize) -> f64 {
         let c = &self.cont;

@@ -84,24 +84,6 @@ impl DenseOutput for RodasDense {
     fn interval(&self) -> (f64, f64) {
         (self.t0, self.t1)
     }
-    fn eval(&self, t: f64, out: &mut [f64]) {
-        let s = self.fraction(t);
-        for (i, o) in out.iter_mut().enumerate().take(self.y0.len()) {
-            *o = self.component(s, i);
-        }
-    }
-    fn eval_component(&self, t: f64, i: usize) -> f64 {
-        self.component(self.fraction(t), i)
-    }
-}
-
-impl RodasDense {
-    /// `θ = (t − t0)/(t1 − t0)`.
-    fn fraction(&self, t: f64) -> f64 {
-        let span = self.t1 - self.t0;
-        if span != 0.0 { (t - self.t0) / span } else { 0.0 }
-    }
-
     #[inline]
     fn component(&self, s: f64, i: usize) -> f64 {
         let s1 = 1.0 - s;
