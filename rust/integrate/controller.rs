@@ -191,6 +191,55 @@ impl Predictive {
     }
 }
 
+/// Memory of the step sizes at which an implicit method's Newton iteration failed. Where the
+/// error estimate would let the step grow but the iteration cannot converge beyond some size
+/// (a stiff force with kinks, a µm oil film), the error-based proposal runs into the same
+/// failure again and again (grow eightfold, fail, halve, halve, halve). A failure at `h` counts
+/// once a shorter step converges with the same Newton matrix (a failure cured by a better
+/// matrix says nothing about the step: [`NewtonLimit::reset`]); from then on the proposals are
+/// capped at `margin · h`, the cap relaxing by `relax` per accepted step, so a limit that has
+/// gone is forgotten within a few steps (1.1: tenfold in 25 steps).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonLimit {
+    cap: f64,
+    /// The smallest failed size since the last accepted step.
+    pending: f64,
+    /// Fraction of the failed size the cap is set to.
+    pub margin: f64,
+    /// Growth of the cap per accepted step.
+    pub relax: f64,
+}
+
+impl NewtonLimit {
+    pub fn new(margin: f64, relax: f64) -> Self {
+        NewtonLimit { cap: f64::INFINITY, pending: f64::INFINITY, margin, relax }
+    }
+
+    /// Forget the failures: the Newton matrix they were seen with has been replaced.
+    pub fn reset(&mut self) {
+        self.cap = f64::INFINITY;
+        self.pending = f64::INFINITY;
+    }
+
+    /// The Newton iteration failed on a step of size `h`.
+    pub fn failed(&mut self, h: f64) {
+        self.pending = self.pending.min(h);
+    }
+
+    /// The size to try after an accepted step, given the error-based proposal `h_next`: the
+    /// failures before it count if the step's Newton iteration was `trusted`; the cap then
+    /// relaxes.
+    pub fn after_accept(&mut self, h_next: f64, trusted: bool) -> f64 {
+        if trusted {
+            self.cap = self.cap.min(self.margin * self.pending);
+        }
+        self.pending = f64::INFINITY;
+        let h = h_next.min(self.cap);
+        self.cap *= self.relax;
+        h
+    }
+}
+
 /// Automatic initial step (Hairer I, §II.4 "Starting Step Size"; `HINIT` of DOPRI5/DOP853).
 ///
 /// With `d0 = ‖y0‖`, `d1 = ‖f0‖` (RMS norms scaled by `atol + rtol |y0|`): `h0 = 0.01 d0/d1`
@@ -243,6 +292,12 @@ pub fn initial_step<S: OdeSystem + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    impl NewtonLimit {
+        fn after_accept_t(&mut self, h_next: f64) -> f64 {
+            self.after_accept(h_next, true)
+        }
+    }
 
     #[test]
     fn accept_iff_error_at_most_one() {
@@ -389,5 +444,64 @@ mod tests {
         assert!(h < plain, "{h} vs {plain}");
         let q = (0.45 / 1.0) * (0.25f64 / 1e-2).powf(0.25) / 0.9;
         assert!((h - 1.0 / q).abs() < 1e-12, "{h} vs {}", 1.0 / q);
+    }
+
+    #[test]
+    fn newton_limit_caps_after_a_failure_and_forgets_it() {
+        let mut l = NewtonLimit::new(0.8, 1.1);
+        // No failure yet: the proposal passes.
+        assert_eq!(l.after_accept_t(3.0), 3.0);
+        // Failures at 8 and then 2, then a step converges: the cap is 0.8 × the smallest.
+        l.failed(8.0);
+        l.failed(2.0);
+        assert_eq!(l.after_accept_t(10.0), 1.6);
+        // Failures cured by a new Newton matrix do not count.
+        let mut m = NewtonLimit::new(0.8, 1.1);
+        m.failed(4.0);
+        m.reset();
+        assert_eq!(m.after_accept_t(10.0), 10.0);
+        // A proposal below the cap passes; the cap relaxes by 1.1 per accepted step.
+        assert_eq!(l.after_accept_t(1.0), 1.0);
+        let cap = l.after_accept_t(10.0);
+        assert!((cap - 1.6 * 1.1 * 1.1).abs() < 1e-12, "{cap}");
+        // Within ~25 accepted steps a tenfold proposal is back.
+        let mut h = 0.0;
+        for _ in 0..25 {
+            h = l.after_accept_t(16.0);
+        }
+        assert_eq!(h, 16.0);
+        // Failures cured only by a slow iteration (an untrusted step) do not count.
+        let mut u = NewtonLimit::new(0.8, 1.1);
+        u.failed(2.0);
+        assert_eq!(u.after_accept(10.0, false), 10.0);
+    }
+
+    /// A toy "Newton" that converges only for h ≤ 1 while the error test would let every step
+    /// grow eightfold: without the limit each accepted step costs three failures (8 → 4 → 2 → 1);
+    /// with it, one failure per three accepted steps (the cap creeps back up by 1.1 per step and
+    /// meets the sharp limit again: the price of forgetting a limit that has gone).
+    #[test]
+    fn newton_limit_removes_repeated_failures() {
+        let run = |limit: bool| {
+            let mut l = NewtonLimit::new(0.8, 1.1);
+            let (mut h, mut failures, mut accepted) = (1.0f64, 0, 0);
+            while accepted < 100 {
+                if h > 1.0 {
+                    failures += 1;
+                    if limit {
+                        l.failed(h);
+                    }
+                    h *= 0.5;
+                } else {
+                    accepted += 1;
+                    let proposal = 8.0 * h; // the error estimate is tiny: grow
+                    h = if limit { l.after_accept_t(proposal) } else { proposal };
+                }
+            }
+            failures
+        };
+        let (plain, limited) = (run(false), run(true));
+        assert!(plain >= 250, "{plain}");
+        assert!(limited <= 40, "{limited}");
     }
 }

@@ -25,7 +25,7 @@
 
 use faer::Mat;
 
-use super::controller::{Decision, Predictive};
+use super::controller::{Decision, NewtonLimit, Predictive};
 use super::driver::{all_finite, non_finite, Stepper, Trial};
 use super::stiff::Lu;
 use super::{DenseOutput, OdeSystem, Settings, Stats};
@@ -374,6 +374,10 @@ pub(super) struct Radau5Stepper {
     w_from_hook: bool,
     differenced_left: usize,
     faccon: f64,
+    /// Caps the step after Newton failures (µm films: the iteration, not the error, limits it).
+    newton_limit: NewtonLimit,
+    /// Newton iterations of the last accepted step.
+    last_newt: usize,
 }
 
 impl Radau5Stepper {
@@ -404,6 +408,8 @@ impl Radau5Stepper {
             w_from_hook: false,
             differenced_left: 0,
             faccon: 1.0,
+            newton_limit: NewtonLimit::new(0.8, 1.1),
+            last_newt: 0,
         }
     }
 
@@ -550,12 +556,19 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
         };
         if self.need_w {
             let differenced = self.differenced_left > 0;
+            if self.differenced_left == 1 {
+                // Back to the hook's matrix next: the failures seen with either say nothing
+                // about the other.
+                self.newton_limit.reset();
+            }
             self.differenced_left = self.differenced_left.saturating_sub(1);
             newton.update(sys, stats, t, y, &self.f0, differenced)?;
             (self.need_w, self.fails_on_w, self.w_from_hook) = (false, 0, newton.half.is_some() && !differenced);
         } else if self.fails_on_w >= 3 && self.w_from_hook {
             newton.update(sys, stats, t, y, &self.f0, true)?;
             (self.fails_on_w, self.w_from_hook, self.differenced_left) = (0, false, DIFFERENCED_SPELL);
+            // Those failures were the hook matrix's, not the step size's.
+            self.newton_limit.reset();
         }
         let k = &self.k;
         let (fac1, alphn, betan) = (k.u1 / hs, k.alpha / hs, k.beta / hs);
@@ -570,6 +583,7 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
                 self.fails_on_w += 1;
                 self.reject = true;
                 self.ctrl.failed();
+                self.newton_limit.failed(hs);
                 return Ok(Trial::Failed { error, h_next: hs * fac });
             }
         };
@@ -611,6 +625,7 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
             return Ok(Trial::Rejected { h_next: if self.first { 0.1 * hs } else { h_next } });
         }
         self.first = false;
+        self.last_newt = newt;
         // y1 = y + Z3 (stiffly accurate); dense output through the stages.
         let (c1, c2) = (k.c[0], k.c[1]);
         let (c1m1, c2m1, c1mc2) = (c1 - 1.0, c2 - 1.0, c1 - c2);
@@ -639,7 +654,11 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
     fn accepted(&mut self, h: f64) -> f64 {
         self.need_w = true;
         self.reject = false;
-        self.ctrl.size_after_accept(h)
+        let h_next = self.ctrl.size_after_accept(h);
+        // The failures before this step count where it converged briskly (≤ 3 iterations): its
+        // matrix is good, the size was the trouble. A slow one points at the matrix, which three
+        // failures in a row replace (`fails_on_w`): a cap must not stand in their way.
+        self.newton_limit.after_accept(h_next, self.last_newt <= 3)
     }
 }
 

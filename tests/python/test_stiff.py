@@ -75,20 +75,22 @@ def test_stiff_hard_case_mu_004_matches_reference(integrator):
 
 def test_radau_beats_rk45_on_the_hard_case_whole_cycle():
     """The issue's stiff hard case (μ = 0.04 Pa s, the journals sink into the film-to-contact
-    band), one cycle, against DOP853 at rtol 1e-11: RADAU5 at rtol 1e-6 is at least as accurate as
-    RK45 at rtol 1e-6 (RK45 is stability-bound, ~11 000 steps at any tolerance) with ≥ 8× fewer
-    right-hand sides (measured 8.7×: 7 930 against 69 295; the count includes the 48 right-hand
-    sides of each differenced Newton matrix, about 1 100 of them here). (Counts, not times:
-    speed lives in benches/.)"""
+    band), one cycle, against DOP853 at rtol 1e-11, compared at equal error: RADAU5 at rtol 5e-7
+    is as accurate as RK45 at rtol 1e-6 (RK45 is stability-bound, ~11 000 steps at any tolerance;
+    measured 7.9e-10 m against 8.1e-10 m) with ≥ 8× fewer right-hand sides (measured 9.7×: 7 146
+    against 69 301; the count includes the 48 right-hand sides of each differenced Newton
+    matrix). At equal rtol 1e-6 RADAU5's error is 2.9e-9 m (1.9e-9 before the Newton limit of
+    rust/integrate/controller.rs changed its step sequence). (Counts, not times: speed lives in
+    benches/.)"""
     m = nine_bar("lubricated", clearance=0.5e-3, lubricated=Lubricated(viscosity=0.04, length=0.05))
     t = np.linspace(0.0, NINE_BAR_CYCLE, 401)
     ref = m.simulate(NINE_BAR_CYCLE, integrator="dop853", rtol=1e-11, atol=1e-14, t_out=t)
     errs, evals = {}, {}
-    for integ in ("rk45", "radau"):
-        r = m.simulate(NINE_BAR_CYCLE, integrator=integ, rtol=1e-6, atol=1e-9, t_out=t)
+    for integ, rtol in (("rk45", 1e-6), ("radau", 5e-7)):
+        r = m.simulate(NINE_BAR_CYCLE, integrator=integ, rtol=rtol, atol=rtol * 1e-3, t_out=t)
         errs[integ] = np.max(np.abs(r.position("slider9")[:, 1] - ref.position("slider9")[:, 1]))
         evals[integ] = r.stats["rhs_evaluations"]
-    assert errs["radau"] < 2 * errs["rk45"] + 1e-9, errs
+    assert errs["radau"] < 1.5 * errs["rk45"], errs
     assert evals["radau"] * 8 < evals["rk45"], evals
 
 
