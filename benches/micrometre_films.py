@@ -64,7 +64,7 @@ def main() -> None:
         damping()
         return
     print("| c [µm] | film | start | outcome |\n|---|---|---|---|")
-    for c_um, film, start in [(1, "long", "whirl"), (3, "long", "whirl"), (5, "long", "whirl"), (1, "finite", "whirl"),
+    for c_um, film, start in [(1, "long", "whirl"), (2, "long", "whirl"), (3, "long", "whirl"), (5, "long", "whirl"), (1, "finite", "whirl"),
                               (2, "finite", "whirl"), (1, "short", "whirl"), (5, "long", "wall"), (3, "long", "wall"),
                               (1, "long", "wall"), (1, "finite", "wall"), (5, "finite", "wall"), (10, "finite", "wall"),
                               (20, "finite", "wall"), (5, "short", "wall"), (20, "short", "wall")]:  # fmt: skip

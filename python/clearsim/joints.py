@@ -29,9 +29,10 @@ def _check_non_negative(field: str, value: Any) -> float:
     return v
 FILM_MODELS = ("long", "short", "long_paper", "finite")
 #: R_j/c from which a lubricated joint counts as a µm film: a long-bearing film there can crawl in
-#: a whirl near the centre (measured: R_j = 9.5 mm crawls at c = 3 µm, finishes at 5 µm;
-#: docs/hard_cases.md), and a journal released at rest against the wall can stall at once.
-MICROMETRE_FILM_RATIO = 2500.0
+#: a whirl near the centre (measured, R_j = 9.5 mm: c = 1, 1.25 and 2 µm crawl, 1.5 µm finishes
+#: in 1.6 s, 3 µm in 0.03 s; docs/hard_cases.md), and a journal released at rest against the
+#: wall can stall at once.
+MICROMETRE_FILM_RATIO = 4000.0
 
 
 @dataclass(frozen=True)
@@ -191,7 +192,7 @@ class Lubricated:
         +69 % at L/D = 1 (ε = 0.5), and worse at larger ε. Neither closed form is accurate between
         L/D ≈ 1/2 and 8: use ``"finite"`` there. Also for clearances of a few µm: a journal whirling
         at half the shaft speed sees a negative squeeze damping in the long bearing's
-        half-Sommerfeld film, and with c ≤ 3 µm (R ≈ 10 mm) the run crawls; the finite film damps
+        half-Sommerfeld film, and with c ≤ 2 µm (R ≈ 10 mm) the run can crawl; the finite film damps
         (docs/hard_cases.md). A journal released at rest against the wall with the drive at speed
         leaves it at default settings from c = 5 µm with the long film, 20 µm with the finite and
         50 µm with the short (slider-crank, 5000 rpm, L = 40 mm): start µm films centred.

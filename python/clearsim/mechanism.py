@@ -331,7 +331,7 @@ class Mechanism(Running):
             warnings.warn(
                 f"clearance joint '{name}': a {model.film!r} film in a {c * 1e6:.3g} µm clearance (R_j/c = {r_j / c:.0f}): "
                 "a journal that whirls near the centre (started off-centre, say) meets the half-Sommerfeld film's negative "
-                "squeeze damping and the run can crawl (measured: c ≤ 3 µm at R_j ≈ 10 mm); film='finite' damps it "
+                "squeeze damping and the run can crawl (measured: c ≤ 2 µm at R_j ≈ 10 mm); film='finite' damps it "
                 "(docs/hard_cases.md)",
                 stacklevel=2,
             )
