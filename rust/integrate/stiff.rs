@@ -22,7 +22,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve};
 use faer::perm::PermRef;
-use faer::{Mat, Par};
+use faer::{Mat, MatMut, Par};
 
 use super::controller::{Decision, Predictive};
 use super::driver::{non_finite, Stepper, Trial};
@@ -122,23 +122,26 @@ impl Lu {
         lu_factor::lu_in_place(self.e.as_mut(), &mut self.perm, &mut self.perm_inv, Par::Seq, &mut stack, Default::default());
     }
 
-    /// Factorise the matrix `fill` writes into the storage (every entry must be written).
-    pub(super) fn factor_with(&mut self, fill: impl FnOnce(&mut Mat<f64>)) {
-        fill(&mut self.e);
+    /// Factorise the leading `k × k` block (`k` ≤ the size given to [`Lu::new`]) that `fill`
+    /// writes (every entry of it must be written); [`Lu::solve`] then takes vectors of length `k`.
+    /// The scratch of the full size covers any smaller `k`, so this allocates nothing.
+    pub(super) fn factor_with(&mut self, k: usize, fill: impl FnOnce(MatMut<'_, f64>)) {
+        let mut e = self.e.as_mut().submatrix_mut(0, 0, k, k);
+        fill(e.as_mut());
         let mut stack = MemStack::new(&mut self.mem);
-        lu_factor::lu_in_place(self.e.as_mut(), &mut self.perm, &mut self.perm_inv, Par::Seq, &mut stack, Default::default());
+        lu_factor::lu_in_place(e, &mut self.perm[..k], &mut self.perm_inv[..k], Par::Seq, &mut stack, Default::default());
     }
 
-    /// `x ← E⁻¹ x`.
+    /// `x ← E⁻¹ x` for the block last factorised (`x.len()` = its size).
     pub(super) fn solve(&mut self, x: &mut [f64]) {
         let n = x.len();
         for (i, v) in x.iter().enumerate() {
             self.rhs[(i, 0)] = *v;
         }
-        let perm = PermRef::new_checked(&self.perm, &self.perm_inv, n);
+        let perm = PermRef::new_checked(&self.perm[..n], &self.perm_inv[..n], n);
         let mut stack = MemStack::new(&mut self.mem);
-        let lu = self.e.as_ref();
-        lu_solve::solve_in_place(lu, lu, perm, self.rhs.as_mut(), Par::Seq, &mut stack);
+        let lu = self.e.as_ref().submatrix(0, 0, n, n);
+        lu_solve::solve_in_place(lu, lu, perm, self.rhs.as_mut().subrows_mut(0, n), Par::Seq, &mut stack);
         for (i, v) in x.iter_mut().enumerate() {
             *v = self.rhs[(i, 0)];
         }
