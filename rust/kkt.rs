@@ -7,10 +7,11 @@
 //!
 //! `M` is diagonal, so the system is reduced to the Schur complement
 //! `S λ = Φq M⁻¹ g − c` with `S = Φq M⁻¹ Φqᵀ` (symmetric positive definite for independent
-//! constraints), factorised in place by faer's Cholesky (LLᵀ), then `q̈ = M⁻¹ (g − Φqᵀ λ)`.
+//! constraints), factorised in place as `L D Lᵀ` (a sparse Cholesky without square roots), then
+//! `q̈ = M⁻¹ (g − Φqᵀ λ)`.
 //! `S` is assembled from the sparse rows ([`JacRow`]) body by body: only pairs of rows that share a
 //! body contribute, and the rows are numbered in a minimum-degree order so that the factor has
-//! little fill-in (nine-bar: 51 instead of 65 non-zeros below the diagonal). All storage (the matrix, the right-hand side and faer's scratch stack) is
+//! little fill-in (nine-bar: 51 instead of 65 non-zeros below the diagonal). All storage (the matrix, the right-hand side and the scatter vector) is
 //! allocated once in [`KktSolver::new`]; [`KktSolver::solve`] allocates nothing.
 //!
 //! The symbolic work (ordering, elimination tree, the pattern of L) is done once per model, in
@@ -161,14 +162,19 @@ fn minimum_degree_order(adj: &[Vec<u32>]) -> Vec<u32> {
     order
 }
 
-/// S and then its factor L, stored row by row: `off[pattern.start[i]..]` holds the entries of
-/// row i at the columns `pattern.row(i)`, `diag[i]` the diagonal. Factorised up-looking (row i
-/// solves L₁₁ lᵢ = sᵢ by sparse forward substitution through a dense scatter vector that is kept
-/// zero between rows), so a chain of n bodies costs O(n).
+/// S and then its factors `S = L D Lᵀ` (L unit lower triangular), stored row by row:
+/// `off[pattern.start[i]..]` holds the entries of row i at the columns `pattern.row(i)`,
+/// `diag[i]` the diagonal of S and then the pivot `D[i]`. Factorised up-looking (row i solves
+/// L₁₁ D₁ lᵢ = sᵢ by sparse forward substitution through a dense scatter vector that is kept zero
+/// between rows), so a chain of n bodies costs O(n). LDLᵀ rather than LLᵀ: no square roots, and
+/// with `1/D` kept, one division per row; the substitutions, a chain of dependent operations,
+/// only multiply and subtract.
 #[derive(Debug, Clone, Default)]
 struct SparseFactor {
     off: Vec<f64>,
     diag: Vec<f64>,
+    /// `1/D[i]` once row i is factorised.
+    inv_diag: Vec<f64>,
     /// Scatter workspace, all zeros between calls.
     x: Vec<f64>,
 }
@@ -181,6 +187,7 @@ impl SparseFactor {
             for s in range.clone() {
                 self.x[pattern.cols[s] as usize] = self.off[s];
             }
+            // x[k] ends as y_k = D_k L_ik: y_k = S_ik − Σ_t L_kt y_t; D_i = S_ii − Σ_k L_ik y_k.
             let mut d = self.diag[i];
             for s in range.clone() {
                 let k = pattern.cols[s] as usize;
@@ -188,24 +195,24 @@ impl SparseFactor {
                 for t in pattern.start[k]..pattern.start[k + 1] {
                     v -= self.off[t] * self.x[pattern.cols[t] as usize];
                 }
-                v /= self.diag[k];
                 self.x[k] = v;
-                d -= v * v;
+                d -= v * v * self.inv_diag[k];
             }
             for s in range {
                 let k = pattern.cols[s] as usize;
-                self.off[s] = self.x[k];
+                self.off[s] = self.x[k] * self.inv_diag[k];
                 self.x[k] = 0.0;
             }
             if !(d > 0.0) {
                 return Err(i);
             }
-            self.diag[i] = d.sqrt();
+            self.diag[i] = d;
+            self.inv_diag[i] = 1.0 / d;
         }
         Ok(())
     }
 
-    /// `L Lᵀ x = rhs` in place, by forward and backward substitution over the non-zeros of L.
+    /// `L D Lᵀ x = rhs` in place, by forward and backward substitution over the non-zeros of L.
     fn solve(&self, pattern: &LowerPattern, rhs: &mut [f64]) {
         let n = self.diag.len();
         for i in 0..n {
@@ -213,12 +220,14 @@ impl SparseFactor {
             for s in pattern.start[i]..pattern.start[i + 1] {
                 v -= self.off[s] * rhs[pattern.cols[s] as usize];
             }
-            rhs[i] = v / self.diag[i];
+            rhs[i] = v;
         }
-        // Lᵀ x = y: once x_i is known, remove its share from the unknowns of row i's columns.
+        for (r, d) in rhs[..n].iter_mut().zip(&self.inv_diag) {
+            *r *= d;
+        }
+        // Lᵀ x = D⁻¹ y: once x_i is known, remove its share from the unknowns of row i's columns.
         for i in (0..n).rev() {
-            let xi = rhs[i] / self.diag[i];
-            rhs[i] = xi;
+            let xi = rhs[i];
             for s in pattern.start[i]..pattern.start[i + 1] {
                 rhs[pattern.cols[s] as usize] -= self.off[s] * xi;
             }
@@ -305,7 +314,7 @@ impl KktSolver {
                 }
             }
         }
-        let factor = SparseFactor { off: vec![0.0; pattern.len()], diag: vec![0.0; rows], x: vec![0.0; rows] };
+        let factor = SparseFactor { off: vec![0.0; pattern.len()], diag: vec![0.0; rows], inv_diag: vec![0.0; rows], x: vec![0.0; rows] };
         KktSolver {
             rows,
             pattern,
@@ -633,7 +642,7 @@ mod tests {
         }
         let b: Vec<f64> = (0..n).map(|_| rnd()).collect();
         let full = LowerPattern::new(&(0..n).map(|i| (0..i as u32).collect()).collect::<Vec<_>>());
-        let mut f = SparseFactor { off: vec![], diag: (0..n).map(|i| s[i + i * n]).collect(), x: vec![0.0; n] };
+        let mut f = SparseFactor { off: vec![], diag: (0..n).map(|i| s[i + i * n]).collect(), inv_diag: vec![0.0; n], x: vec![0.0; n] };
         for i in 0..n {
             f.off.extend(full.row(i).iter().map(|&k| s[i + k as usize * n]));
         }
