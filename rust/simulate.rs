@@ -146,6 +146,9 @@ pub struct MechanismSystem<'a> {
     /// ([`OdeSystem::switching_point`]).
     switch_prev: Vec<(f64, JointKinematics)>,
     switch_next: Vec<JointKinematics>,
+    /// The state components the clearance joints' kinematics read (q and q̇ of their bodies):
+    /// all that the switch search takes from the dense output.
+    switch_components: Vec<usize>,
     /// Columns `S e_k` of the constrained mobility (m × m, column-major; only the columns of
     /// clearance-joint bodies are filled) and which are current.
     mobility: Vec<f64>,
@@ -176,6 +179,13 @@ impl<'a> MechanismSystem<'a> {
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
             switch_next: vec![JointKinematics::default(); model.clearance.len()],
+            switch_components: {
+                let n = 3 * model.n_bodies();
+                let mut bodies: Vec<usize> = model.clearance.iter().flat_map(|c| [c.bearing, c.journal]).flatten().map(|b| b as usize).collect();
+                bodies.sort_unstable();
+                bodies.dedup();
+                bodies.iter().flat_map(|&b| (3 * b..3 * b + 3).chain(n + 3 * b..n + 3 * b + 3)).collect()
+            },
             // Sized on first use: only the stiff methods' Newton matrices need it (9 n² values).
             mobility: Vec::new(),
             mobility_done: vec![false; 3 * model.n_bodies()],
@@ -392,7 +402,9 @@ impl<'a> MechanismSystem<'a> {
             let yb: &[f64] = if i == SWITCH_SAMPLES {
                 y1
             } else {
-                dense.eval(tb, &mut s);
+                for &c in &self.switch_components {
+                    s[c] = dense.eval_component(tb, c);
+                }
                 &s
             };
             for j in 0..nj {
