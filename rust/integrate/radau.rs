@@ -153,8 +153,15 @@ impl NewtonSystems {
         let mut w_q = vec![0.0; m * m];
         let mut w_v = vec![0.0; m * m];
         let structured = n.is_multiple_of(2) && n > 0 && sys.acceleration_jacobian(t, y, &mut w_q, &mut w_v)?;
+        Ok(Self::with_matrices(n, structured, w_q, w_v))
+    }
+
+    /// The storage for a state of size `n`, in structured form with `W_q`, `W_v` (`m × m`,
+    /// column-major, `m = n/2`) or in full form.
+    fn with_matrices(n: usize, structured: bool, w_q: Vec<f64>, w_v: Vec<f64>) -> Self {
+        let m = n / 2;
         let k = if structured { m } else { n };
-        Ok(NewtonSystems {
+        let mut ns = NewtonSystems {
             half: structured.then_some(m),
             jac: if structured { Mat::zeros(0, 0) } else { Mat::zeros(n, n) },
             w_q,
@@ -174,7 +181,9 @@ impl NewtonSystems {
             gq: vec![0.0; 2 * m],
             probe: vec![0.0; n],
             df: vec![0.0; n],
-        })
+        };
+        ns.find_active();
+        ns
     }
 
     /// Recompute `W` at `(t, y)`; `f0 = f(t, y)`. In structured form `W_q`, `W_v` come from the
@@ -948,28 +957,7 @@ mod tests {
                 w_q[c * m..(c + 1) * m].fill(0.0);
                 w_v[c * m..(c + 1) * m].fill(0.0);
             }
-            let mut ns = NewtonSystems {
-                half: Some(m),
-                jac: Mat::zeros(0, 0),
-                w_q: w_q.clone(),
-                w_v: w_v.clone(),
-                active: Vec::with_capacity(m),
-                rest: Vec::with_capacity(m),
-                reduced: vec![0.0; 2 * m],
-                real: Lu::new(m),
-                complex: Lu::new(2 * m),
-                sigma: 0.0,
-                a: 0.0,
-                b: 0.0,
-                p: 0.0,
-                q: 0.0,
-                tmp: vec![0.0; m],
-                tmp2: vec![0.0; 2 * m],
-                gq: vec![0.0; 2 * m],
-                probe: vec![0.0; 2 * m],
-                df: vec![0.0; 2 * m],
-            };
-            ns.find_active();
+            let mut ns = NewtonSystems::with_matrices(2 * m, true, w_q.clone(), w_v.clone());
             assert_eq!(ns.active.len(), m - zero_cols.len());
             let n = 2 * m;
             // W x for the full matrix.
