@@ -91,8 +91,19 @@ impl DenseOutput for RodasDense {
     }
 }
 
+/// Largest matrix factorised by [`Lu`]'s own loops; larger ones go to faer's blocked LU. The
+/// Newton matrices of a mechanism are small after the structured reduction (nine-bar: 12 and 24),
+/// where a plain right-looking elimination beats a blocked one's set-up.
+const SMALL_LU: usize = 64;
+
 /// The LU-factorised iteration matrix `E = I/(hγ) − J` and its preallocated storage.
 pub(super) struct Lu {
+    /// Matrices of size ≤ [`SMALL_LU`]: the factors in place, column-major `k × k`, the row
+    /// swaps in order and `1/U[j, j]`.
+    small: Option<Vec<f64>>,
+    piv: Vec<usize>,
+    inv_diag: Vec<f64>,
+    /// Larger matrices: faer's storage.
     e: Mat<f64>,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
@@ -102,30 +113,57 @@ pub(super) struct Lu {
 
 impl Lu {
     pub(super) fn new(n: usize) -> Self {
+        if n <= SMALL_LU {
+            return Lu {
+                small: Some(vec![0.0; n * n]),
+                piv: vec![0; n],
+                inv_diag: vec![0.0; n],
+                e: Mat::zeros(0, 0),
+                perm: Vec::new(),
+                perm_inv: Vec::new(),
+                rhs: Mat::zeros(0, 0),
+                mem: MemBuffer::new(StackReq::EMPTY),
+            };
+        }
         let req = StackReq::any_of(&[
             lu_factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default()),
             lu_solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq),
         ]);
-        Lu { e: Mat::zeros(n, n), perm: vec![0; n], perm_inv: vec![0; n], rhs: Mat::zeros(n, 1), mem: MemBuffer::new(req) }
+        Lu {
+            small: None,
+            piv: Vec::new(),
+            inv_diag: Vec::new(),
+            e: Mat::zeros(n, n),
+            perm: vec![0; n],
+            perm_inv: vec![0; n],
+            rhs: Mat::zeros(n, 1),
+            mem: MemBuffer::new(req),
+        }
     }
 
-    /// Factorise `fac·I − J`.
+    /// Factorise `fac·I − J` (`J` of the size given to [`Lu::new`]).
     pub(super) fn factor(&mut self, jac: &Mat<f64>, fac: f64) {
-        let n = self.perm.len();
-        for j in 0..n {
-            for i in 0..n {
-                self.e[(i, j)] = -jac[(i, j)];
+        let n = jac.nrows();
+        self.factor_with(n, |mut e| {
+            for j in 0..n {
+                for i in 0..n {
+                    e[(i, j)] = -jac[(i, j)];
+                }
+                e[(j, j)] += fac;
             }
-            self.e[(j, j)] += fac;
-        }
-        let mut stack = MemStack::new(&mut self.mem);
-        lu_factor::lu_in_place(self.e.as_mut(), &mut self.perm, &mut self.perm_inv, Par::Seq, &mut stack, Default::default());
+        });
     }
 
     /// Factorise the leading `k × k` block (`k` ≤ the size given to [`Lu::new`]) that `fill`
     /// writes (every entry of it must be written); [`Lu::solve`] then takes vectors of length `k`.
-    /// The scratch of the full size covers any smaller `k`, so this allocates nothing.
+    /// The storage of the full size covers any smaller `k`, so this allocates nothing.
     pub(super) fn factor_with(&mut self, k: usize, fill: impl FnOnce(MatMut<'_, f64>)) {
+        if let Some(a) = self.small.as_mut() {
+            let a = &mut a[..k * k];
+            fill(MatMut::from_column_major_slice_mut(a, k, k));
+            small_lu(a, k, &mut self.piv[..k], &mut self.inv_diag[..k]);
+            return;
+        }
         let mut e = self.e.as_mut().submatrix_mut(0, 0, k, k);
         fill(e.as_mut());
         let mut stack = MemStack::new(&mut self.mem);
@@ -135,6 +173,10 @@ impl Lu {
     /// `x ← E⁻¹ x` for the block last factorised (`x.len()` = its size).
     pub(super) fn solve(&mut self, x: &mut [f64]) {
         let n = x.len();
+        if let Some(a) = self.small.as_ref() {
+            small_lu_solve(&a[..n * n], &self.piv[..n], &self.inv_diag[..n], x);
+            return;
+        }
         for (i, v) in x.iter().enumerate() {
             self.rhs[(i, 0)] = *v;
         }
@@ -144,6 +186,71 @@ impl Lu {
         lu_solve::solve_in_place(lu, lu, perm, self.rhs.as_mut().subrows_mut(0, n), Par::Seq, &mut stack);
         for (i, v) in x.iter_mut().enumerate() {
             *v = self.rhs[(i, 0)];
+        }
+    }
+}
+
+/// `P A = L U` in place by right-looking elimination with partial pivoting (LAPACK's `getf2`):
+/// `a` column-major `k × k`; `piv[j]` the row swapped with row j at step j; `inv_diag[j] = 1/U[j, j]`
+/// (infinite for an exactly singular pivot, so a solve gives non-finite values, which the
+/// steppers treat as a failed step).
+fn small_lu(a: &mut [f64], k: usize, piv: &mut [usize], inv_diag: &mut [f64]) {
+    for j in 0..k {
+        let col = j * k;
+        let mut p = j;
+        for i in j + 1..k {
+            if a[col + i].abs() > a[col + p].abs() {
+                p = i;
+            }
+        }
+        piv[j] = p;
+        if p != j {
+            for c in 0..k {
+                a.swap(c * k + j, c * k + p);
+            }
+        }
+        let inv = 1.0 / a[col + j];
+        inv_diag[j] = inv;
+        let (left, right) = a.split_at_mut(col + k);
+        let lcol = &mut left[col + j + 1..col + k];
+        for v in lcol.iter_mut() {
+            *v *= inv;
+        }
+        for c in 0..k - j - 1 {
+            let target = &mut right[c * k..(c + 1) * k];
+            let f = target[j];
+            if f != 0.0 {
+                for (t, l) in target[j + 1..].iter_mut().zip(lcol.iter()) {
+                    *t -= l * f;
+                }
+            }
+        }
+    }
+}
+
+/// `x ← A⁻¹ x` from the factors of [`small_lu`].
+fn small_lu_solve(a: &[f64], piv: &[usize], inv_diag: &[f64], x: &mut [f64]) {
+    let k = x.len();
+    for (j, &p) in piv.iter().enumerate() {
+        if p != j {
+            x.swap(j, p);
+        }
+    }
+    for j in 0..k {
+        let xj = x[j];
+        if xj != 0.0 {
+            for (xi, l) in x[j + 1..].iter_mut().zip(&a[j * k + j + 1..(j + 1) * k]) {
+                *xi -= l * xj;
+            }
+        }
+    }
+    for j in (0..k).rev() {
+        x[j] *= inv_diag[j];
+        let xj = x[j];
+        if xj != 0.0 {
+            for (xi, u) in x[..j].iter_mut().zip(&a[j * k..j * k + j]) {
+                *xi -= u * xj;
+            }
         }
     }
 }
@@ -333,6 +440,53 @@ mod tests {
     use crate::error::Error;
 
     type Rhs = fn(f64, &[f64], &mut [f64]) -> Result<(), Error>;
+
+    /// Both LU paths (own loops up to `SMALL_LU`, faer's above) solve `fac·I − J` to round-off,
+    /// by residual, on random matrices and on one that needs row swaps (zero leading pivot), and
+    /// a leading block of a larger storage solves as its own matrix.
+    #[test]
+    fn lu_solves_to_round_off_on_both_paths() {
+        use super::{Lu, SMALL_LU};
+        use faer::Mat;
+        let mut seed = 11u64;
+        let mut rnd = move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        for &(n, fac) in &[(1usize, 2.0), (5, 0.0), (12, 3.0), (48, 1.5), (SMALL_LU, 0.7), (SMALL_LU + 6, 0.7)] {
+            let mut jac = Mat::<f64>::zeros(n, n);
+            for j in 0..n {
+                for i in 0..n {
+                    jac[(i, j)] = rnd();
+                }
+            }
+            if n == 5 {
+                jac[(0, 0)] = 0.0; // fac = 0: the first pivot must come from another row
+            }
+            let mut lu = Lu::new(n);
+            lu.factor(&jac, fac);
+            let b: Vec<f64> = (0..n).map(|_| rnd()).collect();
+            let mut x = b.clone();
+            lu.solve(&mut x);
+            for i in 0..n {
+                let r: f64 = (0..n).map(|j| (if i == j { fac } else { 0.0 } - jac[(i, j)]) * x[j]).sum::<f64>() - b[i];
+                assert!(r.abs() < 1e-11 * (1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.abs()))), "n = {n}, row {i}: residual {r}");
+            }
+            // The leading 3 × 3 block of the same storage.
+            if n >= 3 {
+                lu.factor_with(3, |mut e| {
+                    for j in 0..3 {
+                        for i in 0..3 {
+                            e[(i, j)] = if i == j { 4.0 } else { 1.0 };
+                        }
+                    }
+                });
+                let mut y = vec![6.0, 6.0, 6.0];
+                lu.solve(&mut y);
+                assert!(y.iter().all(|v| (v - 1.0).abs() < 1e-14), "{y:?}");
+            }
+        }
+    }
 
     struct Sys {
         dim: usize,
