@@ -162,51 +162,144 @@ fn minimum_degree_order(adj: &[Vec<u32>]) -> Vec<u32> {
     order
 }
 
+/// The numeric factorisation as a list of multiply-subtracts, found once from the pattern: for
+/// each entry `(i, k)` of L, the pairs `(a, b)` of storage indices with `a = (i, t)`,
+/// `b = (k, t)` over the columns `t < k` that rows i and k share (`y_ik = S_ik − Σ y_it L_kt`).
+/// The factorisation then runs without the scatter vector and without the products with zeros
+/// that the up-looking loop makes where row k has a column row i lacks. Its length is the
+/// factorisation's multiply count (nine-bar: 42; a chain: O(n)).
+#[derive(Debug, Clone, Default)]
+struct Tape {
+    /// `pairs[start[s]..start[s + 1]]` belong to the entry at storage index s.
+    start: Vec<u32>,
+    pairs: Vec<[u32; 2]>,
+}
+
+/// For the entry at storage index `s` (row i, column k) of `pattern`: `emit(a, b)` for each
+/// column t < k of both rows, `a` and `b` the storage indices of (i, t) and (k, t); both rows are
+/// sorted ascending, so this is a merge.
+fn shared_columns(pattern: &LowerPattern, i: usize, s: usize, mut emit: impl FnMut(u32, u32)) {
+    let k = pattern.cols[s] as usize;
+    let (mut a, mut b) = (pattern.start[i], pattern.start[k]);
+    let b_end = pattern.start[k + 1];
+    while a < s && b < b_end {
+        match pattern.cols[a].cmp(&pattern.cols[b]) {
+            std::cmp::Ordering::Less => a += 1,
+            std::cmp::Ordering::Greater => b += 1,
+            std::cmp::Ordering::Equal => {
+                emit(a as u32, b as u32);
+                a += 1;
+                b += 1;
+            }
+        }
+    }
+}
+
+/// Above this many multiply-subtracts (a mechanism whose S is nearly dense: 16 bytes each)
+/// the factorisation keeps the up-looking loop, which needs no storage beyond L.
+const TAPE_MAX: usize = 1 << 21;
+
+impl Tape {
+    /// The tape of `pattern`, or `None` if it would be longer than `TAPE_MAX`.
+    fn new(pattern: &LowerPattern) -> Option<Self> {
+        let n = pattern.start.len() - 1;
+        let mut count = 0usize;
+        for i in 0..n {
+            for s in pattern.start[i]..pattern.start[i + 1] {
+                shared_columns(pattern, i, s, |_, _| count += 1);
+            }
+            if count > TAPE_MAX {
+                return None;
+            }
+        }
+        let mut tape = Tape { start: Vec::with_capacity(pattern.len() + 1), pairs: Vec::with_capacity(count) };
+        tape.start.push(0);
+        for i in 0..n {
+            for s in pattern.start[i]..pattern.start[i + 1] {
+                let pairs = &mut tape.pairs;
+                shared_columns(pattern, i, s, |a, b| pairs.push([a, b]));
+                tape.start.push(tape.pairs.len() as u32);
+            }
+        }
+        Some(tape)
+    }
+}
+
 /// S and then its factors `S = L D Lᵀ` (L unit lower triangular), stored row by row:
-/// `off[pattern.start[i]..]` holds the entries of row i at the columns `pattern.row(i)`,
-/// `diag[i]` the diagonal of S and then the pivot `D[i]`. Factorised up-looking (row i solves
-/// L₁₁ D₁ lᵢ = sᵢ by sparse forward substitution through a dense scatter vector that is kept zero
-/// between rows), so a chain of n bodies costs O(n). LDLᵀ rather than LLᵀ: no square roots, and
-/// with `1/D` kept, one division per row; the substitutions, a chain of dependent operations,
-/// only multiply and subtract.
+/// `vals[pattern.start[i]..]` holds the entries of row i at the columns `pattern.row(i)`,
+/// `vals[nnz + i]` the diagonal of S and then the pivot `D[i]` (one array, so that assembling S
+/// needs no branch between diagonal and off-diagonal entries). Factorised up-looking (row i
+/// solves `L₁₁ D₁ lᵢ = sᵢ` by sparse forward substitution), from the [`Tape`] where there is
+/// one, else through a dense scatter vector that is kept zero between rows; a chain of n bodies
+/// costs O(n) either way. LDLᵀ rather than LLᵀ: no square roots, and with `1/D` kept, one
+/// division per row; the substitutions, a chain of dependent operations, only multiply and
+/// subtract.
 #[derive(Debug, Clone, Default)]
 struct SparseFactor {
-    off: Vec<f64>,
-    diag: Vec<f64>,
+    vals: Vec<f64>,
+    /// Structural non-zeros of L below the diagonal: where the diagonal starts in `vals`.
+    nnz: usize,
     /// `1/D[i]` once row i is factorised.
     inv_diag: Vec<f64>,
-    /// Scatter workspace, all zeros between calls.
+    /// Scatter workspace, all zeros between calls (the loop without a tape).
     x: Vec<f64>,
+    tape: Option<Tape>,
 }
 
 impl SparseFactor {
+    /// Storage for the factor of `pattern`, with a tape unless `with_tape` is false or it would be
+    /// too long.
+    fn new(pattern: &LowerPattern, with_tape: bool) -> Self {
+        let n = pattern.start.len() - 1;
+        let tape = if with_tape { Tape::new(pattern) } else { None };
+        SparseFactor { vals: vec![0.0; pattern.len() + n], nnz: pattern.len(), inv_diag: vec![0.0; n], x: vec![0.0; n], tape }
+    }
+
+    /// Factorise in place; `Err(i)` for a non-positive pivot at row i.
     fn factor(&mut self, pattern: &LowerPattern) -> Result<(), usize> {
-        let n = self.diag.len();
+        let n = self.inv_diag.len();
+        let nnz = self.nnz;
         for i in 0..n {
             let range = pattern.start[i]..pattern.start[i + 1];
-            for s in range.clone() {
-                self.x[pattern.cols[s] as usize] = self.off[s];
-            }
-            // x[k] ends as y_k = D_k L_ik: y_k = S_ik − Σ_t L_kt y_t; D_i = S_ii − Σ_k L_ik y_k.
-            let mut d = self.diag[i];
-            for s in range.clone() {
-                let k = pattern.cols[s] as usize;
-                let mut v = self.x[k];
-                for t in pattern.start[k]..pattern.start[k + 1] {
-                    v -= self.off[t] * self.x[pattern.cols[t] as usize];
+            // y_ik = D_k L_ik = S_ik − Σ_t L_kt y_it, then D_i = S_ii − Σ_k L_ik y_ik.
+            let mut d = self.vals[nnz + i];
+            if let Some(tape) = &self.tape {
+                for s in range.clone() {
+                    let mut v = self.vals[s];
+                    for &[a, b] in &tape.pairs[tape.start[s] as usize..tape.start[s + 1] as usize] {
+                        v -= self.vals[a as usize] * self.vals[b as usize];
+                    }
+                    self.vals[s] = v;
                 }
-                self.x[k] = v;
-                d -= v * v * self.inv_diag[k];
-            }
-            for s in range {
-                let k = pattern.cols[s] as usize;
-                self.off[s] = self.x[k] * self.inv_diag[k];
-                self.x[k] = 0.0;
+                for s in range {
+                    let k = pattern.cols[s] as usize;
+                    let v = self.vals[s];
+                    d -= v * v * self.inv_diag[k];
+                    self.vals[s] = v * self.inv_diag[k];
+                }
+            } else {
+                for s in range.clone() {
+                    self.x[pattern.cols[s] as usize] = self.vals[s];
+                }
+                for s in range.clone() {
+                    let k = pattern.cols[s] as usize;
+                    let mut v = self.x[k];
+                    for t in pattern.start[k]..pattern.start[k + 1] {
+                        v -= self.vals[t] * self.x[pattern.cols[t] as usize];
+                    }
+                    self.x[k] = v;
+                    d -= v * v * self.inv_diag[k];
+                }
+                for s in range {
+                    let k = pattern.cols[s] as usize;
+                    self.vals[s] = self.x[k] * self.inv_diag[k];
+                    self.x[k] = 0.0;
+                }
             }
             if !(d > 0.0) {
                 return Err(i);
             }
-            self.diag[i] = d;
+            self.vals[nnz + i] = d;
             self.inv_diag[i] = 1.0 / d;
         }
         Ok(())
@@ -214,11 +307,11 @@ impl SparseFactor {
 
     /// `L D Lᵀ x = rhs` in place, by forward and backward substitution over the non-zeros of L.
     fn solve(&self, pattern: &LowerPattern, rhs: &mut [f64]) {
-        let n = self.diag.len();
+        let n = self.inv_diag.len();
         for i in 0..n {
             let mut v = rhs[i];
             for s in pattern.start[i]..pattern.start[i + 1] {
-                v -= self.off[s] * rhs[pattern.cols[s] as usize];
+                v -= self.vals[s] * rhs[pattern.cols[s] as usize];
             }
             rhs[i] = v;
         }
@@ -229,7 +322,7 @@ impl SparseFactor {
         for i in (0..n).rev() {
             let xi = rhs[i];
             for s in pattern.start[i]..pattern.start[i + 1] {
-                rhs[pattern.cols[s] as usize] -= self.off[s] * xi;
+                rhs[pattern.cols[s] as usize] -= self.vals[s] * xi;
             }
         }
     }
@@ -244,8 +337,7 @@ pub struct KktSolver {
     body_start: Vec<usize>,
     body_rows: Vec<(u32, u8)>,
     /// For each body and each pair (p ≤ q) of its rows in `body_rows` order, where the product
-    /// goes in the storage of S: an index of `factor.off`, or for a diagonal entry its row with
-    /// the top bit set.
+    /// goes in the storage of S (`factor.vals`: an entry of L's pattern, or a diagonal).
     pair_slot: Vec<u32>,
     /// Position of each constraint row in S (a minimum-degree order, less fill-in in L), and
     /// the row at each position.
@@ -256,8 +348,6 @@ pub struct KktSolver {
     pattern: LowerPattern,
     w: Vec<f64>,
 }
-
-const DIAG: u32 = 1 << 31;
 
 impl KktSolver {
     /// `inv_mass` holds 3 entries per body; `structure` is any evaluation of the Jacobian rows
@@ -307,14 +397,14 @@ impl KktSolver {
                     let (p1, p2) = (pos[r1 as usize], pos[r2 as usize]);
                     let (i, j) = if p1 >= p2 { (p1 as usize, p2 as usize) } else { (p2 as usize, p1 as usize) };
                     pair_slot.push(if i == j {
-                        DIAG | i as u32
+                        (pattern.len() + i) as u32
                     } else {
                         (pattern.start[i] + pattern.row(i).binary_search(&(j as u32)).expect("S's pattern is in L's")) as u32
                     });
                 }
             }
         }
-        let factor = SparseFactor { off: vec![0.0; pattern.len()], diag: vec![0.0; rows], inv_diag: vec![0.0; rows], x: vec![0.0; rows] };
+        let factor = SparseFactor::new(&pattern, true);
         KktSolver {
             rows,
             pattern,
@@ -357,8 +447,7 @@ impl KktSolver {
         }
         // Lower triangle of S = Φq M⁻¹ Φqᵀ, body by body.
         let f = &mut self.factor;
-        f.off.iter_mut().for_each(|v| *v = 0.0);
-        f.diag.iter_mut().for_each(|v| *v = 0.0);
+        f.vals.iter_mut().for_each(|v| *v = 0.0);
         let nb = self.body_start.len() - 1;
         let mut slot = 0;
         for b in 0..nb {
@@ -369,14 +458,8 @@ impl KktSolver {
                 let m1 = [c1[0] * im[0], c1[1] * im[1], c1[2] * im[2]];
                 for &(r2, k2) in &list[p..] {
                     let c2 = &jac[r2 as usize].coef[k2 as usize];
-                    let v = m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
-                    let at = self.pair_slot[slot];
+                    f.vals[self.pair_slot[slot] as usize] += m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
                     slot += 1;
-                    if at & DIAG != 0 {
-                        f.diag[(at & !DIAG) as usize] += v;
-                    } else {
-                        f.off[at as usize] += v;
-                    }
                 }
             }
         }
@@ -477,6 +560,13 @@ mod tests {
             let mut kkt = KktSolver::new(inv_mass.clone(), &rows);
             let (mut qdd, mut lam) = (vec![0.0; n], vec![0.0; m]);
             kkt.solve(&rows, &force, &c, &mut qdd, &mut lam).unwrap();
+            // The factorisation from its tape and by the scatter loop: the same to the last bit.
+            let mut scatter = KktSolver::new(inv_mass.clone(), &rows);
+            assert!(scatter.factor.tape.is_some());
+            scatter.factor.tape = None;
+            let (mut qdd2, mut lam2) = (vec![0.0; n], vec![0.0; m]);
+            scatter.solve(&rows, &force, &c, &mut qdd2, &mut lam2).unwrap();
+            assert_eq!((&qdd, &lam), (&qdd2, &lam2), "seed {seed}");
             let mut a = nalgebra::DMatrix::<f64>::zeros(n + m, n + m);
             let mut b = nalgebra::DVector::<f64>::zeros(n + m);
             for i in 0..n {
@@ -642,11 +732,21 @@ mod tests {
         }
         let b: Vec<f64> = (0..n).map(|_| rnd()).collect();
         let full = LowerPattern::new(&(0..n).map(|i| (0..i as u32).collect()).collect::<Vec<_>>());
-        let mut f = SparseFactor { off: vec![], diag: (0..n).map(|i| s[i + i * n]).collect(), inv_diag: vec![0.0; n], x: vec![0.0; n] };
-        for i in 0..n {
-            f.off.extend(full.row(i).iter().map(|&k| s[i + k as usize * n]));
+        // The same factor with and without the tape.
+        let mut factors = [SparseFactor::new(&full, true), SparseFactor::new(&full, false)];
+        assert!(factors[0].tape.is_some() && factors[1].tape.is_none());
+        for f in &mut factors {
+            let lower = (0..n).flat_map(|i| full.row(i).iter().map(move |&k| (i, k as usize)));
+            for (v, (i, k)) in f.vals.iter_mut().zip(lower) {
+                *v = s[i + k * n];
+            }
+            for i in 0..n {
+                f.vals[full.len() + i] = s[i + i * n];
+            }
+            f.factor(&full).unwrap();
         }
-        f.factor(&full).unwrap();
+        assert_eq!(factors[0].vals, factors[1].vals, "the tape changes no rounding");
+        let f = &factors[0];
         let mut x1 = b.clone();
         f.solve(&full, &mut x1);
         let mut s2 = s.clone();

@@ -96,7 +96,9 @@ impl ContactLaw {
         if delta.is_nan() || delta <= 0.0 {
             return 0.0;
         }
-        let elastic = self.stiffness * delta.powf(self.exponent);
+        // Hertz's n = 1.5 (the default) as δ·√δ: a square root instead of a `powf`.
+        let power = if self.exponent == 1.5 { delta * delta.sqrt() } else { delta.powf(self.exponent) };
+        let elastic = self.stiffness * power;
         let v_ref = impact_speed.abs().max(self.impact_speed_floor);
         let damping = if v_ref > 0.0 { self.hysteresis_factor() * delta_dot / v_ref } else { 0.0 };
         (elastic * (1.0 + damping)).max(0.0)
