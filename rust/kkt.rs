@@ -333,9 +333,17 @@ pub struct KktSolver {
     rows: usize,
     /// 1/m, 1/m, 1/J per body.
     inv_mass: Vec<f64>,
-    /// For each body, the (row, slot) pairs of Jacobian rows that touch it (CSR layout).
+    /// For each body, the (row, slot) pairs of Jacobian rows that touch it (CSR layout): the
+    /// *entries* of Φq, body by body.
     body_start: Vec<usize>,
     body_rows: Vec<(u32, u8)>,
+    /// Per entry: the row's three coefficients on that body, the same times M⁻¹, and the row's
+    /// position in S, gathered by [`KktSolver::factor`] so that the assembly of S, the
+    /// right-hand side `Φq M⁻¹ g` and `q̈ = M⁻¹ (g − Φqᵀ λ)` all run over contiguous memory,
+    /// body by body.
+    coef: Vec<[f64; 3]>,
+    mcoef: Vec<[f64; 3]>,
+    entry_pos: Vec<u32>,
     /// For each body and each pair (p ≤ q) of its rows in `body_rows` order, where the product
     /// goes in the storage of S (`factor.vals`: an entry of L's pattern, or a diagonal).
     pair_slot: Vec<u32>,
@@ -405,6 +413,7 @@ impl KktSolver {
             }
         }
         let factor = SparseFactor::new(&pattern, true);
+        let entry_pos = body_rows.iter().map(|&(r, _)| pos[r as usize]).collect();
         KktSolver {
             rows,
             pattern,
@@ -413,6 +422,9 @@ impl KktSolver {
             row_at,
             w: vec![0.0; inv_mass.len()],
             inv_mass,
+            coef: vec![[0.0; 3]; body_rows.len()],
+            mcoef: vec![[0.0; 3]; body_rows.len()],
+            entry_pos,
             body_start,
             body_rows,
             factor,
@@ -434,40 +446,46 @@ impl KktSolver {
     /// (= γ − 2αΦ̇ − β²Φ). Returns the constraint row of a non-positive pivot if `S` is singular.
     pub fn solve(&mut self, jac: &[JacRow], force: &[f64], c: &[f64], qdd: &mut [f64], lambda: &mut [f64]) -> Result<(), usize> {
         self.factor(jac)?;
-        self.solve_factored(jac, force, c, qdd, lambda);
+        self.solve_factored(force, c, qdd, lambda);
         Ok(())
     }
 
-    /// Assemble and factorise `S = Φq M⁻¹ Φqᵀ` for the Jacobian rows `jac` (kept for
-    /// [`KktSolver::solve_factored`]). Returns the constraint row of a non-positive pivot.
+    /// Assemble and factorise `S = Φq M⁻¹ Φqᵀ` for the Jacobian rows `jac` (their coefficients
+    /// kept for [`KktSolver::solve_factored`]). Returns the constraint row of a non-positive pivot.
     pub fn factor(&mut self, jac: &[JacRow]) -> Result<(), usize> {
         let m = self.rows;
         if m == 0 {
             return Ok(());
         }
-        // Lower triangle of S = Φq M⁻¹ Φqᵀ, body by body.
-        let f = &mut self.factor;
-        f.vals.iter_mut().for_each(|v| *v = 0.0);
         let nb = self.body_start.len() - 1;
-        let mut slot = 0;
         for b in 0..nb {
             let im = &self.inv_mass[3 * b..3 * b + 3];
-            let list = &self.body_rows[self.body_start[b]..self.body_start[b + 1]];
-            for (p, &(r1, k1)) in list.iter().enumerate() {
-                let c1 = &jac[r1 as usize].coef[k1 as usize];
-                let m1 = [c1[0] * im[0], c1[1] * im[1], c1[2] * im[2]];
-                for &(r2, k2) in &list[p..] {
-                    let c2 = &jac[r2 as usize].coef[k2 as usize];
-                    f.vals[self.pair_slot[slot] as usize] += m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
-                    slot += 1;
+            let range = self.body_start[b]..self.body_start[b + 1];
+            for ((&(r, k), c), mc) in self.body_rows[range.clone()].iter().zip(&mut self.coef[range.clone()]).zip(&mut self.mcoef[range]) {
+                *c = jac[r as usize].coef[k as usize];
+                *mc = [c[0] * im[0], c[1] * im[1], c[2] * im[2]];
+            }
+        }
+        // Lower triangle of S = Φq M⁻¹ Φqᵀ, body by body: each pair of entries on one body.
+        let f = &mut self.factor;
+        f.vals.iter_mut().for_each(|v| *v = 0.0);
+        let mut slot = 0;
+        for b in 0..nb {
+            let end = self.body_start[b + 1];
+            for p in self.body_start[b]..end {
+                let m1 = self.mcoef[p];
+                let count = end - p;
+                for (c2, &at) in self.coef[p..end].iter().zip(&self.pair_slot[slot..slot + count]) {
+                    f.vals[at as usize] += m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
                 }
+                slot += count;
             }
         }
         f.factor(&self.pattern).map_err(|p| self.row_at[p] as usize)
     }
 
-    /// [`KktSolver::solve`] with the factor of the last [`KktSolver::factor`] (same `jac`).
-    pub fn solve_factored(&mut self, jac: &[JacRow], force: &[f64], c: &[f64], qdd: &mut [f64], lambda: &mut [f64]) {
+    /// [`KktSolver::solve`] with the factor and the Jacobian of the last [`KktSolver::factor`].
+    pub fn solve_factored(&mut self, force: &[f64], c: &[f64], qdd: &mut [f64], lambda: &mut [f64]) {
         let n = self.inv_mass.len();
         for i in 0..n {
             self.w[i] = self.inv_mass[i] * force[i];
@@ -477,23 +495,32 @@ impl KktSolver {
             return;
         }
         // Right-hand side Φq M⁻¹ g − c.
-        for (r, row) in jac.iter().enumerate() {
-            self.rhs[self.pos[r] as usize] = row.dot(&self.w) - c[r];
+        for (r, &cr) in c[..self.rows].iter().enumerate() {
+            self.rhs[self.pos[r] as usize] = -cr;
+        }
+        let nb = self.body_start.len() - 1;
+        for b in 0..nb {
+            let w = &self.w[3 * b..3 * b + 3];
+            let range = self.body_start[b]..self.body_start[b + 1];
+            for (c1, &p) in self.coef[range.clone()].iter().zip(&self.entry_pos[range]) {
+                self.rhs[p as usize] += c1[0] * w[0] + c1[1] * w[1] + c1[2] * w[2];
+            }
         }
         let m = self.rows;
         self.factor.solve(&self.pattern, &mut self.rhs);
         for (l, &p) in lambda[..m].iter_mut().zip(&self.pos) {
             *l = self.rhs[p as usize];
         }
-        // q̈ = M⁻¹ (g − Φqᵀ λ).
-        qdd[..n].copy_from_slice(&self.w);
-        for (r, row) in jac.iter().enumerate() {
-            let l = lambda[r];
-            for k in 0..row.count as usize {
-                let o = 3 * row.bodies[k] as usize;
-                for a in 0..3 {
-                    qdd[o + a] -= self.inv_mass[o + a] * row.coef[k][a] * l;
-                }
+        // q̈ = M⁻¹ (g − Φqᵀ λ), body by body.
+        for b in 0..nb {
+            let range = self.body_start[b]..self.body_start[b + 1];
+            let mut acc = [0.0; 3];
+            for (mc, &p) in self.mcoef[range.clone()].iter().zip(&self.entry_pos[range]) {
+                let l = self.rhs[p as usize];
+                acc = [acc[0] + mc[0] * l, acc[1] + mc[1] * l, acc[2] + mc[2] * l];
+            }
+            for a in 0..3 {
+                qdd[3 * b + a] = self.w[3 * b + a] - acc[a];
             }
         }
     }

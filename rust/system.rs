@@ -101,7 +101,7 @@ impl Workspace {
     pub fn unit_force_response(&mut self, k: usize, out: &mut [f64]) {
         self.unit.fill(0.0);
         self.unit[k] = 1.0;
-        self.kkt.solve_factored(&self.jac, &self.unit, &self.zero_c, out, &mut self.unit_lambda);
+        self.kkt.solve_factored(&self.unit, &self.zero_c, out, &mut self.unit_lambda);
     }
 
     /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`.
