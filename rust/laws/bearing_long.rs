@@ -81,9 +81,20 @@ impl ArcEnd {
     const MID: ArcEnd = ArcEnd { theta: PI, sin: 0.0, cos: -1.0, one_minus_cos: 2.0 };
     const END: ArcEnd = ArcEnd { theta: TAU, sin: 0.0, cos: 1.0, one_minus_cos: 0.0 };
 
-    fn from_half_angle(phi: f64) -> ArcEnd {
-        let (sp, cp) = phi.sin_cos();
-        ArcEnd { theta: 2.0 * phi, sin: 2.0 * sp * cp, cos: cp * cp - sp * sp, one_minus_cos: 2.0 * sp * sp }
+    /// The end at θ = 2φ with `x = cot φ`, φ ∈ (0, π): `sin φ = 1/√(1 + x²)`, `cos φ = x sin φ`,
+    /// so `sin θ = 2x/(1 + x²)`, `cos θ = (x² − 1)/(1 + x²)`, `1 − cos θ = 2/(1 + x²)`, each to
+    /// full relative precision (for |x| > 1 written in y = 1/x = tan φ, so that nothing
+    /// overflows), and one `atan2` for θ itself.
+    fn from_half_angle_cot(x: f64) -> ArcEnd {
+        let theta = 2.0 * 1.0_f64.atan2(x);
+        if x.abs() <= 1.0 {
+            let d = 1.0 + x * x;
+            ArcEnd { theta, sin: 2.0 * x / d, cos: (x * x - 1.0) / d, one_minus_cos: 2.0 / d }
+        } else {
+            let y = 1.0 / x;
+            let d = 1.0 + y * y;
+            ArcEnd { theta, sin: 2.0 * y / d, cos: (1.0 - y * y) / d, one_minus_cos: 2.0 * y * y / d }
+        }
     }
 }
 
@@ -99,8 +110,7 @@ fn positive_arc(eps: f64, eps_dot: f64, wedge: f64) -> Option<(ArcEnd, ArcEnd)> 
     if s == 0.0 {
         return if a > 0.0 { Some((ArcEnd::START, ArcEnd::MID)) } else { Some((ArcEnd::MID, ArcEnd::END)) };
     }
-    let phi = wedge_squeeze_zero(eps, a, s);
-    let end = ArcEnd::from_half_angle(phi);
+    let end = ArcEnd::from_half_angle_cot(wedge_squeeze_zero(eps, a, s));
     if a > 0.0 {
         Some((ArcEnd::START, end))
     } else {
@@ -109,46 +119,62 @@ fn positive_arc(eps: f64, eps_dot: f64, wedge: f64) -> Option<(ArcEnd, ArcEnd)> 
 }
 
 /// The unique zero φ* ∈ (0, π) of `H(φ) = a cosφ (2 − ε + 2ε cos²φ) + 2 s sinφ (1 + ε cos²φ)`
-/// (a ≠ 0, s ≠ 0): safeguarded Newton iteration inside the sign bracket [0, π], started from
-/// the exact ε = 0 root `atan2(|a|, −s sign a)`.
+/// (a ≠ 0, s ≠ 0), returned as `x* = cot φ*`: with x = cot φ, `H sin⁻³φ` is the cubic
+/// `P(x) = a(2 + ε) x³ + 2s(1 + ε) x² + a(2 − ε) x + 2s` (module doc), whose only real root this
+/// is, so no sine or cosine is needed per iteration. Safeguarded Newton iteration inside a sign
+/// bracket, started from the exact ε = 0 root `x = −s/a` (there `P = 2(x² + 1)(a x + s)`); where
+/// Newton leaves the bracket, the bracket is halved in φ. Where `|x*| > 1e8` (an arc within 1e-8
+/// rad of θ = 0 or 2π) `x* = −B/A` to within 1e-16 relative (`x = −B/A − C/(A x) − D/(A x²)`).
 fn wedge_squeeze_zero(eps: f64, a: f64, s: f64) -> f64 {
-    // f = sign(a)·H: f(0) = |a|(2 + ε) > 0, f(π) < 0.
+    // sign(a)·P: P → +∞ for x → +∞ (φ → 0), P → −∞ for x → −∞ (φ → π).
     let (a, s) = if a > 0.0 { (a, s) } else { (-a, -s) };
-    let (mut lo, mut hi) = (0.0_f64, PI);
-    let mut phi = a.atan2(-s);
+    let (ca, cb, cc, cd) = (a * (2.0 + eps), 2.0 * s * (1.0 + eps), a * (2.0 - eps), 2.0 * s);
+    let far = -cb / ca;
+    if far.abs() > 1e8 {
+        return far;
+    }
+    // Cauchy's bound: every real root lies within |x| < 1 + max(|B|, |C|, |D|)/A.
+    let bound = 1.0 + cb.abs().max(cc).max(cd.abs()) / ca;
+    let (mut lo, mut hi) = (-bound, bound);
+    let mut x = (-s / a).clamp(lo, hi);
     let mut last_newton = f64::INFINITY;
     for _ in 0..80 {
-        let (sp, cp) = phi.sin_cos();
-        let c2 = cp * cp;
-        let f = a * cp * (2.0 - eps + 2.0 * eps * c2) + 2.0 * s * sp * (1.0 + eps * c2);
-        if f == 0.0 {
-            return phi;
+        let p = ((ca * x + cb) * x + cc) * x + cd;
+        // P is zero to within its rounding error: x is the root as well as P can tell.
+        let noise = 8.0 * f64::EPSILON * (((ca * x.abs() + cb.abs()) * x.abs() + cc) * x.abs() + cd.abs());
+        if p.abs() <= noise {
+            return x;
         }
-        if f > 0.0 {
-            lo = phi;
+        if p > 0.0 {
+            hi = x;
         } else {
-            hi = phi;
+            lo = x;
         }
-        let df = -a * sp * (2.0 - eps + 6.0 * eps * c2) + 2.0 * s * cp * (1.0 + eps * c2 - 2.0 * eps * sp * sp);
-        let newton = phi - f / df;
-        let in_bracket = newton >= lo && newton <= hi;
-        let next = if in_bracket { newton } else { 0.5 * (lo + hi) };
-        let step = (next - phi).abs();
-        phi = next;
-        let tol = 4e-16 * phi;
+        let dp = (3.0 * ca * x + 2.0 * cb) * x + cc;
+        let newton = x - p / dp;
+        let in_bracket = newton > lo && newton < hi;
+        let next = if in_bracket {
+            newton
+        } else {
+            // Halve the bracket in φ = atan2(1, x) (rare: Newton left the bracket).
+            (0.5 * (1.0_f64.atan2(lo) + 1.0_f64.atan2(hi))).tan().recip()
+        };
+        let step = (next - x).abs();
+        x = next;
+        let tol = 4e-16 * x.abs().max(1.0);
         if step <= tol || hi - lo <= tol {
             break;
         }
-        // Newton has stalled at the rounding level of f (small φ, where the relative tolerance
-        // is below f's absolute noise): stop instead of spinning through all 80 iterations.
+        // Newton has stalled at the rounding level of P: stop instead of spinning through all
+        // 80 iterations.
         if in_bracket {
-            if step >= 0.5 * last_newton && step <= 1e-12 * phi {
+            if step >= 0.5 * last_newton && step <= 1e-12 * x.abs().max(1.0) {
                 break;
             }
             last_newton = step;
         }
     }
-    phi
+    x
 }
 
 /// Arcs shorter than this [rad] (always adjacent to θ = 0 or 2π) are integrated by 8-point
@@ -597,6 +623,53 @@ mod tests {
         let r = simpson_force(0.5, -3.0, 1.0);
         assert!(f.0 > 0.0 && f.1 > 0.0, "{f:?}");
         assert!((f.0 - r.0).abs() < 1e-6 * r.0.hypot(r.1));
+    }
+
+    /// The cubic's root against plain bisection of H(φ) on (0, π) (120 halvings, no shortcut),
+    /// over twelve decades of the wedge-to-squeeze ratio either way, both signs, ε from 0 to
+    /// 1 − 1e-9: the same φ* (relative to its distance from the nearer end, 0 or π) and the
+    /// arc end's sine and cosine consistent with θ.
+    #[test]
+    fn pressure_zero_from_the_cubic_matches_bisection() {
+        let h = |eps: f64, a: f64, s: f64, phi: f64| {
+            let (sp, cp) = phi.sin_cos();
+            let c2 = cp * cp;
+            a * cp * (2.0 - eps + 2.0 * eps * c2) + 2.0 * s * sp * (1.0 + eps * c2)
+        };
+        let mut checked = 0;
+        for eps in [0.0, 1e-6, 0.3, 0.9, 0.999, 1.0 - 1e-9] {
+            for la in -6..=6 {
+                for ls in -6..=6 {
+                    for (sa, ss) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                        let (a, s) = (sa * 10f64.powi(2 * la), ss * 10f64.powi(2 * ls));
+                        let x = wedge_squeeze_zero(eps, a, s);
+                        let phi = 1.0_f64.atan2(x);
+                        // Reference: bisection of sign(a)·H, positive at 0, negative at π.
+                        let (mut lo, mut hi) = (0.0_f64, PI);
+                        for _ in 0..120 {
+                            let mid = 0.5 * (lo + hi);
+                            if sa * h(eps, a, s, mid) > 0.0 {
+                                lo = mid;
+                            } else {
+                                hi = mid;
+                            }
+                        }
+                        let want = 0.5 * (lo + hi);
+                        let dist = want.min(PI - want);
+                        assert!((phi - want).abs() <= 1e-12 * dist + 1e-15, "ε {eps} a {a:e} s {s:e}: φ* {phi} vs {want}");
+                        let end = ArcEnd::from_half_angle_cot(x);
+                        assert!((end.sin - end.theta.sin()).abs() < 1e-14 && (end.cos - end.theta.cos()).abs() < 1e-14);
+                        // 1 − cos θ = 2 sin²φ, with sin φ = sin(atan(1/|x|)) for |x| > 1 (precise
+                        // where φ is near π, unlike θ itself).
+                        let sin_phi = if x.abs() > 1.0 { (1.0 / x.abs()).atan().sin() } else { (0.5 * end.theta).sin() };
+                        let omc = 2.0 * sin_phi * sin_phi;
+                        assert!((end.one_minus_cos - omc).abs() <= 1e-14 * omc, "ε {eps} a {a:e} s {s:e}: 1 − cos θ");
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 6 * 13 * 13 * 4);
     }
 
     #[test]
