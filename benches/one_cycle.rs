@@ -1,0 +1,65 @@
+//! One cycle of one model, once, for a deterministic A/B of a code change by instruction count
+//! (wall time on a shared machine swings by ±20 %; the instructions executed do not):
+//!
+//! ```text
+//! cargo bench --bench one_cycle --no-run          # prints the binary's path
+//! valgrind --tool=cachegrind --cache-sim=no <binary> nine_bar_lubricated radau5
+//! ```
+//!
+//! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`) and a method, `rk45`
+//! (default), `dop853` or `radau5`. Prints the statistics of the run and the wall time; divide
+//! cachegrind's `I refs` by the right-hand sides for instructions per right-hand side. The
+//! settings are the benches' (`benches/rhs.rs`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
+//! model (the dry nine-bar) takes a different number of steps after any change of round-off:
+//! compare instructions per right-hand side there, totals on the lubricated models.
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use clearsim::integrate::{Method, Settings};
+use clearsim::record::Channels;
+use clearsim::simulate::{simulate, RunSettings};
+
+fn main() {
+    // `cargo bench` passes `--bench`; keep only the positional arguments.
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with("--")).collect();
+    let name = args.first().map_or("nine_bar_dry", String::as_str);
+    let method = match args.get(1).map_or("rk45", String::as_str) {
+        "rk45" => Method::Dopri5,
+        "dop853" => Method::Dop853,
+        "radau5" => Method::Radau5,
+        other => {
+            eprintln!("unknown method {other:?}: rk45, dop853 or radau5");
+            std::process::exit(2);
+        }
+    };
+    let model = common::model(name);
+    let t_end = if name.starts_with("nine") { common::NINE_BAR_CYCLE } else { common::SLIDER_CRANK_CYCLE };
+    let rs = RunSettings {
+        method,
+        ode: Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() },
+        t0: 0.0,
+        t_end,
+        t_out: RunSettings::grid(0.0, t_end, t_end / 1000.0),
+        channels: Channels::default(),
+        max_wall_time: None,
+        monitors: Vec::new(),
+    };
+    let start = std::time::Instant::now();
+    let out = simulate(&model, &rs, None).expect("a valid run");
+    let wall = start.elapsed();
+    if let Some(e) = &out.error {
+        eprintln!("the run stopped: {e}");
+        std::process::exit(1);
+    }
+    let s = &out.stats;
+    println!(
+        "{name} {}: {:.1} ms, {} steps, {} rejected, {} right-hand sides, {} Jacobians",
+        args.get(1).map_or("rk45", String::as_str),
+        wall.as_secs_f64() * 1e3,
+        s.steps_accepted,
+        s.steps_rejected,
+        s.rhs_evals,
+        s.jacobians
+    );
+}
