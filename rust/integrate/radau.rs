@@ -27,7 +27,7 @@ use faer::Mat;
 
 use super::controller::{Decision, NewtonLimit, Predictive};
 use super::driver::{all_finite, non_finite, Stepper, Trial};
-use super::stiff::Lu;
+use super::stiff::{ComplexLu, Lu};
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
@@ -128,19 +128,19 @@ struct NewtonSystems {
     /// Structured form: the coordinates whose columns of `W_q` or `W_v` are non-zero, and the rest.
     active: Vec<usize>,
     rest: Vec<usize>,
-    /// The reduced right-hand side or solution, `2|C|` long.
+    /// The reduced right-hand side or solution: `|C|` long, or its real and imaginary parts at
+    /// 0 and `m`.
     reduced: Vec<f64>,
     real: Lu,
-    complex: Lu,
+    complex: ComplexLu,
     sigma: f64,
     /// `σ₂ = a + ib` and `1/σ₂ = p + iq`.
     a: f64,
     b: f64,
     p: f64,
     q: f64,
-    /// Scratch: `k` and `2k` long (`k` = size of the real system).
+    /// Scratch, `k` long (`k` = size of the real system).
     tmp: Vec<f64>,
-    tmp2: Vec<f64>,
     gq: Vec<f64>,
     probe: Vec<f64>,
     df: Vec<f64>,
@@ -170,14 +170,13 @@ impl NewtonSystems {
             rest: Vec::with_capacity(m),
             reduced: vec![0.0; 2 * m],
             real: Lu::new(k),
-            complex: Lu::new(2 * k),
+            complex: ComplexLu::new(k),
             sigma: 0.0,
             a: 0.0,
             b: 0.0,
             p: 0.0,
             q: 0.0,
             tmp: vec![0.0; k],
-            tmp2: vec![0.0; 2 * k],
             gq: vec![0.0; 2 * m],
             probe: vec![0.0; n],
             df: vec![0.0; n],
@@ -249,19 +248,14 @@ impl NewtonSystems {
                 let jac = &self.jac;
                 let n = jac.nrows();
                 self.real.factor(jac, sigma);
-                self.complex.factor_with(2 * n, |mut e| {
+                self.complex.factor_with(n, |mut re, mut im| {
                     for j in 0..n {
                         for i in 0..n {
-                            let v = -jac[(i, j)];
-                            e[(i, j)] = v;
-                            e[(i + n, j + n)] = v;
-                            e[(i + n, j)] = 0.0;
-                            e[(i, j + n)] = 0.0;
+                            re[(i, j)] = -jac[(i, j)];
+                            im[(i, j)] = 0.0;
                         }
-                        e[(j, j)] += a;
-                        e[(j + n, j + n)] += a;
-                        e[(j, j + n)] = -b;
-                        e[(j + n, j)] = b;
+                        re[(j, j)] += a;
+                        im[(j, j)] = b;
                     }
                 });
             }
@@ -277,21 +271,15 @@ impl NewtonSystems {
                         e[(cj, cj)] += sigma;
                     }
                 });
-                // Complex: M = (a I − W_v − p W_q) + i (b I − q W_q), its CC block in real form.
-                self.complex.factor_with(2 * kc, |mut e| {
+                // Complex: M = (a I − W_v − p W_q) + i (b I − q W_q), its CC block.
+                self.complex.factor_with(kc, |mut re, mut im| {
                     for (cj, &j) in act.iter().enumerate() {
                         for (ci, &i) in act.iter().enumerate() {
-                            let re = -w_v[i + j * m] - p * w_q[i + j * m];
-                            let im = -q * w_q[i + j * m];
-                            e[(ci, cj)] = re;
-                            e[(ci + kc, cj + kc)] = re;
-                            e[(ci + kc, cj)] = im;
-                            e[(ci, cj + kc)] = -im;
+                            re[(ci, cj)] = -w_v[i + j * m] - p * w_q[i + j * m];
+                            im[(ci, cj)] = -q * w_q[i + j * m];
                         }
-                        e[(cj, cj)] += a;
-                        e[(cj + kc, cj + kc)] += a;
-                        e[(cj + kc, cj)] += b;
-                        e[(cj, cj + kc)] -= b;
+                        re[(cj, cj)] += a;
+                        im[(cj, cj)] += b;
                     }
                 });
             }
@@ -345,12 +333,7 @@ impl NewtonSystems {
     /// `(xr + i xi) ← (σ₂ I − W)⁻¹ (xr + i xi)`.
     fn solve_complex(&mut self, xr: &mut [f64], xi: &mut [f64]) {
         let Some(m) = self.half else {
-            let n = xr.len();
-            self.tmp2[..n].copy_from_slice(xr);
-            self.tmp2[n..].copy_from_slice(xi);
-            self.complex.solve(&mut self.tmp2);
-            xr.copy_from_slice(&self.tmp2[..n]);
-            xi.copy_from_slice(&self.tmp2[n..]);
+            self.complex.solve(xr, xi);
             return;
         };
         let (p, q) = (self.p, self.q);
@@ -377,18 +360,19 @@ impl NewtonSystems {
             rv[i] += p * a - q * b;
             iv[i] += q * a + p * b;
         }
-        // The active block: M_CC x_C = b_C (real form).
-        let red = &mut self.reduced[..2 * kc];
+        // The active block: M_CC x_C = b_C.
+        let (red_r, red_i) = self.reduced.split_at_mut(m);
+        let (red_r, red_i) = (&mut red_r[..kc], &mut red_i[..kc]);
         for (ci, &c) in self.active.iter().enumerate() {
-            red[ci] = rv[c];
-            red[kc + ci] = iv[c];
+            red_r[ci] = rv[c];
+            red_i[ci] = iv[c];
         }
         if kc > 0 {
-            self.complex.solve(red);
+            self.complex.solve(red_r, red_i);
         }
         // The others: x_j = (p + iq)(b_j + Σ_c G_jc x_c), G = W_v + (p + iq) W_q.
         for (ci, &c) in self.active.iter().enumerate() {
-            let (xr_c, xi_c) = (red[ci], red[kc + ci]);
+            let (xr_c, xi_c) = (red_r[ci], red_i[ci]);
             rv[c] = xr_c;
             iv[c] = xi_c;
             let (gv, gq) = (&w_v[c * m..(c + 1) * m], &w_q[c * m..(c + 1) * m]);
