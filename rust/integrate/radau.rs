@@ -18,7 +18,8 @@
 //! `W = [[0, I], [W_q, W_v]]`, each system shrinks to half size:
 //! `x_q = (r_q + x_v)/σ`, `(σI − W_v − W_q/σ) x_v = r_v + W_q r_q/σ`.
 //! Otherwise `W` is a forward-difference Jacobian of the whole `f`.
-//! Complex systems are solved in real form `[[Re, −Im], [Im, Re]]`.
+//! The complex system is factorised in complex arithmetic ([`ComplexLu`]; in the real form
+//! `[[Re, −Im], [Im, Re]]` above 64 rows).
 //!
 //! Tolerances are used as given (no internal transformation as in Hairer's code; SciPy's
 //! `Radau` does the same).

@@ -92,7 +92,7 @@ impl DenseOutput for RodasDense {
 }
 
 /// Largest matrix factorised by [`Lu`]'s own loops; larger ones go to faer's blocked LU. The
-/// Newton matrices of a mechanism are small after the structured reduction (nine-bar: 12 and 24),
+/// Newton matrices of a mechanism are small after the structured reduction (nine-bar: 12 rows, real and complex),
 /// where a plain right-looking elimination beats a blocked one's set-up.
 const SMALL_LU: usize = 64;
 
