@@ -484,6 +484,32 @@ impl KktSolver {
         f.factor(&self.pattern).map_err(|p| self.row_at[p] as usize)
     }
 
+    /// [`KktSolver::solve_factored`] for a unit generalised force on coordinate `k` and `c = 0`
+    /// (a column of the constrained mobility, for RADAU5's Newton matrix): only the entries of
+    /// Φq on k's body enter the right-hand side, so it skips the rest of `Φq M⁻¹ g`. The same
+    /// numbers as the general solve (tested).
+    pub fn unit_force_response(&mut self, k: usize, qdd: &mut [f64], lambda: &mut [f64]) {
+        let n = self.inv_mass.len();
+        let wk = self.inv_mass[k];
+        if self.rows == 0 {
+            qdd[..n].fill(0.0);
+            qdd[k] = wk;
+            return;
+        }
+        self.rhs.fill(0.0);
+        let (b, axis) = (k / 3, k % 3);
+        let range = self.body_start[b]..self.body_start[b + 1];
+        for (c1, &p) in self.coef[range.clone()].iter().zip(&self.entry_pos[range]) {
+            self.rhs[p as usize] += c1[axis] * wk;
+        }
+        self.factor.solve(&self.pattern, &mut self.rhs);
+        for (l, &p) in lambda[..self.rows].iter_mut().zip(&self.pos) {
+            *l = self.rhs[p as usize];
+        }
+        self.accelerations(qdd);
+        qdd[k] += wk;
+    }
+
     /// [`KktSolver::solve`] with the factor and the Jacobian of the last [`KktSolver::factor`].
     pub fn solve_factored(&mut self, force: &[f64], c: &[f64], qdd: &mut [f64], lambda: &mut [f64]) {
         let n = self.inv_mass.len();
@@ -511,7 +537,16 @@ impl KktSolver {
         for (l, &p) in lambda[..m].iter_mut().zip(&self.pos) {
             *l = self.rhs[p as usize];
         }
-        // q̈ = M⁻¹ (g − Φqᵀ λ), body by body.
+        // q̈ = M⁻¹ (g − Φqᵀ λ).
+        self.accelerations(qdd);
+        for (a, w) in qdd[..n].iter_mut().zip(&self.w) {
+            *a += w;
+        }
+    }
+
+    /// `q̈ = −M⁻¹ Φqᵀ λ`, body by body, with λ in `rhs` (factor order).
+    fn accelerations(&self, qdd: &mut [f64]) {
+        let nb = self.body_start.len() - 1;
         for b in 0..nb {
             let range = self.body_start[b]..self.body_start[b + 1];
             let mut acc = [0.0; 3];
@@ -519,9 +554,7 @@ impl KktSolver {
                 let l = self.rhs[p as usize];
                 acc = [acc[0] + mc[0] * l, acc[1] + mc[1] * l, acc[2] + mc[2] * l];
             }
-            for a in 0..3 {
-                qdd[3 * b + a] = self.w[3 * b + a] - acc[a];
-            }
+            qdd[3 * b..3 * b + 3].copy_from_slice(&[-acc[0], -acc[1], -acc[2]]);
         }
     }
 }
@@ -618,6 +651,27 @@ mod tests {
             for r in 0..m {
                 // The sign convention: M q̈ + Φqᵀ λ = g.
                 assert!((lam[r] - x[n + r]).abs() < 1e-10 * scale, "seed {seed}: λ[{r}] {} vs {}", lam[r], x[n + r]);
+            }
+        }
+    }
+
+    /// The unit-force response (only k's body in the right-hand side) against the general solve
+    /// with `g = e_k`, `c = 0`: the same numbers, for every coordinate of random mechanisms.
+    #[test]
+    fn unit_force_response_is_the_general_solve() {
+        for (seed, nb, loops) in [(1, 3, 0), (3, 25, 5), (5, 60, 12)] {
+            let (inv_mass, rows) = random_mechanism(seed, nb, loops);
+            let (n, m) = (inv_mass.len(), rows.len());
+            let mut kkt = KktSolver::new(inv_mass.clone(), &rows);
+            kkt.factor(&rows).unwrap();
+            let (mut a, mut la, mut b, mut lb) = (vec![0.0; n], vec![0.0; m], vec![0.0; n], vec![0.0; m]);
+            for k in 0..n {
+                let mut unit = vec![0.0; n];
+                unit[k] = 1.0;
+                kkt.solve_factored(&unit, &vec![0.0; m], &mut a, &mut la);
+                kkt.unit_force_response(k, &mut b, &mut lb);
+                assert_eq!((&a, &la), (&b, &lb), "seed {seed}, coordinate {k}");
+                assert!(a.iter().any(|v| *v != 0.0));
             }
         }
     }

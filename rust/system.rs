@@ -24,9 +24,7 @@ pub struct Workspace {
     pub joint_kin: Vec<JointKinematics>,
     pub joint_force: Vec<JointForce>,
     kkt: KktSolver,
-    /// Scratch of [`Workspace::unit_force_response`]: a unit force, zero `c`, multipliers.
-    unit: Vec<f64>,
-    zero_c: Vec<f64>,
+    /// Scratch of [`Workspace::unit_force_response`]: its multipliers.
     unit_lambda: Vec<f64>,
 }
 
@@ -54,8 +52,6 @@ impl Workspace {
             joint_kin: vec![JointKinematics::default(); model.clearance.len()],
             joint_force: vec![JointForce::default(); model.clearance.len()],
             kkt: KktSolver::new(vec![1.0; 3 * nb], &[]),
-            unit: vec![0.0; 3 * nb],
-            zero_c: vec![0.0; rows],
             unit_lambda: vec![0.0; rows],
         };
         // The Jacobian's sparsity (which bodies each row touches) is fixed: take it from any pose.
@@ -99,9 +95,7 @@ impl Workspace {
     /// coordinate `k` (the KKT solve with `g = e_k`, `c = 0`, using the factor of
     /// [`Workspace::factor_kkt`]), with `S = M⁻¹ − M⁻¹Φqᵀ(Φq M⁻¹ Φqᵀ)⁻¹Φq M⁻¹`.
     pub fn unit_force_response(&mut self, k: usize, out: &mut [f64]) {
-        self.unit.fill(0.0);
-        self.unit[k] = 1.0;
-        self.kkt.solve_factored(&self.unit, &self.zero_c, out, &mut self.unit_lambda);
+        self.kkt.unit_force_response(k, out, &mut self.unit_lambda);
     }
 
     /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`.
