@@ -402,9 +402,7 @@ impl<'a> MechanismSystem<'a> {
             let yb: &[f64] = if i == SWITCH_SAMPLES {
                 y1
             } else {
-                for &c in &self.switch_components {
-                    s[c] = dense.eval_component(tb, c);
-                }
+                dense.eval_components(tb, &self.switch_components, &mut s);
                 &s
             };
             for j in 0..nj {

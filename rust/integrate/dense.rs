@@ -260,6 +260,10 @@ mod tests {
             for (i, o) in out.iter().enumerate() {
                 self.ends_exact &= d.eval_component(tm, i) == *o;
             }
+            // Several components at once: the same numbers, the other entries untouched.
+            let mut some = [f64::NAN; 4];
+            d.eval_components(tm, &[3, 1], &mut some);
+            self.ends_exact &= some[1] == out[1] && some[3] == out[3] && some[0].is_nan() && some[2].is_nan();
             let mut f1 = [0.0; 4];
             Kepler.rhs(t1, y1, &mut f1)?;
             self.ends_exact &= d.end_rate() == Some(&f1[..]);

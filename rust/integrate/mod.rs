@@ -92,6 +92,15 @@ pub trait DenseOutput {
     fn eval_component(&self, t: f64, i: usize) -> f64 {
         self.component(self.fraction(t), i)
     }
+    /// Components `idx` of the state at `t`, each into `out[i]` (the other entries of `out`
+    /// untouched): [`eval_component`](DenseOutput::eval_component) for several coordinates
+    /// with one call through the trait object and `θ` computed once.
+    fn eval_components(&self, t: f64, idx: &[usize], out: &mut [f64]) {
+        let s = self.fraction(t);
+        for &i in idx {
+            out[i] = self.component(s, i);
+        }
+    }
     /// `f(t1, y1)` at the step's end when the method computed it exactly (the explicit
     /// Runge–Kutta methods' FSAL stage, with the memory the step was integrated with), so that
     /// a system needing the rate there need not evaluate `f` again. Default: `None`.
