@@ -8,10 +8,8 @@ mod common;
 use std::time::Duration;
 
 use clearsim::batch::run_batch;
-use clearsim::integrate::{Method, Settings};
+use clearsim::integrate::Method;
 use clearsim::model::ClearanceModelDesc;
-use clearsim::record::Channels;
-use clearsim::simulate::RunSettings;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
 const RUNS: usize = 8;
@@ -30,16 +28,7 @@ fn bench_batch(c: &mut Criterion) {
         })
         .collect();
     let t_end = 0.25 * common::NINE_BAR_CYCLE;
-    let rs = RunSettings {
-        method: Method::Dopri5,
-        ode: Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() },
-        t0: 0.0,
-        t_end,
-        t_out: RunSettings::grid(0.0, t_end, t_end / 250.0),
-        channels: Channels::default(),
-        max_wall_time: None,
-        monitors: Vec::new(),
-    };
+    let rs = common::bench_run(Method::Dopri5, t_end, 250);
     let mut g = c.benchmark_group("batch_nine_bar_lubricated");
     g.sample_size(10).measurement_time(Duration::from_secs(10));
     g.throughput(Throughput::Elements(RUNS as u64));

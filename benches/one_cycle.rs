@@ -9,16 +9,15 @@
 //! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`) and a method, `rk45`
 //! (default), `dop853` or `radau5`. Prints the statistics of the run and the wall time; divide
 //! cachegrind's `I refs` by the right-hand sides for instructions per right-hand side. The
-//! settings are the benches' (`benches/rhs.rs`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
+//! settings are the benches' (`common::bench_run`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
 //! model (the dry nine-bar) takes a different number of steps after any change of round-off:
 //! compare instructions per right-hand side there, totals on the lubricated models.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use clearsim::integrate::{Method, Settings};
-use clearsim::record::Channels;
-use clearsim::simulate::{simulate, RunSettings};
+use clearsim::integrate::Method;
+use clearsim::simulate::simulate;
 
 fn main() {
     // `cargo bench` passes `--bench`; keep only the positional arguments.
@@ -34,17 +33,7 @@ fn main() {
         }
     };
     let model = common::model(name);
-    let t_end = if name.starts_with("nine") { common::NINE_BAR_CYCLE } else { common::SLIDER_CRANK_CYCLE };
-    let rs = RunSettings {
-        method,
-        ode: Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() },
-        t0: 0.0,
-        t_end,
-        t_out: RunSettings::grid(0.0, t_end, t_end / 1000.0),
-        channels: Channels::default(),
-        max_wall_time: None,
-        monitors: Vec::new(),
-    };
+    let rs = common::bench_run(method, common::cycle(name), 1000);
     let start = std::time::Instant::now();
     let out = simulate(&model, &rs, None).expect("a valid run");
     let wall = start.elapsed();

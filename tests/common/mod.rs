@@ -14,6 +14,31 @@ pub const NINE_BAR_CYCLE: f64 = 0.4;
 /// One crank cycle of the slider-crank at 5000 rpm [s].
 pub const SLIDER_CRANK_CYCLE: f64 = 0.012;
 
+/// One crank cycle of the fixture model `name` (a nine-bar or a slider-crank) [s].
+pub fn cycle(name: &str) -> f64 {
+    if name.starts_with("nine") {
+        NINE_BAR_CYCLE
+    } else {
+        SLIDER_CRANK_CYCLE
+    }
+}
+
+/// The benches' run: `method` from 0 to `t_end` [s] at rtol 1e-6, atol 1e-9, with `outputs`
+/// evenly spaced output times, the default channels and no monitors.
+pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize) -> clearsim::simulate::RunSettings {
+    use clearsim::simulate::RunSettings;
+    RunSettings {
+        method,
+        ode: clearsim::integrate::Settings { rtol: 1e-6, atol: 1e-9, ..Default::default() },
+        t0: 0.0,
+        t_end,
+        t_out: RunSettings::grid(0.0, t_end, t_end / outputs as f64),
+        channels: clearsim::record::Channels::default(),
+        max_wall_time: None,
+        monitors: Vec::new(),
+    }
+}
+
 /// The description in `tests/data/<name>.json`, read the way the Python layer hands it over.
 pub fn description(name: &str) -> MechanismDesc {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(format!("{name}.json"));
