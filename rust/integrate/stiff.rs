@@ -575,6 +575,15 @@ mod tests {
 
     type Rhs = fn(f64, &[f64], &mut [f64]) -> Result<(), Error>;
 
+    /// Uniform numbers in [−1, 1) from a 64-bit linear congruential generator (reproducible
+    /// random matrices for the LU tests).
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        }
+    }
+
     /// Both LU paths (own loops up to `SMALL_LU`, faer's above) solve `fac·I − J` to round-off,
     /// by residual, on random matrices and on one that needs row swaps (zero leading pivot), and
     /// a leading block of a larger storage solves as its own matrix.
@@ -582,11 +591,7 @@ mod tests {
     fn lu_solves_to_round_off_on_both_paths() {
         use super::{Lu, SMALL_LU};
         use faer::Mat;
-        let mut seed = 11u64;
-        let mut rnd = move || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut rnd = uniform(11);
         for &(n, fac) in &[(1usize, 2.0), (5, 0.0), (12, 3.0), (48, 1.5), (SMALL_LU, 0.7), (SMALL_LU + 6, 0.7)] {
             let mut jac = Mat::<f64>::zeros(n, n);
             for j in 0..n {
@@ -629,11 +634,7 @@ mod tests {
     #[test]
     fn complex_lu_solves_to_round_off_on_both_paths() {
         use super::{ComplexLu, SMALL_LU};
-        let mut seed = 23u64;
-        let mut rnd = move || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut rnd = uniform(23);
         for &(n, k, a, b) in &[(1usize, 1usize, 2.0, 1.0), (5, 5, 0.0, 0.0), (12, 12, 3.0, -1.5), (24, 9, 1.5, 2.5), (SMALL_LU, SMALL_LU, 0.7, 0.3), (SMALL_LU + 6, SMALL_LU + 6, 0.7, 0.3), (SMALL_LU + 6, 10, 0.7, 0.3)] {
             let g: Vec<(f64, f64)> = (0..k * k).map(|_| (rnd(), rnd())).collect();
             let at = |i: usize, j: usize| -> (f64, f64) {
