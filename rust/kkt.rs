@@ -26,6 +26,27 @@ use crate::constraints::JacRow;
 
 const NONE: u32 = u32::MAX;
 
+/// `v[i]` without the bounds check, for the hot loops of the numeric factorisation and solves,
+/// whose index lists are built once in [`KktSolver::new`] and [`SparseFactor::new`] from the
+/// pattern and never change: every index is below the length of the array it indexes (checked
+/// in debug builds, where the tests run every index list of random mechanisms). On the nine-bar
+/// the bounds checks and the loop set-up of rows of two or three entries cost more than the
+/// arithmetic.
+#[inline(always)]
+fn at<T: Copy>(v: &[T], i: usize) -> T {
+    debug_assert!(i < v.len());
+    // SAFETY: `i < v.len()` (the index lists' invariant above).
+    unsafe { *v.get_unchecked(i) }
+}
+
+/// A mutable reference to `v[i]`, as [`at`].
+#[inline(always)]
+fn at_mut<T>(v: &mut [T], i: usize) -> &mut T {
+    debug_assert!(i < v.len());
+    // SAFETY: as `at`.
+    unsafe { v.get_unchecked_mut(i) }
+}
+
 /// The structurally non-zero entries of the Cholesky factor L of S (fill-in included), row by
 /// row below the diagonal, ascending: fixed by which constraint rows share a body, so computed
 /// once.
@@ -257,72 +278,112 @@ impl SparseFactor {
 
     /// Factorise in place; `Err(i)` for a non-positive pivot at row i.
     fn factor(&mut self, pattern: &LowerPattern) -> Result<(), usize> {
+        if self.tape.is_some() {
+            return self.factor_taped(pattern);
+        }
         let n = self.inv_diag.len();
         let nnz = self.nnz;
         for i in 0..n {
             let range = pattern.start[i]..pattern.start[i + 1];
             // y_ik = D_k L_ik = S_ik − Σ_t L_kt y_it, then D_i = S_ii − Σ_k L_ik y_ik.
             let mut d = self.vals[nnz + i];
-            if let Some(tape) = &self.tape {
-                for s in range.clone() {
-                    let mut v = self.vals[s];
-                    for &[a, b] in &tape.pairs[tape.start[s] as usize..tape.start[s + 1] as usize] {
-                        v -= self.vals[a as usize] * self.vals[b as usize];
-                    }
-                    self.vals[s] = v;
+            for s in range.clone() {
+                self.x[pattern.cols[s] as usize] = self.vals[s];
+            }
+            for s in range.clone() {
+                let k = pattern.cols[s] as usize;
+                let mut v = self.x[k];
+                for t in pattern.start[k]..pattern.start[k + 1] {
+                    v -= self.vals[t] * self.x[pattern.cols[t] as usize];
                 }
-                for s in range {
-                    let k = pattern.cols[s] as usize;
-                    let v = self.vals[s];
-                    d -= v * v * self.inv_diag[k];
-                    self.vals[s] = v * self.inv_diag[k];
+                self.x[k] = v;
+                d -= v * v * self.inv_diag[k];
+            }
+            for s in range {
+                let k = pattern.cols[s] as usize;
+                self.vals[s] = self.x[k] * self.inv_diag[k];
+                self.x[k] = 0.0;
+            }
+            self.set_pivot(i, d)?;
+        }
+        Ok(())
+    }
+
+    /// [`SparseFactor::factor`] from the tape: the same operations in the same order, run with
+    /// two running indices (the entries of L and the tape's pairs are stored in the order they
+    /// are computed).
+    fn factor_taped(&mut self, pattern: &LowerPattern) -> Result<(), usize> {
+        let Some(tape) = &self.tape else { unreachable!("factor_taped without a tape") };
+        let (n, nnz) = (self.inv_diag.len(), self.nnz);
+        let vals = &mut self.vals[..];
+        let (mut s, mut t) = (0, 0);
+        for i in 0..n {
+            let (first, end) = (s, at(&pattern.start, i + 1));
+            // y_ik = D_k L_ik = S_ik − Σ_t L_kt y_it ...
+            while s < end {
+                let pairs_end = at(&tape.start, s + 1) as usize;
+                let mut v = at(vals, s);
+                while t < pairs_end {
+                    let [a, b] = at(&tape.pairs, t);
+                    v -= at(vals, a as usize) * at(vals, b as usize);
+                    t += 1;
                 }
-            } else {
-                for s in range.clone() {
-                    self.x[pattern.cols[s] as usize] = self.vals[s];
-                }
-                for s in range.clone() {
-                    let k = pattern.cols[s] as usize;
-                    let mut v = self.x[k];
-                    for t in pattern.start[k]..pattern.start[k + 1] {
-                        v -= self.vals[t] * self.x[pattern.cols[t] as usize];
-                    }
-                    self.x[k] = v;
-                    d -= v * v * self.inv_diag[k];
-                }
-                for s in range {
-                    let k = pattern.cols[s] as usize;
-                    self.vals[s] = self.x[k] * self.inv_diag[k];
-                    self.x[k] = 0.0;
-                }
+                *at_mut(vals, s) = v;
+                s += 1;
+            }
+            // ... then L_ik = y_ik / D_k and D_i = S_ii − Σ_k L_ik y_ik.
+            let mut d = at(vals, nnz + i);
+            for e in first..end {
+                let dk = at(&self.inv_diag, at(&pattern.cols, e) as usize);
+                let v = at_mut(vals, e);
+                d -= *v * *v * dk;
+                *v *= dk;
             }
             if !(d > 0.0) {
                 return Err(i);
             }
-            self.vals[nnz + i] = d;
-            self.inv_diag[i] = 1.0 / d;
+            *at_mut(vals, nnz + i) = d;
+            *at_mut(&mut self.inv_diag, i) = 1.0 / d;
         }
+        Ok(())
+    }
+
+    /// Store the pivot `D[i] = d`, or `Err(i)` if it is not positive.
+    fn set_pivot(&mut self, i: usize, d: f64) -> Result<(), usize> {
+        if !(d > 0.0) {
+            return Err(i);
+        }
+        self.vals[self.nnz + i] = d;
+        self.inv_diag[i] = 1.0 / d;
         Ok(())
     }
 
     /// `L D Lᵀ x = rhs` in place, by forward and backward substitution over the non-zeros of L.
     fn solve(&self, pattern: &LowerPattern, rhs: &mut [f64]) {
         let n = self.inv_diag.len();
+        let rhs = &mut rhs[..n];
+        let (l, cols) = (&self.vals[..self.nnz], &pattern.cols[..self.nnz]);
+        // Rows of L follow each other in storage: one running index, no per-row slicing.
+        let mut s = 0;
         for i in 0..n {
+            let end = at(&pattern.start, i + 1);
             let mut v = rhs[i];
-            for s in pattern.start[i]..pattern.start[i + 1] {
-                v -= self.vals[s] * rhs[pattern.cols[s] as usize];
+            while s < end {
+                v -= at(l, s) * at(rhs, at(cols, s) as usize);
+                s += 1;
             }
             rhs[i] = v;
         }
-        for (r, d) in rhs[..n].iter_mut().zip(&self.inv_diag) {
+        for (r, d) in rhs.iter_mut().zip(&self.inv_diag) {
             *r *= d;
         }
         // Lᵀ x = D⁻¹ y: once x_i is known, remove its share from the unknowns of row i's columns.
         for i in (0..n).rev() {
+            let start = at(&pattern.start, i);
             let xi = rhs[i];
-            for s in pattern.start[i]..pattern.start[i + 1] {
-                rhs[pattern.cols[s] as usize] -= self.vals[s] * xi;
+            while s > start {
+                s -= 1;
+                *at_mut(rhs, at(cols, s) as usize) -= at(l, s) * xi;
             }
         }
     }
@@ -344,9 +405,11 @@ pub struct KktSolver {
     coef: Vec<[f64; 3]>,
     mcoef: Vec<[f64; 3]>,
     entry_pos: Vec<u32>,
+    /// Per entry: its body's first coordinate (3 b).
+    entry_body: Vec<u32>,
     /// For each body and each pair (p ≤ q) of its rows in `body_rows` order, where the product
     /// goes in the storage of S (`factor.vals`: an entry of L's pattern, or a diagonal).
-    pair_slot: Vec<u32>,
+    pair_slot: Vec<[u32; 3]>,
     /// Position of each constraint row in S (a minimum-degree order, less fill-in in L), and
     /// the row at each position.
     pos: Vec<u32>,
@@ -401,19 +464,22 @@ impl KktSolver {
         for b in 0..nb {
             let list = &body_rows[body_start[b]..body_start[b + 1]];
             for (p, &(r1, _)) in list.iter().enumerate() {
-                for &(r2, _) in &list[p..] {
+                for (q, &(r2, _)) in list.iter().enumerate().skip(p) {
                     let (p1, p2) = (pos[r1 as usize], pos[r2 as usize]);
                     let (i, j) = if p1 >= p2 { (p1 as usize, p2 as usize) } else { (p2 as usize, p1 as usize) };
-                    pair_slot.push(if i == j {
+                    let slot = if i == j {
                         (pattern.len() + i) as u32
                     } else {
                         (pattern.start[i] + pattern.row(i).binary_search(&(j as u32)).expect("S's pattern is in L's")) as u32
-                    });
+                    };
+                    let first = body_start[b] as u32;
+                    pair_slot.push([first + p as u32, first + q as u32, slot]);
                 }
             }
         }
         let factor = SparseFactor::new(&pattern, true);
         let entry_pos = body_rows.iter().map(|&(r, _)| pos[r as usize]).collect();
+        let entry_body = (0..nb).flat_map(|b| std::iter::repeat_n(3 * b as u32, body_start[b + 1] - body_start[b])).collect();
         KktSolver {
             rows,
             pattern,
@@ -425,6 +491,7 @@ impl KktSolver {
             coef: vec![[0.0; 3]; body_rows.len()],
             mcoef: vec![[0.0; 3]; body_rows.len()],
             entry_pos,
+            entry_body,
             body_start,
             body_rows,
             factor,
@@ -457,29 +524,19 @@ impl KktSolver {
         if m == 0 {
             return Ok(());
         }
-        let nb = self.body_start.len() - 1;
-        for b in 0..nb {
-            let im = &self.inv_mass[3 * b..3 * b + 3];
-            let range = self.body_start[b]..self.body_start[b + 1];
-            for ((&(r, k), c), mc) in self.body_rows[range.clone()].iter().zip(&mut self.coef[range.clone()]).zip(&mut self.mcoef[range]) {
-                *c = jac[r as usize].coef[k as usize];
-                *mc = [c[0] * im[0], c[1] * im[1], c[2] * im[2]];
-            }
+        let jac = &jac[..m];
+        for (((&(r, k), &b), c), mc) in self.body_rows.iter().zip(&self.entry_body).zip(&mut self.coef).zip(&mut self.mcoef) {
+            *c = at(&at(jac, r as usize).coef, k as usize);
+            let b = b as usize;
+            let im = [at(&self.inv_mass, b), at(&self.inv_mass, b + 1), at(&self.inv_mass, b + 2)];
+            *mc = [c[0] * im[0], c[1] * im[1], c[2] * im[2]];
         }
         // Lower triangle of S = Φq M⁻¹ Φqᵀ, body by body: each pair of entries on one body.
         let f = &mut self.factor;
         f.vals.iter_mut().for_each(|v| *v = 0.0);
-        let mut slot = 0;
-        for b in 0..nb {
-            let end = self.body_start[b + 1];
-            for p in self.body_start[b]..end {
-                let m1 = self.mcoef[p];
-                let count = end - p;
-                for (c2, &at) in self.coef[p..end].iter().zip(&self.pair_slot[slot..slot + count]) {
-                    f.vals[at as usize] += m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
-                }
-                slot += count;
-            }
+        for &[p, q, slot] in &self.pair_slot {
+            let (m1, c2) = (at(&self.mcoef, p as usize), at(&self.coef, q as usize));
+            *at_mut(&mut f.vals, slot as usize) += m1[0] * c2[0] + m1[1] * c2[1] + m1[2] * c2[2];
         }
         f.factor(&self.pattern).map_err(|p| self.row_at[p] as usize)
     }
@@ -524,13 +581,9 @@ impl KktSolver {
         for (r, &cr) in c[..self.rows].iter().enumerate() {
             self.rhs[self.pos[r] as usize] = -cr;
         }
-        let nb = self.body_start.len() - 1;
-        for b in 0..nb {
-            let w = &self.w[3 * b..3 * b + 3];
-            let range = self.body_start[b]..self.body_start[b + 1];
-            for (c1, &p) in self.coef[range.clone()].iter().zip(&self.entry_pos[range]) {
-                self.rhs[p as usize] += c1[0] * w[0] + c1[1] * w[1] + c1[2] * w[2];
-            }
+        for ((c1, &p), &b) in self.coef.iter().zip(&self.entry_pos).zip(&self.entry_body) {
+            let w = &self.w[b as usize..b as usize + 3];
+            *at_mut(&mut self.rhs, p as usize) += c1[0] * w[0] + c1[1] * w[1] + c1[2] * w[2];
         }
         let m = self.rows;
         self.factor.solve(&self.pattern, &mut self.rhs);
@@ -546,15 +599,17 @@ impl KktSolver {
 
     /// `q̈ = −M⁻¹ Φqᵀ λ`, body by body, with λ in `rhs` (factor order).
     fn accelerations(&self, qdd: &mut [f64]) {
-        let nb = self.body_start.len() - 1;
-        for b in 0..nb {
-            let range = self.body_start[b]..self.body_start[b + 1];
+        // The entries of a body follow each other: one running index, no per-body slicing.
+        let mut e = 0;
+        for (b, a) in qdd[..self.inv_mass.len()].chunks_exact_mut(3).enumerate() {
+            let end = at(&self.body_start, b + 1);
             let mut acc = [0.0; 3];
-            for (mc, &p) in self.mcoef[range.clone()].iter().zip(&self.entry_pos[range]) {
-                let l = self.rhs[p as usize];
+            while e < end {
+                let (mc, l) = (at(&self.mcoef, e), at(&self.rhs, at(&self.entry_pos, e) as usize));
                 acc = [acc[0] + mc[0] * l, acc[1] + mc[1] * l, acc[2] + mc[2] * l];
+                e += 1;
             }
-            qdd[3 * b..3 * b + 3].copy_from_slice(&[-acc[0], -acc[1], -acc[2]]);
+            a.copy_from_slice(&[-acc[0], -acc[1], -acc[2]]);
         }
     }
 }
