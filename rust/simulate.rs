@@ -341,19 +341,6 @@ impl<'a> MechanismSystem<'a> {
                 };
             }
         }
-        // The acceleration at t1: the explicit methods' last stage f(t1, y1) holds it (same
-        // memory), otherwise one KKT solve.
-        let end_rate = if any_acc { dense.end_rate() } else { None };
-        if any_acc && end_rate.is_none() {
-            self.ws.evaluate(self.model, &self.memory, t1, y1)?;
-        }
-        for j in 0..nm {
-            let m = &self.monitors[j].spec;
-            self.monitor_values[(k - 1) * nm + j] = match end_rate {
-                Some(f1) if m.quantity == Quantity::Acceleration => f1[nq + m.coordinate],
-                _ => self.monitored_value(j, y1),
-            };
-        }
         // Refine the largest interior acceleration error of each monitor with a KKT solve.
         let mut result = Ok(());
         for j in 0..nm {
@@ -378,6 +365,20 @@ impl<'a> MechanismSystem<'a> {
                     self.monitor_values[imax * nm + jj] = self.ws.qdd[mm.spec.coordinate];
                 }
             }
+        }
+        // The acceleration at t1: the explicit methods' last stage f(t1, y1) holds it (same
+        // memory), otherwise one KKT solve — done last, so that the workspace still holds it
+        // when the implicit methods ask for f(t1, y1) next (`Workspace::evaluate`).
+        let end_rate = if any_acc { dense.end_rate() } else { None };
+        if any_acc && end_rate.is_none() {
+            result = result.and_then(|()| self.ws.evaluate(self.model, &self.memory, t1, y1));
+        }
+        for j in 0..nm {
+            let m = &self.monitors[j].spec;
+            self.monitor_values[(k - 1) * nm + j] = match end_rate {
+                Some(f1) if m.quantity == Quantity::Acceleration => f1[nq + m.coordinate],
+                _ => self.monitored_value(j, y1),
+            };
         }
         self.scratch = s;
         result?;

@@ -26,6 +26,18 @@ pub struct Workspace {
     kkt: KktSolver,
     /// Scratch of [`Workspace::unit_force_response`]: its multipliers.
     unit_lambda: Vec<f64>,
+    /// The arguments of the last [`Workspace::evaluate`] while everything above still holds
+    /// its results (cleared by any other use of the workspace), so that the same evaluation
+    /// asked for again is not redone: RADAU5 asks for f(t1, y1) right after the monitors
+    /// have solved for the accelerations at t1.
+    last: Evaluated,
+}
+
+/// The arguments of an evaluation whose results the workspace holds (none while `t` is NaN).
+struct Evaluated {
+    t: f64,
+    y: Vec<f64>,
+    memory: Vec<ImpactMemory>,
 }
 
 impl Workspace {
@@ -53,6 +65,7 @@ impl Workspace {
             joint_force: vec![JointForce::default(); model.clearance.len()],
             kkt: KktSolver::new(vec![1.0; 3 * nb], &[]),
             unit_lambda: vec![0.0; rows],
+            last: Evaluated { t: f64::NAN, y: vec![0.0; 6 * nb], memory: vec![ImpactMemory::default(); model.clearance.len()] },
         };
         // The Jacobian's sparsity (which bodies each row touches) is fixed: take it from any pose.
         let n = 3 * nb;
@@ -64,6 +77,7 @@ impl Workspace {
 
     /// Body kinematics, Φ, Φt, γ and the Jacobian rows at (t, q, q̇).
     pub fn eval_constraints(&mut self, model: &Model, t: f64, q: &[f64], qd: &[f64]) {
+        self.forget();
         for (b, k) in self.kin.iter_mut().enumerate() {
             *k = BodyKin::new(&q[3 * b..3 * b + 3], &qd[3 * b..3 * b + 3]);
         }
@@ -80,6 +94,7 @@ impl Workspace {
 
     /// Solve the KKT system with the current `force` and `c`.
     pub fn solve_kkt(&mut self, t: f64) -> Result<()> {
+        self.forget();
         self.kkt
             .solve(&self.jac, &self.force, &self.c, &mut self.qdd, &mut self.lambda)
             .map_err(|index| Error::SingularJacobian { t, index })
@@ -88,6 +103,7 @@ impl Workspace {
     /// Factorise the KKT Schur complement at the pose of the last
     /// [`Workspace::eval_constraints`], for [`Workspace::unit_force_response`].
     pub fn factor_kkt(&mut self, t: f64) -> Result<()> {
+        self.forget();
         self.kkt.factor(&self.jac).map_err(|index| Error::SingularJacobian { t, index })
     }
 
@@ -98,8 +114,32 @@ impl Workspace {
         self.kkt.unit_force_response(k, out, &mut self.unit_lambda);
     }
 
-    /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`.
+    /// The results of the last evaluation no longer stand.
+    #[inline]
+    fn forget(&mut self) {
+        self.last.t = f64::NAN;
+    }
+
+    /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`. Returns at
+    /// once if the workspace already holds the evaluation at the same t, y and impact memory
+    /// (the same numbers: an evaluation is a function of these alone).
     pub fn evaluate(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
+        let last = &self.last;
+        if last.t == t && last.y == y && last.memory == memory {
+            return Ok(());
+        }
+        self.evaluate_afresh(model, memory, t, y)?;
+        let last = &mut self.last;
+        last.t = t;
+        // Sized for (q, q̇) and the model's joints in `Workspace::new`: no allocation.
+        last.y.clear();
+        last.y.extend_from_slice(y);
+        last.memory.clear();
+        last.memory.extend_from_slice(memory);
+        Ok(())
+    }
+
+    fn evaluate_afresh(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
         let n = 3 * model.n_bodies();
         let (q, qd) = (&y[..n], &y[n..2 * n]);
         self.eval_constraints(model, t, q, qd);
