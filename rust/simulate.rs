@@ -368,10 +368,10 @@ impl<'a> MechanismSystem<'a> {
         }
         // The acceleration at t1: the explicit methods' last stage f(t1, y1) holds it (same
         // memory), otherwise one KKT solve — done last, so that the workspace still holds it
-        // when the implicit methods ask for f(t1, y1) next (`Workspace::evaluate`).
+        // when the implicit methods ask for f(t1, y1) next (`Workspace::evaluate_and_keep`).
         let end_rate = if any_acc { dense.end_rate() } else { None };
         if any_acc && end_rate.is_none() {
-            result = result.and_then(|()| self.ws.evaluate(self.model, &self.memory, t1, y1));
+            result = result.and_then(|()| self.ws.evaluate_and_keep(self.model, &self.memory, t1, y1));
         }
         for j in 0..nm {
             let m = &self.monitors[j].spec;

@@ -26,10 +26,10 @@ pub struct Workspace {
     kkt: KktSolver,
     /// Scratch of [`Workspace::unit_force_response`]: its multipliers.
     unit_lambda: Vec<f64>,
-    /// The arguments of the last [`Workspace::evaluate`] while everything above still holds
-    /// its results (cleared by any other use of the workspace), so that the same evaluation
-    /// asked for again is not redone: RADAU5 asks for f(t1, y1) right after the monitors
-    /// have solved for the accelerations at t1.
+    /// The arguments of the last [`Workspace::evaluate_and_keep`] while everything above still
+    /// holds its results (cleared by any other use of the workspace), so that the same
+    /// evaluation asked for again is not redone: RADAU5 asks for f(t1, y1) right after the
+    /// monitors have solved for the accelerations at t1.
     last: Evaluated,
 }
 
@@ -121,14 +121,20 @@ impl Workspace {
     }
 
     /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`. Returns at
-    /// once if the workspace already holds the evaluation at the same t, y and impact memory
-    /// (the same numbers: an evaluation is a function of these alone).
+    /// once if the workspace holds the same evaluation from [`Workspace::evaluate_and_keep`]
+    /// (same t, y and impact memory: an evaluation is a function of these alone).
     pub fn evaluate(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
         let last = &self.last;
         if last.t == t && last.y == y && last.memory == memory {
             return Ok(());
         }
-        self.evaluate_afresh(model, memory, t, y)?;
+        self.evaluate_afresh(model, memory, t, y)
+    }
+
+    /// [`Workspace::evaluate`], remembering its arguments so that the same evaluation asked for
+    /// next is not redone (the copy is the cost: only where a repeat is likely).
+    pub fn evaluate_and_keep(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
+        self.evaluate(model, memory, t, y)?;
         let last = &mut self.last;
         last.t = t;
         // Sized for (q, q̇) and the model's joints in `Workspace::new`: no allocation.
