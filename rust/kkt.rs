@@ -13,6 +13,10 @@
 //! body contribute, and the rows are numbered in a minimum-degree order so that the factor has
 //! little fill-in (nine-bar: 51 instead of 65 non-zeros below the diagonal). All storage (the matrix, the right-hand side and the scatter vector) is
 //! allocated once in [`KktSolver::new`]; [`KktSolver::solve`] allocates nothing.
+//! On a small mechanism the rows of L and the bodies' lists of entries hold two or three items,
+//! so the numeric loops walk them with running indices and unchecked loads over index lists
+//! that are fixed at construction (`at`): the slicing and bounds checks otherwise cost more
+//! instructions than the arithmetic (nine-bar: −19 % of a dry cycle's instructions).
 //!
 //! The symbolic work (ordering, elimination tree, the pattern of L) is done once per model, in
 //! time and memory proportional to the non-zeros; S and L live in compressed rows and are
