@@ -10,13 +10,13 @@ use crate::clearance::ImpactMemory;
 use crate::model::Model;
 use crate::system::Workspace;
 
-/// Columns of the `energy` channel [J].
+/// Columns of the `energy` channel \[J\].
 pub const ENERGY_COLUMNS: [&str; 9] = ["kinetic", "gravity", "spring", "load", "motor", "driver", "damper", "contact", "friction"];
 
 /// How many of [`ENERGY_COLUMNS`] are stored energies; the rest are work done on the mechanism.
 pub const STORED: usize = 3;
 
-/// Powers [W] fed into the mechanism, in the order of the work columns.
+/// Powers \[W\] fed into the mechanism, in the order of the work columns.
 pub type Powers = [f64; 6];
 
 /// The work integrals of a run and the current step's quadrature data.
@@ -101,7 +101,7 @@ impl EnergyBook {
         p
     }
 
-    /// Kinetic, gravitational and elastic energy [J] at the state (q, q̇) whose body kinematics
+    /// Kinetic, gravitational and elastic energy \[J\] at the state (q, q̇) whose body kinematics
     /// `ws.kin` holds.
     pub fn stored(model: &Model, ws: &Workspace) -> [f64; 3] {
         let mut e = [0.0; 3];

@@ -183,7 +183,7 @@ impl ForceElement {
         }
     }
 
-    /// The spring-damper's tension [N] (positive pulls the points together), or the rotational
+    /// The spring-damper's tension \[N\] (positive pulls the points together), or the rotational
     /// element's torque on b [N m]; the applied load's magnitude otherwise.
     pub fn value(&self, t: f64, kin: &[BodyKin]) -> f64 {
         match self {
@@ -262,7 +262,7 @@ impl ForceElement {
         }
     }
 
-    /// Power [W] this element feeds into the mechanism that is not the rate of a potential:
+    /// Power \[W\] this element feeds into the mechanism that is not the rate of a potential:
     /// the damper part of a spring-damper (≤ 0), the applied loads and motors. A spring's
     /// elastic part is counted in [`ForceElement::potential`] instead.
     pub fn power(&self, t: f64, kin: &[BodyKin]) -> f64 {
@@ -282,7 +282,7 @@ impl ForceElement {
         }
     }
 
-    /// Elastic energy [J] stored in a spring; 0 for the other elements.
+    /// Elastic energy \[J\] stored in a spring; 0 for the other elements.
     pub fn potential(&self, kin: &[BodyKin]) -> f64 {
         match self {
             ForceElement::SpringDamper { a, sa, b, sb, stiffness, free_length, table, .. } => {

@@ -19,11 +19,11 @@ pub enum Quantity {
     Acceleration,
     /// Eccentricity ratio ε = e / c of a clearance joint.
     Eccentricity,
-    /// Magnitude of the joint's total force on the journal [N] (dry and film, blended).
+    /// Magnitude of the joint's total force on the journal \[N\] (dry and film, blended).
     Force,
-    /// Dry normal force F_N [N] (before the transition blend).
+    /// Dry normal force F_N \[N\] (before the transition blend).
     ContactForce,
-    /// Film force magnitude [N] (before the transition blend).
+    /// Film force magnitude \[N\] (before the transition blend).
     FilmForce,
 }
 
@@ -77,7 +77,7 @@ pub struct MonitorSpec {
     pub quantity: Quantity,
     #[cfg_attr(feature = "serde", serde(default))]
     pub reference: Option<Reference>,
-    /// Start of the analysed window [s] and the width [s] and number of its bins.
+    /// Start of the analysed window \[s\] and the width \[s\] and number of its bins.
     pub t_start: f64,
     pub bin_width: f64,
     #[cfg_attr(feature = "serde", serde(default = "one"))]
@@ -137,12 +137,12 @@ impl MonitorSpec {
 /// What the monitor found over the analysed window.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct MonitorResult {
-    /// Largest |error| and its time [s].
+    /// Largest |error| and its time \[s\].
     pub peak: f64,
     pub t_peak: f64,
-    /// First time |error| exceeded the limit [s] (NaN: never).
+    /// First time |error| exceeded the limit \[s\] (NaN: never).
     pub first_passage: f64,
-    /// Per bin: largest and smallest |error|, ∫|error| dt, ∫error² dt and the time covered [s].
+    /// Per bin: largest and smallest |error|, ∫|error| dt, ∫error² dt and the time covered \[s\].
     pub bin_max: Vec<f64>,
     pub bin_min: Vec<f64>,
     pub bin_abs: Vec<f64>,

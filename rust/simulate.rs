@@ -15,12 +15,12 @@ use crate::monitor::{Monitor, MonitorResult, MonitorSpec, Quantity};
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 
-/// Polled between steps (about every 64 accepted steps) with the time reached [s]; returning
+/// Polled between steps (about every 64 accepted steps) with the time reached \[s\]; returning
 /// `true` interrupts the run ([`Error::Interrupted`]). The Python glue uses it for Ctrl-C and
 /// progress bars.
 pub type StopCheck<'a> = &'a (dyn Fn(f64) -> bool + Sync);
 
-/// The deepest penetration δ = e − c [m] a clearance joint may reach before the run stops:
+/// The deepest penetration δ = e − c \[m\] a clearance joint may reach before the run stops:
 /// the larger of the clearance and 5 % of the journal radius. Hertzian contact laws assume a
 /// contact patch small against the radii; a journal driven deeper than this has left the
 /// model (a locked-up mechanism, a pose it cannot pass, a far too soft law) and would otherwise
@@ -40,7 +40,7 @@ pub struct RunSettings {
     /// Output times (sorted, within [t0, t_end]).
     pub t_out: Vec<f64>,
     pub channels: Channels,
-    /// Wall-time budget of the run [s] (`None`: none); a run over it stops with
+    /// Wall-time budget of the run \[s\] (`None`: none); a run over it stops with
     /// [`Error::TimeBudget`] and keeps what it computed.
     pub max_wall_time: Option<f64>,
     /// Outputs tracked between the output samples ([`crate::monitor`]).
@@ -129,7 +129,7 @@ pub struct MechanismSystem<'a> {
     step_memory: Vec<ImpactMemory>,
     pub recording: Recording,
     stop: Option<StopCheck<'a>>,
-    /// Start of the run and its wall-time budget [s] ([`RunSettings::max_wall_time`]).
+    /// Start of the run and its wall-time budget \[s\] ([`RunSettings::max_wall_time`]).
     pub budget: Option<(Instant, f64)>,
     /// The running extremes of [`RunSettings::monitors`], their values at the points of the
     /// current step (k × monitors) and a second state buffer for the dense derivative.

@@ -1,5 +1,5 @@
 //! Archard wear at dry clearance contacts (docs/physics.md §12): the worn volume grows as
-//! dV = (k/H) F_N |v_slip| dt (k the dimensionless wear coefficient, H the hardness [Pa]) and
+//! dV = (k/H) F_N |v_slip| dt (k the dimensionless wear coefficient, H the hardness \[Pa\]) and
 //! is laid down where the contact is, as a depth around the bearing and around the journal,
 //! dh = dV / (L R Δφ) in bins of Δφ = 2π/[`WEAR_BINS`] (L the bearing length, R the radius of
 //! the worn surface). Integrated along every accepted step (Simpson's rule, with the step's
@@ -16,14 +16,14 @@ pub const WEAR_BINS: usize = 360;
 pub struct Archard {
     /// Wear coefficient k over hardness H [1/Pa].
     pub k_over_h: f64,
-    /// Bearing (contact) length L [m].
+    /// Bearing (contact) length L \[m\].
     pub length: f64,
     /// Feed the worn depth back into the contact: the clearance grows where it wears.
     pub feedback: bool,
 }
 
 /// What a contact wears at one instant: the volume rate [m³/s] and the contact's angle on the
-/// bearing and on the journal [rad], counter-clockwise from each body's x axis.
+/// bearing and on the journal \[rad\], counter-clockwise from each body's x axis.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct WearRate {
     pub volume_rate: f64,
@@ -33,7 +33,7 @@ pub struct WearRate {
 
 impl WearRate {
     /// The rate of a contact with kinematics `k` and force `f`, its bearing and journal turned
-    /// by `theta_bearing`, `theta_journal` [rad].
+    /// by `theta_bearing`, `theta_journal` \[rad\].
     pub fn new(law: &Archard, k: &JointKinematics, f: &JointForce, theta_bearing: f64, theta_journal: f64) -> Self {
         let direction = k.n.y.atan2(k.n.x);
         WearRate {
@@ -44,7 +44,7 @@ impl WearRate {
     }
 }
 
-/// The wear depth accumulated around the bearing and the journal of one joint [m].
+/// The wear depth accumulated around the bearing and the journal of one joint \[m\].
 #[derive(Debug, Clone, PartialEq)]
 pub struct WearBook {
     pub law: Archard,
@@ -52,7 +52,7 @@ pub struct WearBook {
     pub radius_journal: f64,
     pub bearing: Vec<f64>,
     pub journal: Vec<f64>,
-    /// Total worn volume [m³].
+    /// Total worn volume \[m³\].
     pub volume: f64,
     last: WearRate,
 }
@@ -92,7 +92,7 @@ impl WearBook {
         }
     }
 
-    /// The worn depth [m] at the contact direction `direction` [rad, global], bearing turned by
+    /// The worn depth \[m\] at the contact direction `direction` [rad, global], bearing turned by
     /// `theta_bearing`, journal by `theta_journal`: the deepest bin within half a bin of the
     /// direction on each surface (a contact on a bin edge sees the groove on either side), summed.
     pub fn depth_at(&self, direction: f64, theta_bearing: f64, theta_journal: f64) -> f64 {

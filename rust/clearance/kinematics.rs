@@ -5,10 +5,10 @@ use crate::constraints::{BodyKin, V2};
 /// Eccentricity and the derived quantities every clearance law needs.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct JointKinematics {
-    /// Eccentricity vector e = r_Pj − r_Pi [m] and its rate [m/s].
+    /// Eccentricity vector e = r_Pj − r_Pi \[m\] and its rate [m/s].
     pub e_vec: V2,
     pub e_dot: V2,
-    /// |e| [m].
+    /// |e| \[m\].
     pub e: f64,
     /// Unit eccentricity n (bearing → journal centre; +x when e = 0) and t = n turned +90°.
     pub n: V2,
@@ -16,7 +16,7 @@ pub struct JointKinematics {
     /// ε = e / c and ε̇ [1/s].
     pub eps: f64,
     pub eps_dot: f64,
-    /// Penetration δ = e − c [m] (contact when > 0) and its rate δ̇ = n·ė [m/s].
+    /// Penetration δ = e − c \[m\] (contact when > 0) and its rate δ̇ = n·ė [m/s].
     pub delta: f64,
     pub delta_dot: f64,
     /// Slip of the journal's contact point relative to the bearing's, along t [m/s].
@@ -66,7 +66,7 @@ impl JointKinematics {
         Self::relative(e_vec, e_dot, bearing.w, journal.w, r_j, r_b, c)
     }
 
-    /// The same from the relative motion alone: eccentricity vector `e_vec` [m], its rate
+    /// The same from the relative motion alone: eccentricity vector `e_vec` \[m\], its rate
     /// `e_dot` [m/s] and the angular speeds of bearing `w_b` and journal `w_j` [rad/s] (the
     /// variables the joint's force law depends on; its Newton-matrix derivatives are taken in
     /// them).

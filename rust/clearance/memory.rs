@@ -10,7 +10,7 @@ pub struct ImpactMemory {
     pub impact_speed: f64,
     /// Number of impacts located so far.
     pub impacts: u64,
-    /// Worn depth [m] at the contact direction, added to the clearance of the contact law when
+    /// Worn depth \[m\] at the contact direction, added to the clearance of the contact law when
     /// the joint's wear is fed back (updated after every accepted step; docs/physics.md §12).
     pub wear_offset: f64,
 }

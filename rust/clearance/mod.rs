@@ -72,7 +72,7 @@ pub struct ClearanceJoint {
     /// body's frame. The "bearing" is then the guide (its point on the guide line), the
     /// "journal" the slider (its end point), `clearance` half the lateral play and the radii 0.
     pub guide_normal: Option<V2>,
-    /// Penetration [m] beyond which the run stops ([`crate::error::Error::PenetrationTooDeep`]).
+    /// Penetration \[m\] beyond which the run stops ([`crate::error::Error::PenetrationTooDeep`]).
     pub penetration_limit: f64,
     /// Archard wear, when asked for (docs/physics.md §12).
     pub wear: Option<crate::wear::Archard>,
@@ -81,13 +81,13 @@ pub struct ClearanceJoint {
 /// What the joint's law produced at one instant.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct JointForce {
-    /// Total force on the journal [N] (global); the bearing gets its opposite.
+    /// Total force on the journal \[N\] (global); the bearing gets its opposite.
     pub total: V2,
-    /// Dry normal force magnitude F_N [N] (before blending).
+    /// Dry normal force magnitude F_N \[N\] (before blending).
     pub normal: f64,
-    /// Dry tangential (friction) force along t [N] (before blending).
+    /// Dry tangential (friction) force along t \[N\] (before blending).
     pub tangential: f64,
-    /// Film force components along n and t [N] (before blending).
+    /// Film force components along n and t \[N\] (before blending).
     pub film_xi: f64,
     pub film_eta: f64,
     /// Weight of the dry law (0 in the film, 1 in full contact).

@@ -1,7 +1,7 @@
 //! Time integration: explicit Runge–Kutta methods, RODAS4 and RADAU5, with step control and
 //! dense output.
 //!
-//! One concept per file: `driver.rs` (the one driver loop and the [`Stepper`](driver::Stepper)
+//! One concept per file: `driver.rs` (the one driver loop and the `Stepper`
 //! trait a method implements), `tableau.rs` (Butcher tableaus with their sources),
 //! `explicit_rk.rs` (the RK4, DOPRI5 and DOP853 steppers), `stiff.rs` (RODAS4), `radau.rs`
 //! (RADAU5), `controller.rs` (PI step-size control, initial step), `dense.rs` (continuous
@@ -112,7 +112,7 @@ pub trait DenseOutput {
 /// Which method to integrate with.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Method {
-    /// Classic 4th-order Runge–Kutta with a fixed step `step` [s]; cubic Hermite dense output.
+    /// Classic 4th-order Runge–Kutta with a fixed step `step` \[s\]; cubic Hermite dense output.
     Rk4 { step: f64 },
     /// Dormand–Prince 5(4) with PI step control and 4th-order dense output (Hairer's DOPRI5).
     Dopri5,
@@ -133,11 +133,11 @@ pub struct Settings {
     pub rtol: f64,
     /// Absolute tolerance (> 0), applied to every component.
     pub atol: f64,
-    /// Initial step [s]; `None` picks one automatically (Hairer's algorithm).
+    /// Initial step \[s\]; `None` picks one automatically (Hairer's algorithm).
     pub h0: Option<f64>,
-    /// Largest step [s]; `f64::INFINITY` for none.
+    /// Largest step \[s\]; `f64::INFINITY` for none.
     pub h_max: f64,
-    /// Step-size floor [s]: a step this small that still fails is a
+    /// Step-size floor \[s\]: a step this small that still fails is a
     /// [`Error::StepSizeUnderflow`]. The effective floor is `max(h_min, 1e-14·|t|)`.
     pub h_min: f64,
     /// Stop with [`Error::TooManySteps`] after this many steps (accepted + rejected).
@@ -160,9 +160,9 @@ pub struct Stats {
     pub rhs_evals: usize,
     /// Jacobian (or W-matrix) evaluations of the stiff methods.
     pub jacobians: usize,
-    /// Smallest accepted step [s] (`f64::INFINITY` before the first).
+    /// Smallest accepted step \[s\] (`f64::INFINITY` before the first).
     pub h_min_used: f64,
-    /// Largest accepted step [s].
+    /// Largest accepted step \[s\].
     pub h_max_used: f64,
     /// Time reached (the end of the last accepted step).
     pub t_reached: f64,

@@ -274,7 +274,7 @@ pub fn table_for(k: f64) -> &'static FiniteBearingTable {
     cache.lock().unwrap_or_else(|e| e.into_inner()).entry(k.to_bits()).or_insert(table)
 }
 
-/// Film force `(F_ξ, F_η)` [N] on the journal from the bearing's table (module doc).
+/// Film force `(F_ξ, F_η)` \[N\] on the journal from the bearing's table (module doc).
 pub fn finite_bearing_force(g: &BearingGeometry, s: FilmState, table: &FiniteBearingTable) -> (f64, f64) {
     let eps = s.clamped_eps();
     let (a, b) = (s.wedge * eps, -2.0 * s.eps_dot);

@@ -57,8 +57,8 @@ fn pressure_kernel(eps: f64, eps_dot: f64, wedge: f64, sn: f64, cs: f64) -> f64 
     (wedge_part + squeeze_part) / (v * v)
 }
 
-/// Film pressure p(θ) [Pa] of the long bearing (docs/physics.md §4, P12 corrected), before the Gümbel
-/// cut. θ [rad] counter-clockwise from the thickest film. Finite at ε = 0 (the squeeze term is
+/// Film pressure p(θ) \[Pa\] of the long bearing (docs/physics.md §4, P12 corrected), before the Gümbel
+/// cut. θ \[rad\] counter-clockwise from the thickest film. Finite at ε = 0 (the squeeze term is
 /// written as `ε̇ (1 − cosθ)(2 + ε + ε cosθ)/((1 + ε cosθ)²(1 + ε)²)`, its exact form).
 pub fn long_bearing_pressure(g: &BearingGeometry, s: FilmState, theta: f64) -> f64 {
     let eps = s.clamped_eps();
@@ -215,7 +215,7 @@ fn long_arc(g: &BearingGeometry, s: FilmState) -> Arc {
     Arc::Long { eps, e1, e2, scale }
 }
 
-/// Long-bearing film force `(F_ξ, F_η)` [N] on the journal (docs/physics.md §4): `R L ∫ p⁺ (cosθ, sinθ) dθ`
+/// Long-bearing film force `(F_ξ, F_η)` \[N\] on the journal (docs/physics.md §4): `R L ∫ p⁺ (cosθ, sinθ) dθ`
 /// over the exact positive-pressure arc, in closed form (see the module doc; arcs shorter than
 /// 0.5 rad by Gauss–Legendre). Finite for every finite input: ε is clamped to [0, 1 − 1e-9];
 /// ε = 0 uses the exact limit of the squeeze term.
@@ -277,7 +277,7 @@ pub fn long_bearing_force(g: &BearingGeometry, s: FilmState) -> (f64, f64) {
     (scale * (wedge_xi + squeeze_xi), scale * (wedge_eta + squeeze_eta))
 }
 
-/// The long bearing's force at the bearing centre to first order in ε, `(F_ξ, F_η)` [N]
+/// The long bearing's force at the bearing centre to first order in ε, `(F_ξ, F_η)` \[N\]
 /// (docs/physics.md §4, "Through the centre"): with p = 0 at the thickest film the first-order
 /// squeeze pressure ∝ ε̇ (1 − cos θ) is one-signed and depends on which side n points; the
 /// periodic (Sommerfeld) first-order pressure with the Gümbel condition does not, and gives

@@ -23,7 +23,7 @@ use super::film::{BearingGeometry, FilmState};
 use std::f64::consts::TAU;
 
 /// Axially integrated short-bearing pressure P(θ) = ∫ p dz [Pa·m] before the Gümbel cut,
-/// θ [rad] counter-clockwise from the thickest film.
+/// θ \[rad\] counter-clockwise from the thickest film.
 pub fn short_bearing_pressure_integrated(g: &BearingGeometry, s: FilmState, theta: f64) -> f64 {
     let eps = s.clamped_eps();
     let (sn, cs) = theta.sin_cos();
@@ -32,7 +32,7 @@ pub fn short_bearing_pressure_integrated(g: &BearingGeometry, s: FilmState, thet
     g.viscosity * l3 / (2.0 * g.clearance * g.clearance) * (s.wedge * eps * sn - 2.0 * s.eps_dot * cs) / (v * v * v)
 }
 
-/// Short-bearing pressure p(θ, z) [Pa] before the Gümbel cut, z [m] ∈ [−L/2, L/2] axial.
+/// Short-bearing pressure p(θ, z) \[Pa\] before the Gümbel cut, z \[m\] ∈ [−L/2, L/2] axial.
 pub fn short_bearing_pressure(g: &BearingGeometry, s: FilmState, theta: f64, z: f64) -> f64 {
     let half = 0.5 * g.length;
     let weight = (half * half - z * z).max(0.0);
@@ -40,7 +40,7 @@ pub fn short_bearing_pressure(g: &BearingGeometry, s: FilmState, theta: f64, z: 
     short_bearing_pressure_integrated(g, s, theta) * 6.0 * weight / (g.length * g.length * g.length)
 }
 
-/// Short-bearing film force `(F_ξ, F_η)` [N] on the journal: `R ∫ P⁺ (cosθ, sinθ) dθ` over the
+/// Short-bearing film force `(F_ξ, F_η)` \[N\] on the journal: `R ∫ P⁺ (cosθ, sinθ) dθ` over the
 /// positive half film (module doc), in closed form. ε is clamped to [0, 1 − 1e-9].
 pub fn short_bearing_force(g: &BearingGeometry, s: FilmState) -> (f64, f64) {
     let eps = s.clamped_eps();

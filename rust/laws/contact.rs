@@ -1,6 +1,6 @@
 //! Normal impact force of a dry revolute clearance joint (docs/physics.md §3, paper Eqs. 3–4).
 //!
-//! Continuous-force laws of the form `F_N = K δⁿ (1 + D δ̇ / δ̇⁽⁻⁾)` for penetration `δ > 0` [m],
+//! Continuous-force laws of the form `F_N = K δⁿ (1 + D δ̇ / δ̇⁽⁻⁾)` for penetration `δ > 0` \[m\],
 //! penetration speed `δ̇` [m/s] (positive while approaching) and `δ̇⁽⁻⁾` [m/s], the approach speed
 //! recorded at the onset of the impact. `K` [N/m^n] is the generalized stiffness; `D` the
 //! dimensionless hysteresis factor of the chosen law.
@@ -83,10 +83,10 @@ impl ContactLaw {
         hysteresis_factor(self.law, self.restitution)
     }
 
-    /// Normal contact force `F_N` [N] (magnitude, pushing the bodies apart), paper Eq. (3):
+    /// Normal contact force `F_N` \[N\] (magnitude, pushing the bodies apart), paper Eq. (3):
     /// `F_N = K δⁿ (1 + D δ̇ / δ̇⁽⁻⁾)` for `δ > 0`, else 0.
     ///
-    /// - `delta` [m]: penetration `e − c`; `delta_dot` [m/s]: its rate (positive approaching).
+    /// - `delta` \[m\]: penetration `e − c`; `delta_dot` [m/s]: its rate (positive approaching).
     /// - `impact_speed` [m/s]: `δ̇⁽⁻⁾` recorded at the onset of this impact; its magnitude is
     ///   floored at `impact_speed_floor`. If both are 0 the damping term is dropped (Hertz).
     /// - The result is clamped to ≥ 0: during restitution the damping term can exceed the elastic

@@ -1,6 +1,6 @@
 //! Shared oil-film types and the film-model dispatch (docs/physics.md §4).
 //!
-//! Convention (all film models): the returned pair `(F_ξ, F_η)` [N] is the force of the film ON
+//! Convention (all film models): the returned pair `(F_ξ, F_η)` \[N\] is the force of the film ON
 //! THE JOURNAL along `n` (unit eccentricity vector, bearing centre → journal centre) and along
 //! `t` = `n` turned +90°. The angle θ is measured counter-clockwise from the thickest film (the
 //! direction −n); film thickness `h = c (1 + ε cos θ)`; `F_ξ = R L ∫ p⁺ cos θ dθ`,
@@ -21,11 +21,11 @@ pub const FILM_EPS_CEILING: f64 = 1.0 - 1e-9;
 pub struct BearingGeometry {
     /// Dynamic viscosity μ [Pa·s].
     pub viscosity: f64,
-    /// Journal radius R [m].
+    /// Journal radius R \[m\].
     pub journal_radius: f64,
-    /// Radial clearance c = R_b − R_j [m].
+    /// Radial clearance c = R_b − R_j \[m\].
     pub clearance: f64,
-    /// Bearing length L [m].
+    /// Bearing length L \[m\].
     pub length: f64,
 }
 
@@ -72,7 +72,7 @@ pub enum FilmModel {
     Finite,
 }
 
-/// Film force `(F_ξ, F_η)` [N] on the journal for `model` (see the module doc for the frame).
+/// Film force `(F_ξ, F_η)` \[N\] on the journal for `model` (see the module doc for the frame).
 /// `table` is the bearing's finite-length table (`FilmModel::Finite` only; without it the
 /// finite model falls back to building or fetching it from the process cache).
 pub fn film_force(model: FilmModel, g: &BearingGeometry, s: FilmState, table: Option<&FiniteBearingTable>) -> (f64, f64) {
@@ -87,7 +87,7 @@ pub fn film_force(model: FilmModel, g: &BearingGeometry, s: FilmState, table: Op
     }
 }
 
-/// Attitude angle [rad] in [0, π]: the angle between the external load carried by the film
+/// Attitude angle \[rad\] in [0, π]: the angle between the external load carried by the film
 /// (`−F`) and the eccentricity direction `n`, `atan2(|F_η|, −F_ξ)`. Under a steady load a journal
 /// turning counter-clockwise sits with `n` turned from the load line by this angle in the
 /// direction of rotation (this is the β of Butenschön's tables).

@@ -26,8 +26,8 @@ impl ModifiedCoulomb {
         }
     }
 
-    /// Tangential friction force [N] along the tangent `t`, given the normal force magnitude
-    /// `F_N` [N] and the tangential slip velocity `v_t` [m/s] (relative velocity along `t` of the
+    /// Tangential friction force \[N\] along the tangent `t`, given the normal force magnitude
+    /// `F_N` \[N\] and the tangential slip velocity `v_t` [m/s] (relative velocity along `t` of the
     /// body the force acts on): `F_t = −c_f c_d F_N sign(v_t)`; 0 at `v_t = 0`.
     pub fn tangential_force(&self, normal_force: f64, slip_velocity: f64) -> f64 {
         if slip_velocity == 0.0 || slip_velocity.is_nan() {

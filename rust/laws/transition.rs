@@ -19,8 +19,8 @@ pub fn small_eccentricity_scale(eps: f64, eps0: f64, m: f64) -> f64 {
     }
 }
 
-/// Weights `(w_film, w_dry)` of the transition force (P18), eccentricity `e` [m], radial
-/// clearance `c` [m], transition width `e0` [m]:
+/// Weights `(w_film, w_dry)` of the transition force (P18), eccentricity `e` \[m\], radial
+/// clearance `c` \[m\], transition width `e0` \[m\]:
 /// `e < c`: (1, 0); `c ≤ e ≤ c + e0`: `((c + e0 − e)/e0, (e − c)/e0)`; `e > c + e0`: (0, 1).
 /// The force is `w_film F_film + w_dry F_dry`; the weights are continuous and sum to 1.
 /// For `e0 ≤ 0` the blend degenerates to a switch at `e = c` (dry from `e = c` on).

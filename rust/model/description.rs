@@ -9,13 +9,13 @@ use crate::laws::film::FilmModel;
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyDesc {
     pub name: String,
-    /// Mass [kg] (> 0).
+    /// Mass \[kg\] (> 0).
     pub mass: f64,
     /// Moment of inertia about the centroid [kg m²] (> 0).
     pub inertia: f64,
-    /// Approximate centroid position [m] at t0 (refined by the kinematic assembly).
+    /// Approximate centroid position \[m\] at t0 (refined by the kinematic assembly).
     pub position: [f64; 2],
-    /// Approximate angle [rad] at t0.
+    /// Approximate angle \[rad\] at t0.
     #[cfg_attr(feature = "serde", serde(default))]
     pub angle: f64,
     /// Optional initial velocity guess (ẋ, ẏ, θ̇) [m/s, rad/s]; projected onto the constraints.
@@ -67,7 +67,7 @@ pub struct DriverDesc {
 #[derive(Debug, Clone, PartialEq)]
 pub struct DryDesc {
     pub normal_law: NormalLaw,
-    /// Young's modulus of the bearing / journal [Pa].
+    /// Young's modulus of the bearing / journal \[Pa\].
     pub youngs_bearing: f64,
     pub youngs_journal: f64,
     /// Poisson's ratio of the bearing / journal [-].
@@ -98,9 +98,9 @@ pub struct DryDesc {
 pub struct WearDesc {
     /// Dimensionless wear coefficient k.
     pub coefficient: f64,
-    /// Hardness H of the softer surface [Pa].
+    /// Hardness H of the softer surface \[Pa\].
     pub hardness: f64,
-    /// Bearing (contact) length L [m] over which the volume spreads.
+    /// Bearing (contact) length L \[m\] over which the volume spreads.
     pub length: f64,
     /// Feed the worn depth back into the contact geometry (default false).
     #[cfg_attr(feature = "serde", serde(default))]
@@ -115,14 +115,14 @@ pub struct LubricatedDesc {
     pub film: FilmModel,
     /// Dynamic viscosity μ [Pa s].
     pub viscosity: f64,
-    /// Bearing length L [m].
+    /// Bearing length L \[m\].
     pub length: f64,
     /// Small-eccentricity threshold ε0 and exponent m (P15–P16); default 2e-6 and 0.5.
     #[cfg_attr(feature = "serde", serde(default = "default_eps0"))]
     pub eps0: f64,
     #[cfg_attr(feature = "serde", serde(default = "default_m"))]
     pub m: f64,
-    /// Transition band width e0 [m] (P18); `None`: 5 % of the clearance.
+    /// Transition band width e0 \[m\] (P18); `None`: 5 % of the clearance.
     #[cfg_attr(feature = "serde", serde(default))]
     pub e0: Option<f64>,
     /// The film is evaluated at min(ε, ε_max) inside the transition band; default 0.99.
@@ -150,12 +150,12 @@ pub struct ClearanceJointDesc {
     pub bearing_point: [f64; 2],
     pub journal_body: BodyRef,
     pub journal_point: [f64; 2],
-    /// Journal radius R_j [m]; bearing radius R_b = R_j + clearance.
+    /// Journal radius R_j \[m\]; bearing radius R_b = R_j + clearance.
     pub journal_radius: f64,
-    /// Radial clearance c = R_b − R_j [m].
+    /// Radial clearance c = R_b − R_j \[m\].
     pub clearance: f64,
     pub model: ClearanceModelDesc,
-    /// Initial eccentricity vector e = r_Pj − r_Pi [m] (global frame); zero is centred.
+    /// Initial eccentricity vector e = r_Pj − r_Pi \[m\] (global frame); zero is centred.
     #[cfg_attr(feature = "serde", serde(default))]
     pub initial_eccentricity: [f64; 2],
 }
@@ -172,11 +172,11 @@ pub struct PrismaticClearanceDesc {
     pub guide_point: [f64; 2],
     pub slider_body: usize,
     pub axis: [f64; 2],
-    /// Guide gap minus slider thickness [m] (the slider can move ±clearance/2 sideways).
+    /// Guide gap minus slider thickness \[m\] (the slider can move ±clearance/2 sideways).
     pub clearance: f64,
-    /// Distance between the slider's two contact ends [m].
+    /// Distance between the slider's two contact ends \[m\].
     pub slider_length: f64,
-    /// Radius of the slider's rounded corners [m]: the Hertz sphere-on-plane contact stiffness
+    /// Radius of the slider's rounded corners \[m\]: the Hertz sphere-on-plane contact stiffness
     /// uses it when the dry law gives no stiffness.
     #[cfg_attr(feature = "serde", serde(default = "default_corner_radius"))]
     pub corner_radius: f64,
@@ -194,9 +194,9 @@ fn default_corner_radius() -> f64 {
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum TableArgument {
-    /// Time t [s].
+    /// Time t \[s\].
     Time,
-    /// The absolute angle θ [rad] of a body (a driven crank: the driver's angle).
+    /// The absolute angle θ \[rad\] of a body (a driven crank: the driver's angle).
     Angle { body: usize },
 }
 
@@ -236,7 +236,7 @@ pub enum Frame {
 #[derive(Debug, Clone, PartialEq)]
 pub enum ForceDesc {
     /// Translational spring-damper between two body points: tension
-    /// F = k (ℓ − ℓ₀) + c ℓ̇, or F = table(ℓ − ℓ₀) + c ℓ̇ [N].
+    /// F = k (ℓ − ℓ₀) + c ℓ̇, or F = table(ℓ − ℓ₀) + c ℓ̇ \[N\].
     SpringDamper {
         name: String,
         body_a: BodyRef,
@@ -249,10 +249,10 @@ pub enum ForceDesc {
         /// c [N s/m].
         #[cfg_attr(feature = "serde", serde(default))]
         damping: f64,
-        /// ℓ₀ [m]; `None`: the assembled distance.
+        /// ℓ₀ \[m\]; `None`: the assembled distance.
         #[cfg_attr(feature = "serde", serde(default))]
         free_length: Option<f64>,
-        /// Force–deflection table (deflection [m] → tension [N]) used instead of k.
+        /// Force–deflection table (deflection \[m\] → tension \[N\]) used instead of k.
         #[cfg_attr(feature = "serde", serde(default))]
         force_table: Option<Table>,
     },
@@ -268,11 +268,11 @@ pub enum ForceDesc {
         /// c [N m s/rad].
         #[cfg_attr(feature = "serde", serde(default))]
         damping: f64,
-        /// φ₀ [rad]; `None`: the assembled relative angle.
+        /// φ₀ \[rad\]; `None`: the assembled relative angle.
         #[cfg_attr(feature = "serde", serde(default))]
         free_angle: Option<f64>,
     },
-    /// A force (F_x, F_y) [N] at a body point, its components in the global or the body frame.
+    /// A force (F_x, F_y) \[N\] at a body point, its components in the global or the body frame.
     Force {
         name: String,
         body: usize,
