@@ -601,6 +601,32 @@ impl KktSolver {
         }
     }
 
+    /// Every index the unchecked loads (`at`, `at_mut`) follow is inside the array it indexes:
+    /// the invariant that makes them sound, checked on any solver the tests build (in release
+    /// builds too, where the `debug_assert!`s are gone).
+    #[cfg(test)]
+    fn assert_index_lists_in_bounds(&self) {
+        let (m, entries, nb) = (self.rows, self.coef.len(), self.body_start.len() - 1);
+        let f = &self.factor;
+        let (nnz, slots) = (f.nnz, f.vals.len());
+        assert_eq!((self.inv_mass.len(), self.mcoef.len(), self.entry_pos.len(), self.entry_body.len()), (3 * nb, entries, entries, entries));
+        assert_eq!((self.body_start[nb], self.rhs.len(), f.inv_diag.len(), slots), (entries, m, m, nnz + m));
+        assert!(self.body_start.windows(2).all(|w| w[0] <= w[1]));
+        assert!(self.entry_pos.iter().all(|&p| (p as usize) < m));
+        assert!(self.entry_body.iter().all(|&b| b as usize + 2 < 3 * nb));
+        assert!(self.body_rows.iter().all(|&(r, k)| (r as usize) < m && k < 2));
+        assert!(self.pair_slot.iter().all(|&[p, q, slot]| (p as usize) < entries && (q as usize) < entries && (slot as usize) < slots));
+        let pattern = &self.pattern;
+        assert_eq!((pattern.start.len(), pattern.start[m], pattern.cols.len()), (m + 1, nnz, nnz));
+        assert!(pattern.start.windows(2).all(|w| w[0] <= w[1]));
+        assert!(pattern.cols.iter().all(|&c| (c as usize) < m));
+        if let Some(tape) = &f.tape {
+            assert_eq!((tape.start.len(), tape.start[nnz] as usize), (nnz + 1, tape.pairs.len()));
+            assert!(tape.start.windows(2).all(|w| w[0] <= w[1]));
+            assert!(tape.pairs.iter().all(|&[a, b]| (a as usize) < nnz && (b as usize) < nnz));
+        }
+    }
+
     /// `q̈ = −M⁻¹ Φqᵀ λ`, body by body, with λ in `rhs` (factor order).
     fn accelerations(&self, qdd: &mut [f64]) {
         // The entries of a body follow each other: one running index, no per-body slicing.
@@ -677,6 +703,7 @@ mod tests {
             let force: Vec<f64> = (0..n).map(|_| rnd()).collect();
             let c: Vec<f64> = (0..m).map(|_| rnd()).collect();
             let mut kkt = KktSolver::new(inv_mass.clone(), &rows);
+            kkt.assert_index_lists_in_bounds();
             let (mut qdd, mut lam) = (vec![0.0; n], vec![0.0; m]);
             kkt.solve(&rows, &force, &c, &mut qdd, &mut lam).unwrap();
             // The factorisation from its tape and by the scatter loop: the same to the last bit.
