@@ -55,7 +55,7 @@ def tolerance(n=128, kind="dry"):
     import numpy as np
 
     peaks, times = {}, {}
-    for rtol in (1e-7, 1e-6) if kind == "dry" else (1e-7, 1e-6, 1e-5, 1e-4):
+    for rtol in (1e-7, 1e-6, 1e-5) if kind == "dry" else (1e-7, 1e-6, 1e-5, 1e-4):
         st = study(kind, 1.0, rtol=rtol, atol=rtol * 1e-3)
         t = time.perf_counter()
         peaks[rtol] = st.monte_carlo(n, seed=5).peaks
