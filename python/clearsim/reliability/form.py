@@ -5,15 +5,16 @@ control make ``g`` jitter when the inputs move by 1e-3 of their spread. FORM her
 Hasofer–Lind–Rackwitz–Fiessler search (Zhang & Der Kiureghian 1995; docs/reliability.md, "Noisy
 limit states"), with three guards against that noise:
 
-1. the noise σ_g of the limit state is measured before the search: g on 9 points 0.01 apart
+1. the noise σ_g of the limit state is measured before the search (9 runs): g on 9 points 0.01 apart
    (in u) along a random direction, a quadratic fitted by least squares, σ_g its residual
    standard deviation;
 2. the gradient is a regression over the 2d points ``u ± h e_i`` (one batch of runs, in
    parallel) with the step ``h = 35 σ_g / |∇g|`` (the gradient's noise ≤ 2 % of its size),
    clipped to [0.001, 0.5]; ``step=`` fixes h instead;
 3. a design point is accepted when ``|g(u*)| ≤ 3 σ_g`` with a :class:`ReliabilityWarning` that
-   gives β's uncertainty from the noise, ``σ_g / |∇g|``; a search that does not converge raises
-   :class:`ReliabilityError` naming its best point and what to use instead.
+   gives β's uncertainty from the noise, ``σ_g / |∇g|``; a search that does not converge, or
+   whose β the noise leaves uncertain by more than 10 %, raises :class:`ReliabilityError` naming
+   its best point and what to use instead.
 
 A series system (the mechanism fails when any mode fails) gets FORM per mode and, from the modes'
 design points, the correlation ρ_ij = α_i·α_j of their linearised margins, the first-order series
@@ -43,10 +44,18 @@ NOISE_POINTS = 9
 #: clipped to [MIN_STEP, MAX_STEP] in u.
 STEP_FACTOR = 35.0
 MIN_STEP, MAX_STEP = 1e-3, 0.5
+#: The first gradient's step in u (before |∇g| is known).
+FIRST_STEP = 0.05
 #: A design point is on the limit state when |g| ≤ G_TOLERANCE · max(1, |g(start)|), or within
 #: NOISE_BAND σ_g of it on a noisy limit state (then with a warning).
 G_TOLERANCE = 1e-4
 NOISE_BAND = 3.0
+#: A limit state whose noise exceeds this fraction of |g| and of |∇g| (per unit of u) at the start
+#: has no gradient to follow.
+NOISE_MARGIN = 0.2
+#: Beyond this uncertainty of β from the noise (relative, at least 1 in u) there is no design
+#: point to speak of: FORM raises.
+BETA_NOISE_LIMIT = 0.1
 
 
 @dataclass
@@ -132,18 +141,20 @@ def form(
     auto = isinstance(step, str)
     if auto and step != "auto":
         raise InputError(f"invalid step = {step!r}: give 'auto' or a step in the standard normal space (e.g. 0.05)", field="step", value=step)
-    h = MIN_STEP if auto else check_positive("step", step)
+    h = FIRST_STEP if auto else check_positive("step", step)
     if isinstance(max_iterations, bool) or int(max_iterations) < 1:
         raise InputError(f"invalid max_iterations = {max_iterations!r}: must be a positive integer", field="max_iterations", value=max_iterations)
     u = np.zeros(d) if start is None else np.asarray([float(v) for v in start], dtype=float)
     if u.size != d:
         raise InputError(f"invalid start: {u.size} values for {d} random inputs", field="start", value=list(u))
-    noise = limit_state_noise(model, u, on_failure) if auto else 0.0
+    noise = limit_state_noise(model, u, on_failure)
     g, grad = _gradient(model, u, h, on_failure)
     if auto:
         h = _step(noise, grad, h)
         g, grad = _gradient(model, u, h, on_failure)
     g_scale = max(1.0, abs(g))
+    if noise > NOISE_MARGIN * max(abs(g), float(np.linalg.norm(grad))):
+        raise _no_convergence(model, (abs(g), u, g, grad), noise, f"the limit state's noise σ_g = {noise:.3g} is not small against its value g = {g:.3g} and slope |∇g| = {float(np.linalg.norm(grad)):.3g} at the start")
     best = (abs(g), u.copy(), g, grad.copy())
     history: List[float] = []
     converged = False
@@ -172,11 +183,11 @@ def form(
             best = (abs(g), u.copy(), g, grad.copy())
         history.append(moved)
         on_surface = abs(g) <= G_TOLERANCE * g_scale or abs(g) <= NOISE_BAND * noise
-        if moved < tolerance * max(1.0, float(np.linalg.norm(u))) and on_surface:
-            converged = True
-            break
-        # Stalled at the noise floor: the steps no longer shrink but g is within the noise band.
-        if len(history) >= 4 and noise > 0 and abs(g) <= NOISE_BAND * noise and max(history[-3:]) < 10 * NOISE_BAND * noise / math.sqrt(norm2):
+        # How far u moves from one iteration to the next from the noise alone: the gradient's
+        # direction is uncertain by about √d σ_g / (√2 h |∇g|), which turns u* on the sphere
+        # |u| = β, plus g's own noise along the gradient, σ_g / |∇g|.
+        wander = (math.sqrt(d) * noise / (math.sqrt(2.0) * h) * float(np.linalg.norm(u)) + noise) / math.sqrt(float(grad @ grad) or 1.0)
+        if on_surface and moved < max(tolerance * max(1.0, float(np.linalg.norm(u))), NOISE_BAND * wander):
             converged = True
             break
     if not converged:
@@ -195,6 +206,11 @@ def form(
     beta = float(alpha @ u)
     beta_noise = noise / norm_grad if norm_grad > 0 else math.inf
     accepted_at_noise = abs(g) > G_TOLERANCE * g_scale
+    grad_noise = math.sqrt(d) * noise / (math.sqrt(2.0) * h)  # the regression gradient's own noise
+    if norm_grad < 3.0 * grad_noise:
+        raise _no_convergence(model, (abs(g), u, g, grad), noise, f"the gradient |∇g| = {norm_grad:.3g} is lost in its noise ({grad_noise:.3g} at the step h = {h:.3g} from σ_g = {noise:.3g})")
+    if beta_noise > BETA_NOISE_LIMIT * max(1.0, abs(beta)):
+        raise _no_convergence(model, (abs(g), u, g, grad), noise, f"the limit state's noise σ_g = {noise:.3g} makes β = {beta:.3g} uncertain by ±{beta_noise:.2g} (σ_g / |∇g|)")
     if accepted_at_noise:
         warnings.warn(
             f"FORM: design point accepted at the noise level of the limit state: |g(u*)| = {abs(g):.3g} is within {NOISE_BAND:g} σ_g "
@@ -288,7 +304,7 @@ def series_probability(beta: Any, rho: np.ndarray) -> float:
         r = (v * np.maximum(w, 1e-10)) @ v.T
         dd = np.sqrt(np.diag(r))
         r = r / np.outer(dd, dd)
-    p_safe = float(stats.multivariate_normal(mean=np.zeros(b.size), cov=r, allow_singular=True).cdf(b, abseps=1e-10, releps=1e-8))
+    p_safe = float(stats.multivariate_normal(mean=np.zeros(b.size), cov=r, allow_singular=True, abseps=1e-10, releps=1e-8).cdf(b))
     return float(min(1.0, max(0.0, 1.0 - p_safe, float(special.ndtr(-b).max()))))
 
 
