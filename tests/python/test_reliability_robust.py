@@ -191,3 +191,38 @@ def test_limits_above_and_below():
     assert rel.outputs.as_limit(("below", 2e-6), film) == rel.Limit.below(2e-6)
     with pytest.raises(clearsim.InputError, match="2 limits for 3 outputs"):
         rel.outputs.limits_and_outputs([film, film, film], [("below", 1e-6), ("below", 2e-6)])
+
+
+# ------------------------------------------------------------------ a study with two failure modes
+def _slider_crank(c):
+    return clearsim.models.slider_crank("dry", clearance=c, rpm=5000, journal_radius=10e-3 - c)
+
+
+def test_study_of_two_outputs_is_a_series_system_from_the_same_runs():
+    """The slider's displacement error (upper limit) and the rod–slider pin's smallest gap
+    h_min = c (1 − ε_max) (lower limit; negative: the dry pin's deepest penetration): the system
+    fails when either does, each mode's p_f from the same 16 runs; h_min against a dense stored
+    trace's eccentricity (a second method: the monitor sees every step, the trace its grid)."""
+    st = rel.Study(
+        _slider_crank, {"c": rel.Uniform(0.2e-3, 0.5e-3)},
+        output=[rel.Output(body="slider", component="x"), rel.Output(joint="rod-slider", quantity="film_thickness")],
+        limit=[3.5e-4, rel.Limit.below(-6e-5)], omega=5000 * 2 * math.pi / 60, cycles=0.5, progress=False,
+    )  # fmt: skip
+    assert st.mode_names == ["slider.x.displacement", "rod-slider.film_thickness"]
+    mc = st.monte_carlo(16, seed=1)
+    assert mc.peaks.shape == (16, 2) and mc.n_runs == 16
+    exceed = np.column_stack([mc.peaks[:, 0] > 3.5e-4, mc.peaks[:, 1] < -6e-5])
+    assert 0 < exceed[:, 0].sum() < 16 and 0 < exceed[:, 1].sum() < 16  # both modes matter here
+    assert mc.pf == pytest.approx(exceed.any(axis=1).mean())
+    assert [m.pf for m in mc.modes] == pytest.approx(list(exceed.mean(axis=0)))
+    assert mc.pf >= max(m.pf for m in mc.modes)
+    t1 = 0.5 * 60 / 5000
+    for k in range(2):
+        c = mc.inputs["c"][k]
+        res = _slider_crank(c).simulate(t1, t_out=np.linspace(0.0, t1, 30001), progress=False)
+        h_trace = c - np.max(np.linalg.norm(res.eccentricity("rod-slider"), axis=1))
+        assert mc.peaks[k, 1] == pytest.approx(h_trace, rel=0.01)
+    # The limit state of a system is its weakest mode's.
+    u = np.array([[0.0], [1.5]])
+    g = st.limit_states(u)
+    assert g.shape == (2, 2) and np.allclose(st.limit_state(u), g.min(axis=1))

@@ -13,7 +13,7 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_positive, renamed
+from ..errors import InputError, check_choice, check_finite, check_positive, renamed
 from ..running import COMPONENTS
 
 __all__ = ["BODY_QUANTITIES", "JOINT_QUANTITIES", "Output", "Limit", "as_limit"]
@@ -94,7 +94,8 @@ class Output:
 class Limit:
     """The limit of one output: failure when the output's peak over the window passes ``value``
     (``side="above"``, the default: an error, a force) or when its minimum falls below ``value``
-    (``side="below"``: a film thickness). ``value`` is in the output's unit and positive.
+    (``side="below"``: a film thickness). ``value`` is in the output's unit: positive for an
+    upper limit, non-zero for a lower one (a negative smallest gap is a penetration depth).
 
     ``Limit.above(1e-3)``, ``Limit.below(2e-6)``; a study also takes a bare number (above) or
     ``("below", 2e-6)``."""
@@ -104,7 +105,10 @@ class Limit:
 
     def __post_init__(self) -> None:
         check_choice("Limit.side", self.side, SIDES)
-        object.__setattr__(self, "value", check_positive("Limit.value", self.value))
+        if self.side == "above":
+            object.__setattr__(self, "value", check_positive("Limit.value", self.value))
+        elif check_finite("Limit.value", self.value) == 0.0:
+            raise InputError("invalid Limit.value = 0: a lower limit must be non-zero (g is scaled by it)", field="Limit.value", value=self.value)
 
     @classmethod
     def above(cls, value: float) -> "Limit":
@@ -118,10 +122,10 @@ class Limit:
 
     def g(self, extreme: Any) -> np.ndarray:
         """The limit-state value of the output's extreme over the window (peak for ``above``,
-        minimum for ``below``), scaled by the limit: ``1 − x/value`` or ``x/value − 1``; failure
-        when ``g ≤ 0``."""
+        minimum for ``below``), scaled by the limit: ``1 − x/value`` or
+        ``(x − value)/|value|``; failure when ``g ≤ 0``."""
         x = np.asarray(extreme, dtype=float)
-        return 1.0 - x / self.value if self.side == "above" else x / self.value - 1.0
+        return 1.0 - x / self.value if self.side == "above" else (x - self.value) / abs(self.value)
 
     def exceeded(self, extreme: Any) -> np.ndarray:
         """Whether the extreme passes the limit (NaN: no)."""
@@ -143,7 +147,7 @@ def as_limit(value: Any, output: Output, field: str = "limit") -> Limit:
     elif isinstance(value, (tuple, list)):
         if len(value) != 2 or value[0] not in SIDES:
             raise InputError(f"invalid {field} = {value!r}: give a number, ('above', x), ('below', x) or Limit.above/below(x)", field=field, value=value)
-        limit = Limit(check_positive(field, value[1]), str(value[0]))
+        limit = Limit(check_finite(field, value[1]), str(value[0]))
     else:
         limit = Limit(check_positive(field, value), "above")
     if output.quantity == "film_thickness" and limit.side != "below":
