@@ -181,9 +181,10 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
         tol = (name, r, tuple(bracket) if bracket else None)
     step: Union[float, str] = "auto"
     if "step" in t:
-        step = t.number("step")
-        if not step > 0:
-            raise t.error("step", f"invalid study.step = {step!r}: FORM's gradient step in the standard normal space must be positive", step)
+        fixed = float(t.number("step"))
+        if not fixed > 0:
+            raise t.error("step", f"invalid study.step = {fixed!r}: FORM's gradient step in the standard normal space must be positive", fixed)
+        step = fixed
     return StudySettings(
         outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
         methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", 18.0), tolerance=tol,
