@@ -68,6 +68,20 @@ class InterruptedRun(SimulationError):
     a warning instead of raising this."""
 
 
+class ReliabilityError(ClearsimError, RuntimeError):
+    """A reliability method that cannot give a trustworthy answer on this model (FORM that does
+    not converge on a noisy limit state, for example). The message says why and what to use
+    instead; ``method`` names the method and ``best`` holds its best point where it has one."""
+
+    method: str = ""
+    best: Any = None
+
+
+class ReliabilityWarning(UserWarning):
+    """A reliability answer given with a caveat the user should read (a FORM design point
+    accepted at the noise level of the limit state, a Sobol interval wider than 0.2)."""
+
+
 def check_finite(field: str, value: Any) -> float:
     """``float(value)``, or :class:`InputError` naming ``field`` if it is not a finite number."""
     try:

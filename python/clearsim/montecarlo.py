@@ -1,55 +1,40 @@
-"""Monte Carlo dynamic-accuracy reliability (docs/physics.md §6, beyond the paper).
+"""``clearsim.monte_carlo``: Monte Carlo dynamic-accuracy reliability of one body coordinate's
+errors with per-bin tables and stored error traces (docs/physics.md §6, beyond the paper).
 
-Random inputs (clearance sizes, lengths, drive speed, friction, viscosity …) are sampled, each
-sample's mechanism and its ideal counterpart are simulated — in parallel inside the Rust core
-with the GIL released, or through any ``concurrent.futures``-style executor (for example a Dask
-cluster's ``client.get_executor()``) when the sweep outgrows one machine — and the errors of one
-output are turned into per-bin reliability and the first-passage probability, with confidence
-intervals, next to FOSM.
+A thin layer over :class:`clearsim.reliability.Study`: the samples run through the study's one
+sample loop (:meth:`Study.run_samples`: in parallel inside the Rust core with the GIL released,
+or through any ``concurrent.futures``-style executor), each quantity an output of the study; this
+module turns the runs' monitors and stored traces into per-bin reliability and the first-passage
+probability with confidence intervals, next to FOSM (:func:`clearsim.reliability.fosm.fosm_from_monitors`).
+For p_f alone, ``Study.monte_carlo`` is the lighter call.
 """
 
 from __future__ import annotations
 
 import math
-import os
+import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
 from .errors import InputError, SimulationError, check_choice, check_positive, renamed
 from .mechanism import Mechanism
 from .running import COMPONENTS
-from .reliability import (
-    Distribution,
-    Estimate,
-    FosmResult,
-    MonteCarloBins,
-    compare_fosm_mc,
-    failure_reasons,
-    normal_cdf,
-    reliability_index,
-    wilson_interval,
-    mc_bin_reliability,
-    sample_inputs,
-)
-from .reliability.model import check_on_failure
+from .reliability.bridge import check_on_failure
+from .reliability.distributions import Distribution, sample_inputs
+from .reliability.estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, mc_bin_reliability, wilson_interval
+from .reliability.fosm import fosm_from_monitors
+from .reliability.outputs import Limit, Output
+from .reliability.runs import run_descriptions
+from .reliability.study import Study
 
 QUANTITIES = {"displacement": "q", "velocity": "qd", "acceleration": "qdd"}
-#: Points per crank cycle of the ideal reference trajectory the errors are measured against.
-REFERENCE_POINTS_PER_CYCLE = 7200
 #: Units of an error, per quantity and component (x, y: translation; theta: rotation).
 UNITS = {
     ("displacement", False): "m", ("velocity", False): "m/s", ("acceleration", False): "m/s²",
     ("displacement", True): "rad", ("velocity", True): "rad/s", ("acceleration", True): "rad/s²",
 }
-
-
-def run_descriptions(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]]) -> List[Any]:
-    """Run descriptions with their settings in the Rust core (all local cores). A pure,
-    picklable function: this is what a remote executor runs for a chunk of samples."""
-    return _core.run_batch(descriptions, settings, 0)
 
 
 @dataclass
@@ -212,8 +197,6 @@ def monte_carlo(
         As in :meth:`Mechanism.simulate`; ``"auto"`` (default) runs lubricated samples with
         RADAU5 and their ideal counterparts and dry samples with RK45.
     """
-    import time
-
     start = time.perf_counter()
     n = int(n)
     if n < 1:
@@ -250,83 +233,45 @@ def monte_carlo(
             raise InputError(f"invalid allowable[{q!r}] = {pair!r}: give (lower, upper) with lower < upper [{unit}]", field=f"allowable.{q}", value=pair)
         limits[q] = (lo, hi)
     inputs = sample_inputs(distributions, n, seed)
-    if isinstance(omega, str):
-        if omega not in inputs:
-            raise InputError(f"invalid omega = {omega!r}: not a sampled input; give the drive speed [rad/s]", field="omega", value=omega)
-        omegas = np.asarray(inputs[omega], dtype=float)
-    else:
-        omegas = np.full(n, float(omega))
+    if isinstance(omega, str) and omega not in inputs:
+        raise InputError(f"invalid omega = {omega!r}: not a sampled input; give the drive speed [rad/s]", field="omega", value=omega)
+    omegas = np.asarray(inputs[omega], dtype=float) if isinstance(omega, str) else np.full(n, float(omega))
     if np.any(omegas == 0) or not np.all(np.isfinite(omegas)):
         raise InputError("invalid omega: the drive speed must be finite and non-zero", field="omega", value=omega)
-
-    n_out = int(round(points_per_cycle * cycles))
-    # The ideal twin is smooth: it runs once per distinct ideal mechanism and window (random
-    # inputs such as a clearance do not change it), on a grid fine enough to interpolate it
-    # anywhere (cubic Hermite, REFERENCE_POINTS_PER_CYCLE) and containing the output grid.
-    refine = max(1, math.ceil(REFERENCE_POINTS_PER_CYCLE / points_per_cycle))
-    outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
     budget: Dict[str, Any] = {}
     if max_steps is not None:
         budget["max_steps"] = max_steps
     if max_seconds is not None:
         budget["max_seconds"] = max_seconds
-    samples: List[Tuple[Mechanism, Dict[str, Any], str]] = []
-    ideal_jobs: Dict[str, Tuple[Dict[str, Any], Dict[str, Any]]] = {}
-    for k in range(n):
-        params = {name: float(v[k]) for name, v in inputs.items()}
-        m = build(**params)
-        period = 2 * math.pi / abs(omegas[k])
-        t0 = skip_cycles * period
-        t_out = t0 + period * cycles * np.arange(n_out + 1) / n_out
-        t_ref = t0 + period * cycles * np.arange(n_out * refine + 1) / (n_out * refine)
-        t_ref[::refine] = t_out  # the output grid exactly, its end included
-        run = dict(t_out=t_out, integrator=integrator, rtol=rtol, atol=atol, outputs=outputs, **budget)
-        key, ideal_desc, ideal_settings = m.reference_job(t_ref, integrator=integrator, rtol=rtol, atol=atol, **budget)
-        ideal_jobs.setdefault(key, (ideal_desc, ideal_settings))
-        samples.append((m, m.run_settings(float(t_out[-1]), **run), key))
-        names = m.body_names
-    if body not in names:
-        raise InputError(f"invalid body = {body!r}: no such body (known: {', '.join(names)})", field="body", value=body)
-    b = names.index(body)
-    col = 3 * b + COMPONENTS.index(component)
-    keys = list(ideal_jobs)
-    ideal_raws = dict(zip(keys, _run_all([ideal_jobs[k][0] for k in keys], [ideal_jobs[k][1] for k in keys], executor, chunk_size, progress, "ideal mechanisms")))
-
-    descriptions: List[Dict[str, Any]] = []
-    settings: List[Dict[str, Any]] = []
-    for k, (m, s, key) in enumerate(samples):
-        ideal_raw = ideal_raws[key]
-        if not _failed(ideal_raw):
-            period = 2 * math.pi / abs(omegas[k])
-            s["monitors"] = [
-                _monitor_spec(ideal_raw, col, q, limits[q], float(s["t_out"][0]), period, cycles, bin_width) for q in quantities
-            ]
-        descriptions.append(m.description())
-        settings.append(s)
-    sample_raws = _run_all(descriptions, settings, executor, chunk_size, progress, "Monte Carlo samples")
-    raws: List[Any] = []
-    for k, (_, _, key) in enumerate(samples):
-        ideal_raw = ideal_raws[key]
-        raws += [sample_raws[k], _on_grid(ideal_raw, refine) if not _failed(ideal_raw) else ideal_raw]
-
+    study = Study(
+        build, distributions, [Output(body=body, component=component, quantity=q) for q in quantities], [Limit.above(limits[q][1]) for q in quantities],
+        omega=omega, cycles=cycles, skip_cycles=skip_cycles, bin_width=bin_width, integrator=integrator, rtol=rtol, atol=atol,
+        executor=executor, chunk_size=chunk_size, progress=progress, **budget,
+    )  # fmt: skip
+    outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
+    ev, traces = study.run_samples(
+        inputs, keep_traces=n, points_per_cycle=points_per_cycle, trace_outputs=outputs, raw_traces=True, keep_monitors=True,
+        check_assembly=False, what="Monte Carlo samples", show=progress,
+    )  # fmt: skip
+    assert ev.monitors is not None
+    failed_at = dict(ev.failures)
+    failures = [(k, reason[: -len("(ideal mechanism)")] + "(ideal twin of the sample)" if reason.endswith("(ideal mechanism)") else f"{reason} (sample)") for k, reason in ev.failures]
     ok = np.zeros(n, dtype=bool)
-    failures: List[Tuple[int, str]] = []
     errs: Dict[str, List[np.ndarray]] = {q: [] for q in quantities}
     angles: List[np.ndarray] = []
     monitored: Dict[str, List[Dict[str, Any]]] = {q: [] for q in quantities}
+    by_sample = iter(traces)
     for k in range(n):
-        actual, ideal = raws[2 * k], raws[2 * k + 1]
-        bad = next((r for r in (actual, ideal) if isinstance(r, BaseException) or r.get("error") is not None), None)
-        if bad is not None:
-            err = bad if isinstance(bad, BaseException) else bad["error"]
-            which = "sample" if bad is actual else "ideal twin of the sample"
-            failures.append((k, f"{err} ({which})"))
+        if k in failed_at:
             continue
+        trace = next(by_sample)
+        actual, ideal = trace["sample"], trace["ideal"]
+        col = trace["columns"][0]
         ok[k] = True
         for i, q in enumerate(quantities):
             channel = QUANTITIES[q]
             errs[q].append(actual[channel][:, col] - ideal[channel][:, col])
-            monitored[q].append(actual["monitors"][i])
+            monitored[q].append(ev.monitors[k][i])
         angles.append(np.degrees(abs(omegas[k]) * (actual["t"] - actual["t"][0])))
     if failures and on_failure == "raise":
         k, reason = failures[0]
@@ -374,74 +319,6 @@ def monte_carlo(
     )
 
 
-def _run_all(
-    descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], executor: Any, chunk_size: Optional[int], progress: bool, what: str
-) -> List[Any]:
-    """Run in chunks (so a progress bar can move), locally in Rust or through ``executor``."""
-    total = len(descriptions)
-    if chunk_size is None:
-        if executor is None:
-            # In-core batches: large enough that the threads stay busy to the batch's end (run
-            # times vary ±30 % between samples; with 3–6 runs a batch on 2 threads a quarter of
-            # the time was spent waiting for the slowest), small enough for the bar to move.
-            chunk_size = max(1, min(total, max(16 * (os.cpu_count() or 1), total // 20)))
-        else:
-            chunk_size = max(1, min(32, total // 20 or 1))  # spread over the executor's workers
-    chunks = [(descriptions[i : i + chunk_size], settings[i : i + chunk_size]) for i in range(0, total, chunk_size)]
-    bar = _progress(total, progress, what)
-    out: List[Any] = []
-    try:
-        if executor is None:
-            for d, s in chunks:
-                out += run_descriptions(d, s)
-                bar.update(len(d))
-        else:
-            for res in executor.map(run_descriptions, [c[0] for c in chunks], [c[1] for c in chunks]):
-                out += list(res)
-                bar.update(len(res))
-    finally:
-        bar.close()
-    return out
-
-
-def _failed(raw: Any) -> bool:
-    return isinstance(raw, BaseException) or raw.get("error") is not None
-
-
-def _on_grid(raw: Dict[str, Any], refine: int) -> Dict[str, Any]:
-    """The ideal run's outputs at every ``refine``-th reference point: the samples' output grid."""
-    return {key: (value[::refine] if key in ("t", "q", "qd", "qdd") else value) for key, value in raw.items()}
-
-
-def _monitor_spec(ideal: Optional[Dict[str, Any]], col: int, quantity: str, limit: Tuple[float, float], t_start: float, period: float, cycles: float, bin_width: float) -> Dict[str, Any]:
-    """The monitor of one quantity in time bins of ``bin_width`` degrees of crank angle: a body
-    coordinate's error against the ideal run (cubic Hermite through the ideal's values and rates
-    on the reference grid), or, without ``ideal``, the quantity itself (a joint's)."""
-    spec: Dict[str, Any] = {
-        "coordinate": col,
-        "quantity": quantity,
-        "t_start": t_start,
-        "bin_width": period * bin_width / 360.0,
-        "bins": int(math.ceil(cycles * 360.0 / bin_width - 1e-9)),
-        "limit": float(limit[1]),
-        # Points a step, read off the dense output (accelerations from its time derivative,
-        # with one KKT solve at the worst interior point and one at the step's end): 4 a step
-        # missed impact peaks by 1e-4 relative to a 3 600-point grid on the dry slider-crank, 8 do not.
-        "samples_per_step": 8,
-    }
-    if ideal is not None:
-        t = ideal["t"]
-        if quantity == "displacement":
-            value, rate = ideal["q"][:, col], ideal["qd"][:, col]
-        elif quantity == "velocity":
-            value, rate = ideal["qd"][:, col], ideal["qdd"][:, col]
-        else:
-            value = ideal["qdd"][:, col]
-            rate = np.gradient(value, t)
-        spec["reference"] = {"t": np.ascontiguousarray(t), "value": np.ascontiguousarray(value), "rate": np.ascontiguousarray(rate)}
-    return spec
-
-
 def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], bin_width: float, failed: int, confidence: float) -> None:
     """Per crank-angle bin (cycles folded modulo 360°, as ``b`` numbers its bins), from the
     monitor's time bins: the fraction of samples whose |error| stays in range over the whole
@@ -454,34 +331,16 @@ def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, A
     n_bins = len(starts)
     fold = np.array([k % per_cycle if n_bins == per_cycle else int(np.argmin(np.abs(starts - (k * bin_width) % 360.0))) for k in range(n_time_bins)])
     left = np.zeros((n_s, n_bins), dtype=bool)
-    integral = np.zeros((3, n_bins))
-    count = np.zeros(n_bins, dtype=int)
     for k in range(n_time_bins):
         left[:, fold[k]] |= exceed_bins[:, k]
-    for mon in monitored:
-        np.add.at(integral[0], fold, mon["bin_abs"][:n_time_bins])
-        np.add.at(integral[1], fold, mon["bin_sq"][:n_time_bins])
-        np.add.at(integral[2], fold, mon["bin_time"][:n_time_bins])
-        np.add.at(count, fold, (mon["bin_time"][:n_time_bins] > 0).astype(int))
     n_in = np.full(n_bins, n_s + failed)
     k_ok = (~left).sum(axis=0)
     b.n_samples = n_in
     b.reliability = k_ok / n_in
     lo, hi = wilson_interval(k_ok, n_in, confidence)
     b.lo, b.hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        mu_s = integral[0] / integral[2]
-        sigma_s = np.sqrt(np.maximum(integral[1] / integral[2] - mu_s**2, 0.0))
     old = b.fosm
-    beta = reliability_index(old.mu_S, old.sigma_S, mu_s, sigma_s)
-    beta = np.asarray(beta, dtype=float)
-    b.fosm = FosmResult(old.bin_starts, old.bin_centres, old.cycle, count, mu_s, sigma_s, beta, np.asarray(normal_cdf(beta), dtype=float), old.mu_S, old.sigma_S, old.bin_width)
-
-
-def _progress(total: int, enabled: bool, what: str) -> Any:
-    from .progress import bar
-
-    return bar(total, what, "run", enabled=enabled)
+    b.fosm = fosm_from_monitors(monitored, fold, old.bin_starts, old.bin_centres, old.cycle, old.mu_S, old.sigma_S, old.bin_width)
 
 
 __all__ = ["monte_carlo", "MonteCarloResult", "run_descriptions"]

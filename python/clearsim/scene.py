@@ -376,7 +376,6 @@ _SIM_KEYS = (
     "t_end", "cycles", "period", "t0", "integrator", "rtol", "atol", "step", "dt_out", "h_max", "h_min", "max_steps", "outputs",
 )  # fmt: skip
 _OUTPUT_KEYS = ("bodies", "quantities", "components", "joints", "joint_quantities", "ideal", "csv", "plots")
-_STUDY_KEYS = ("body", "component", "joint", "quantity", "limit", "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance")
 _RELIABILITY_KEYS = ("body", "component", "bin_width", "omega", "t_start", "allowable")
 # Builder field → scene key, for errors raised by Mechanism methods.
 _FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "point_b": "points", "driver": None}
@@ -714,12 +713,11 @@ def load_scene_file(path: PathLike) -> Scene:
     outputs = _outputs(builder, mech)
     reliability = _reliability(builder, mech)
     sim = _simulation(builder, mech, _needed_channels(outputs, reliability))
-    study_table = builder.top.table("study", _STUDY_KEYS)
     study = None
-    if study_table is not None:
-        from .reliability.scene import parse_study  # only scenes with [study] need it
+    if "study" in builder.top:
+        from .reliability.scene import STUDY_KEYS, parse_study  # only scenes with [study] need it; its keys live there
 
-        study = parse_study(study_table, mech, _drive_speed(mech))
+        study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech))
     # The ideal counterpart is made now: Mechanism.idealized() deep-copies, which fails once the
     # mechanism holds a compiled Rust model (after a run).
     return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, _ideal=mech.idealized())

@@ -55,3 +55,51 @@ def test_bad_study_tables_are_named(tmp_path, edit, field, words):
         load_scene_file(path)
     assert words in str(e.value)
     assert e.value.line is not None
+
+
+def _system_scene(tmp_path):
+    """The nine-bar scene with two outputs: the slider's y error (above) and joint B's smallest
+    film thickness (below), over a quarter turn, without the tolerance design."""
+    text = SCENE.read_text()
+    text = text.replace('body = "slider9"\ncomponent = "y"\nquantity = "displacement"', "", 1)
+    text = text.replace("limit = 1.1e-3", "", 1).replace("cycles = 1.0", "cycles = 0.25", 1)
+    text = text[: text.index("[study.tolerance]")]
+    text += '''
+[[study.output]]
+body = "slider9"
+component = "y"
+quantity = "displacement"
+limit = 1.1e-3
+
+[[study.output]]
+joint = "B"
+quantity = "film_thickness"
+limit = 6e-5
+side = "below"
+'''
+    path = tmp_path / "system.toml"
+    path.write_text(text)
+    return path
+
+
+def test_cli_writes_every_failure_mode_of_a_system(tmp_path):
+    path = _system_scene(tmp_path)
+    s = load_scene_file(path).study
+    assert [o.name for o in s.outputs] == ["slider9.y.displacement", "B.film_thickness"] and s.limits[1].side == "below"
+    out = tmp_path / "rel"
+    assert main(["reliability", str(path), "-o", str(out), "--methods", "monte_carlo", "--samples", "12", "-q"]) == 0
+    rows = list(csv.DictReader((out / "reliability.csv").open()))
+    assert [(r["method"], r["mode"]) for r in rows] == [("monte_carlo", "system"), ("monte_carlo", "slider9.y.displacement"), ("monte_carlo", "B.film_thickness")]
+    assert float(rows[0]["pf"]) >= max(float(rows[1]["pf"]), float(rows[2]["pf"]))
+    samples = list(csv.DictReader((out / "samples.csv").open()))
+    assert len(samples) == 12 and {"slider9.y.displacement [m]", "B.film_thickness [m]"} <= set(samples[0])
+    assert all(float(r["B.film_thickness [m]"]) < 5e-4 for r in samples)  # c (1 − ε_max) < c
+    assert "series system" in (out / "report.md").read_text()
+
+
+def test_outputs_are_given_one_way():
+    text = SCENE.read_text().replace("seed = 0", 'seed = 0\n\n[[study.output]]\njoint = "B"\nquantity = "eccentricity"\nlimit = 0.9', 1)
+    path = Path(__import__("tempfile").mkdtemp()) / "both.toml"
+    path.write_text(text)
+    with pytest.raises(InputError, match="either as \\[\\[study.output\\]\\] tables or by"):
+        load_scene_file(path)

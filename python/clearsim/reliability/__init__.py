@@ -9,19 +9,36 @@ The study of one output with random inputs::
     study.monte_carlo(n)   study.form()   study.importance_sampling(cov=0.1)   study.subset()
     study.sobol(n)         study.tolerance("clearance", reliability=0.999)      study.fosm()
 
-Rooms: :mod:`.distributions` (random inputs on ``scipy.stats``), :mod:`.fosm` (the paper's
-first-order second-moment method, Eqs. P27–P32), :mod:`.estimates` (Monte Carlo statistics),
-:mod:`.model` (what the methods need of a model; :class:`LimitState` for any function),
-:mod:`.study` (:class:`Study`, the simulation model), :mod:`.uq` (FORM, importance sampling,
-subset simulation, Sobol indices and tolerance design on OpenTURNS, ``pip install clearsim[uq]``).
+Several failure modes (a series system)::
+
+    study = rel.Study(build, inputs, output=[rel.Output(body="slider9", component="y"),
+                                             rel.Output(joint="B", quantity="film_thickness")],
+                      limit=[1e-3, rel.Limit.below(2e-6)], omega=-5 * np.pi)
+
+Rooms, each importing only those above it: :mod:`.distributions` (random inputs on
+``scipy.stats``), :mod:`.fosm` (the paper's first-order second-moment method, Eqs. P27–P32, and
+FOSM from monitor bins), :mod:`.estimates` (Monte Carlo statistics), :mod:`.outputs`
+(:class:`Output`, :class:`Limit`), :mod:`.runs` (batches of runs and their monitors),
+:mod:`.bridge` (OpenTURNS' view of a model), :mod:`.form` (FORM on noisy limit states, series
+systems), :mod:`.sampling` (importance sampling, subset simulation), :mod:`.sobol` (Sobol
+indices by sampling or polynomial chaos), :mod:`.tolerance` (tolerance design), :mod:`.uq` (all
+of these in one import), :mod:`.model` (what the methods need of a model and every method on it;
+:class:`LimitState` for any function), :mod:`.study` (:class:`Study`, the simulation model and
+the one Monte Carlo sample loop), :mod:`.scene` and :mod:`.report` (``clearsim reliability``).
+Methods on OpenTURNS need ``pip install clearsim[uq]``; docs/reliability.md says which to use.
 """
 
 from .distributions import Distribution, Fixed, LogNormal, Normal, Scipy, Shifted, TruncatedNormal, Uniform, as_distribution, sample_inputs
 from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, first_passage_probability, mc_bin_reliability, wilson_interval
 from .fosm import PAPER_ALLOWABLE, FosmResult, allowable_statistics, fosm, normal_cdf, normal_ppf, reliability_index
+from .form import FormResult, SystemFormResult
 from .model import LimitState, Model
-from .study import Evaluation, MonteCarloEstimate, Output, Study
-from .uq import FormResult, SamplingResult, SobolResult, ToleranceResult
+from .outputs import Limit, Output
+from .sampling import SamplingResult
+from .sobol import SobolResult
+from .study import Evaluation, ModeEstimate, MonteCarloEstimate, Study
+from .tolerance import ToleranceResult
+from . import uq
 
 __all__ = [
     "PAPER_ALLOWABLE",
@@ -31,8 +48,10 @@ __all__ = [
     "Fixed",
     "FormResult",
     "FosmResult",
+    "Limit",
     "LimitState",
     "LogNormal",
+    "ModeEstimate",
     "Model",
     "MonteCarloBins",
     "MonteCarloEstimate",
@@ -43,6 +62,7 @@ __all__ = [
     "Shifted",
     "SobolResult",
     "Study",
+    "SystemFormResult",
     "ToleranceResult",
     "TruncatedNormal",
     "Uniform",

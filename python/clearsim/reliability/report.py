@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import csv
 import math
-import time
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
@@ -23,73 +23,119 @@ FOSM_NOTE = (
 )
 
 
+@dataclass
+class Run:
+    """What one ``clearsim reliability`` run has found so far: the rows of ``reliability.csv``
+    (one per method, plus one per failure mode on a series system) and each method's result."""
+
+    study: Any
+    settings: Any
+    n: int
+    echo: Any
+    rows: List[Dict[str, Any]] = field(default_factory=list)
+    found: Dict[str, Any] = field(default_factory=dict)
+
+    def row(self, method: str, res: Any, beta: Optional[float] = None, mode: str = "system") -> None:
+        lo, hi = getattr(res, "interval", (math.nan, math.nan))
+        whole = mode == "system"
+        if whole and len(self.study.outputs) == 1:
+            mode = self.study.mode_names[0]
+        self.rows.append({"method": method, "pf": res.pf, "interval_low": lo, "interval_high": hi, "cov": getattr(res, "cov", math.nan),
+                          "beta": beta if beta is not None else getattr(res, "beta", math.nan), "runs": getattr(res, "n_runs", 0),
+                          "wall_time_s": getattr(res, "wall_time", math.nan), "mode": mode})  # fmt: skip
+        if whole:
+            self.echo(f"{method:20s} p_f = {res.pf:.4g}  runs = {res.n_runs}  ({res.wall_time:.1f} s)")
+        else:
+            self.echo(f"{'':20s}   {mode}: p_f = {res.pf:.4g}")
+
+
+def _monte_carlo(r: Run) -> None:
+    mc = r.found["monte_carlo"] = r.study.monte_carlo(r.n, seed=r.settings.seed)
+    r.row("monte_carlo", mc)
+    if len(mc.modes) > 1:
+        for m in mc.modes:
+            r.row("monte_carlo", m, mode=m.name)
+    if mc.failures:
+        r.echo(f"  {len(mc.failures)} runs failed (counted as exceedances): {mc.failure_reasons()}")
+
+
+def _form(r: Run) -> None:
+    fr = r.found["form"] = r.study.form(step=r.settings.step)
+    r.row("form", fr)
+    for name, m in zip(getattr(fr, "mode_names", []), getattr(fr, "modes", [])):
+        r.row("form", m, mode=name)
+
+
+def _importance_sampling(r: Run) -> None:
+    if "form" not in r.found:
+        _form(r)
+    r.found["importance_sampling"] = res = r.study.importance_sampling(cov=r.settings.cov, seed=r.settings.seed, design_point=r.found["form"])
+    r.row("importance_sampling", res)
+
+
+def _subset(r: Run) -> None:
+    r.found["subset"] = res = r.study.subset(seed=r.settings.seed)
+    r.row("subset", res)
+
+
+def _sobol(r: Run) -> None:
+    res = r.found["sobol"] = r.study.sobol(r.n, seed=r.settings.seed, method=r.settings.sobol_method)
+    r.echo(f"{'sobol':20s} ({res.method}) runs = {res.n_runs}  ({res.wall_time:.1f} s); widest interval {res.widest:.2f}")
+
+
+def _fosm(r: Run) -> None:
+    r.found["fosm"] = res = r.study.fosm()
+    r.echo(f"{'fosm':20s} min R = {res.min_reliability:.6f} at {res.min_angle:g}°")
+
+
+#: The methods in the order they run: name → runner (extension point: a method added to
+#: scene.METHODS gets its runner here, and its CSV/plot/report parts below).
+METHOD_RUNNERS: Dict[str, Callable[[Run], None]] = {
+    "monte_carlo": _monte_carlo, "form": _form, "importance_sampling": _importance_sampling, "subset": _subset, "sobol": _sobol, "fosm": _fosm,
+}  # fmt: skip
+
+
 def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = None, samples: Optional[int] = None, progress: bool = True, plots: bool = True, echo: Any = print) -> List[Path]:
-    """Run the study's methods, write ``reliability.csv`` (one row per method), ``sobol.csv``,
-    ``samples.csv`` (Monte Carlo: inputs, peak, first-passage time), ``fosm.csv``,
-    ``reliability.png`` and ``report.md`` into ``out_dir``; returns the files."""
+    """Run the study's methods, write ``reliability.csv`` (one row per method, and per failure
+    mode on a series system), ``sobol.csv``, ``samples.csv`` (Monte Carlo: inputs, each output's
+    peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
+    ``out_dir``; returns the files."""
     settings = scene.study
     study = scene_study(scene, progress=progress)
-    methods = list(methods or settings.methods)
-    n = int(samples or settings.samples)
+    chosen = list(methods or settings.methods)
+    r = Run(study, settings, int(samples or settings.samples), echo)
     out_dir.mkdir(parents=True, exist_ok=True)
-    rows: List[Dict[str, Any]] = []
-    found: Dict[str, Any] = {}
-    unit = study.output.unit
-
-    def row(method: str, res: Any, beta: Optional[float] = None) -> None:
-        lo, hi = getattr(res, "interval", (math.nan, math.nan))
-        rows.append({"method": method, "pf": res.pf, "interval_low": lo, "interval_high": hi, "cov": getattr(res, "cov", math.nan),
-                     "beta": beta if beta is not None else getattr(res, "beta", math.nan), "runs": res.n_runs, "wall_time_s": res.wall_time})  # fmt: skip
-        echo(f"{method:20s} p_f = {res.pf:.4g}  runs = {res.n_runs}  ({res.wall_time:.1f} s)")
-
     echo(f"{scene.name}: {study}")
-    if "monte_carlo" in methods:
-        mc = study.monte_carlo(n, seed=settings.seed)
-        found["monte_carlo"] = mc
-        row("monte_carlo", mc)
-        if mc.failures:
-            echo(f"  {len(mc.failures)} runs failed (counted as exceedances): {mc.failure_reasons()}")
-    fr = None
-    if "form" in methods or "importance_sampling" in methods:
-        fr = study.form()
-        found["form"] = fr
-        row("form", fr)
-    if "importance_sampling" in methods:
-        is_ = study.importance_sampling(cov=settings.cov, seed=settings.seed, design_point=fr)
-        found["importance_sampling"] = is_
-        row("importance_sampling", is_)
-    if "subset" in methods:
-        ss = study.subset(seed=settings.seed)
-        found["subset"] = ss
-        row("subset", ss)
-    if "sobol" in methods:
-        t0 = time.perf_counter()
-        found["sobol"] = study.sobol(n, seed=settings.seed)
-        echo(f"{'sobol':20s} runs = {found['sobol'].n_runs}  ({time.perf_counter() - t0:.1f} s)")
-    if "fosm" in methods:
-        found["fosm"] = study.fosm()
-        echo(f"{'fosm':20s} min R = {found['fosm'].min_reliability:.6f} at {found['fosm'].min_angle:g}°")
+    for name, runner in METHOD_RUNNERS.items():
+        if name in chosen and not (name == "form" and name in r.found):
+            runner(r)
     if settings.tolerance is not None:
-        name, r, bracket = settings.tolerance
-        found["tolerance"] = tol = study.tolerance(name, r, bracket=bracket, cov=settings.cov, seed=settings.seed)
-        echo(f"{'tolerance':20s} largest mean {name} = {tol.value:.6g} (95 % [{tol.interval[0]:.6g}, {tol.interval[1]:.6g}]) for R = {r}  runs = {tol.n_runs}")
-
+        name, rel_target, bracket = settings.tolerance
+        r.found["tolerance"] = tol = study.tolerance(name, rel_target, bracket=bracket, cov=settings.cov, seed=settings.seed, step=settings.step)
+        echo(f"{'tolerance':20s} largest mean {name} = {tol.value:.6g} (95 % [{tol.interval[0]:.6g}, {tol.interval[1]:.6g}]) for R = {rel_target}  runs = {tol.n_runs}")
+    rows, found = r.rows, r.found
     files: List[Path] = []
     if rows:
-        files.append(_write(out_dir / "reliability.csv", list(rows[0]), [[r[k] for k in rows[0]] for r in rows]))
+        files.append(_write(out_dir / "reliability.csv", list(rows[0]), [[row[k] for k in rows[0]] for row in rows]))
     if "sobol" in found:
         s = found["sobol"]
-        files.append(_write(out_dir / "sobol.csv", ["input", "first", "first_low", "first_high", "total", "total_low", "total_high"],
-                            [[k, s.first[k], *s.first_interval[k], s.total[k], *s.total_interval[k]] for k in s.first]))  # fmt: skip
+        conv = sorted(s.convergence)[:-1]
+        files.append(_write(out_dir / "sobol.csv", ["input", "first", "first_low", "first_high", "total", "total_low", "total_high"] + [f"first_n{m}" for m in conv] + [f"total_n{m}" for m in conv],
+                            [[k, s.first[k], *s.first_interval[k], s.total[k], *s.total_interval[k]] + [s.convergence[m][0][k] for m in conv] + [s.convergence[m][1][k] for m in conv] for k in s.first]))  # fmt: skip
     if "monte_carlo" in found:
         mc = found["monte_carlo"]
         names = list(mc.inputs)
-        files.append(_write(out_dir / "samples.csv", names + [f"peak [{unit}]", "first_passage_time [s]"],
-                            [[mc.inputs[k][i] for k in names] + [mc.peaks[i], mc.first_passage_times[i]] for i in range(mc.peaks.size)]))  # fmt: skip
+        peaks = np.asarray(mc.peaks).reshape(mc.peaks.shape[0], -1)
+        first = np.asarray(mc.first_passage_times).reshape(peaks.shape[0], -1)
+        if len(study.outputs) == 1:
+            head = [f"peak [{study.output.unit}]", "first_passage_time [s]"]
+        else:
+            head = [f"{o.name} [{o.unit}]" for o in study.outputs] + [f"{o.name} first_passage_time [s]" for o in study.outputs]
+        files.append(_write(out_dir / "samples.csv", names + head, [[mc.inputs[k][i] for k in names] + list(peaks[i]) + list(first[i]) for i in range(peaks.shape[0])]))
     if "fosm" in found:
         fo = found["fosm"]
         files.append(_write(out_dir / "fosm.csv", ["bin_start_deg", "mu_s", "sigma_s", "beta", "reliability"],
-                            [[a, m, s, b, r] for a, m, s, b, r in zip(fo.bin_starts, fo.mu_s, fo.sigma_s, fo.beta, fo.reliability)]))  # fmt: skip
+                            [[a, m, s, b, rr] for a, m, s, b, rr in zip(fo.bin_starts, fo.mu_s, fo.sigma_s, fo.beta, fo.reliability)]))  # fmt: skip
     if plots:
         files.append(plot_study(study, found, out_dir / "reliability.png"))
     files.append(_report(scene, study, rows, found, out_dir / "report.md", files))
@@ -129,8 +175,8 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
         ax.set_ylim(-0.6, len(estimates) - 0.3)
         ax.set_xscale("log")
         ax.set_xlabel("probability of exceedance p_f")
-        ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}")
-        if "monte_carlo" in found:
+        ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}" if len(study.outputs) == 1 else f"p_f of the system ({len(study.outputs)} modes)")
+        if "monte_carlo" in found and len(study.outputs) == 1:
             ax = axes.pop(0)
             peaks = np.sort(found["monte_carlo"].peaks[np.isfinite(found["monte_carlo"].peaks)])
             p = 1.0 - np.arange(peaks.size) / max(peaks.size, 1)
@@ -140,6 +186,19 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
             ax.set_xlabel(f"limit [{unit}]")
             ax.set_ylabel("P(peak > limit)")
             ax.set_title("Monte Carlo: p_f against the limit")
+            ax.legend(fontsize=7)
+        elif "monte_carlo" in found:
+            # A system: each mode's P(g_i ≤ x) against x, g_i the output's margin scaled by its limit.
+            ax = axes.pop(0)
+            values = found["monte_carlo"].peaks
+            for i, (o, lim) in enumerate(zip(study.outputs, study.limits)):
+                g = np.sort(lim.g(values[np.isfinite(values[:, i]), i]))
+                ax.step(g, np.arange(1, g.size + 1) / max(g.size, 1), where="post", label=o.name)
+            ax.axvline(0.0, color="C3", lw=0.8, ls="--")
+            ax.set_yscale("log")
+            ax.set_xlabel("margin g_i (0: at the limit)")
+            ax.set_ylabel("P(g_i ≤ margin)")
+            ax.set_title("Monte Carlo: each failure mode")
             ax.legend(fontsize=7)
         if "form" in found:
             ax = axes.pop(0)
@@ -161,21 +220,36 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
 
 
 def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str, Any], path: Path, files: List[Path]) -> Path:
-    lines = [f"# Reliability: {scene.name}", "", f"Output: {study.output.label}; limit {study.limit:g} {study.output.unit}; "
-             f"{study.cycles:g} cycle(s) after {study.skip_cycles:g}.", "", "Random inputs:", ""]  # fmt: skip
+    outs = "; ".join(f"{o.label} {lim.text(o.unit)} (`{o.name}`)" for o, lim in zip(study.outputs, study.limits))
+    kind = "Output" if len(study.outputs) == 1 else "Outputs (a series system: it fails when any output passes its limit)"
+    lines = [f"# Reliability: {scene.name}", "", f"{kind}: {outs}; {study.cycles:g} cycle(s) after {study.skip_cycles:g}.", "", "Random inputs:", ""]
     for name, d in study.inputs.items():
         lines.append(f"- `{name}`: {d}")
     if rows:
-        lines += ["", "| method | p_f | 95 % interval | CoV | β | runs | wall time [s] |", "|---|---|---|---|---|---|---|"]
+        lines += ["", "| method | mode | p_f | 95 % interval | CoV | β | runs | wall time [s] |", "|---|---|---|---|---|---|---|---|"]
         for r in rows:
-            lines.append(f"| {r['method']} | {r['pf']:.4g} | [{r['interval_low']:.3g}, {r['interval_high']:.3g}] | {r['cov']:.3g} | {r['beta']:.3g} | {r['runs']} | {r['wall_time_s']:.1f} |")
+            lines.append(f"| {r['method']} | {r['mode']} | {r['pf']:.4g} | [{r['interval_low']:.3g}, {r['interval_high']:.3g}] | {r['cov']:.3g} | {r['beta']:.3g} | {r['runs']} | {r['wall_time_s']:.1f} |")
     if "form" in found:
         fr = found["form"]
         lines += ["", "FORM design point: " + ", ".join(f"`{k}` = {v:.6g}" for k, v in fr.design_point.items()),
                   "importance factors: " + ", ".join(f"`{k}` {v:.2f}" for k, v in fr.importance.items())]  # fmt: skip
+        if hasattr(fr, "modes"):
+            lines += ["", f"Series system, first order: p_f = {fr.pf:.4g} (Ditlevsen's bounds [{fr.bounds[0]:.4g}, {fr.bounds[1]:.4g}]); "
+                      "the design point above is the dominant mode's. Correlation of the modes' linearised margins ρ = α_i·α_j:", ""]
+            lines += ["| | " + " | ".join(fr.mode_names) + " |", "|---" * (len(fr.mode_names) + 1) + "|"]
+            lines += [f"| {a} | " + " | ".join(f"{fr.rho[i, j]:.3f}" for j in range(len(fr.mode_names))) + " |" for i, a in enumerate(fr.mode_names)]
+        noisy = [m for m in getattr(fr, "modes", [fr]) if getattr(m, "accepted_at_noise", False)]
+        if noisy:
+            lines += ["", "FORM accepted " + ", ".join(f"β = {m.beta:.3g} ± {m.beta_noise:.2g}" for m in noisy) + " at the noise level of the limit state (σ_g measured): check p_f by importance sampling."]
     if "sobol" in found:
         s = found["sobol"]
-        lines += ["", "| input | Sobol first | Sobol total |", "|---|---|---|"] + [f"| `{k}` | {s.first[k]:.3f} | {s.total[k]:.3f} |" for k in s.first]
+        conv = sorted(s.convergence)
+        lines += ["", f"Sobol indices ({s.method}, n = {s.n}, {s.n_runs} runs; first-order at n = {', '.join(map(str, conv))} to show convergence):", "",
+                  "| input | first | 95 % | total | 95 % | first at " + ", ".join(map(str, conv)) + " |", "|---|---|---|---|---|---|"]  # fmt: skip
+        lines += [f"| `{k}` | {s.first[k]:.3f} | [{s.first_interval[k][0]:.2f}, {s.first_interval[k][1]:.2f}] | {s.total[k]:.3f} | "
+                  f"[{s.total_interval[k][0]:.2f}, {s.total_interval[k][1]:.2f}] | " + ", ".join(f"{s.convergence[m][0][k]:.2f}" for m in conv) + " |" for k in s.first]  # fmt: skip
+        if s.widest > 0.2:
+            lines += ["", f"Intervals up to {s.widest:.2f} wide: the indices are not yet readable; see docs/reliability.md on choosing n."]
     if "tolerance" in found:
         t = found["tolerance"]
         lines += ["", f"Tolerance: the largest mean of `{t.name}` with reliability {t.reliability} is {t.value:.6g} (95 % [{t.interval[0]:.6g}, {t.interval[1]:.6g}]; FORM alone {t.form_value:.6g}; {t.n_runs} runs)."]

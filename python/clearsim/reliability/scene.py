@@ -1,5 +1,6 @@
 """The ``[study]`` table of a scene file and ``clearsim reliability``: random inputs of the
-mechanism (by path, ``element.field``), one output with its limit, and the methods to run.
+mechanism (by path, ``element.field``), one output with its limit or several (a series system),
+and the methods to run.
 
 ::
 
@@ -18,6 +19,21 @@ mechanism (by path, ``element.field``), one output with its limit, and the metho
     samples = 1000                     # monte_carlo samples; Sobol base size (× (d + 2) runs)
     cov = 0.1                          # importance sampling target coefficient of variation
     seed = 0
+    # sobol_method = "saltelli"        # saltelli (n × (d + 2) runs) | pce (polynomial chaos, n runs)
+    # step = 0.05                      # FORM's gradient step in u (default: from the measured noise)
+
+    # Several outputs (a series system: it fails when any output passes its limit), instead of
+    # body/component/joint/quantity/limit above:
+    # [[study.output]]
+    # body = "slider9"
+    # component = "y"
+    # quantity = "displacement"
+    # limit = 1.1e-3
+    # [[study.output]]
+    # joint = "B"
+    # quantity = "film_thickness"      # smallest gap c (1 − ε_max) [m]
+    # limit = 2e-6
+    # side = "below"                   # fails when it falls below the limit (default "above")
 
     [[study.input]]                    # one per random input
     path = "B.clearance"               # element.field of the mechanism, SI units
@@ -34,13 +50,20 @@ mechanism (by path, ``element.field``), one output with its limit, and the metho
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 from .distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
 from ..running import COMPONENTS
-from .study import BODY_QUANTITIES, JOINT_QUANTITIES, Output, Study
+from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Output
+from .sobol import SOBOL_METHODS
+from .study import Study
 
+# Extension point: a method is a name here (and in report.METHOD_RUNNERS); a method with
+# settings of its own reads them from a sub-table [study.<name>] listed in STUDY_KEYS.
 METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fosm")
+OUTPUT_KEYS = ("body", "component", "joint", "quantity", "limit", "side")
+#: The keys of [study] (scene.py checks them before parse_study reads the table).
+STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step")
 INPUT_KEYS = ("path", "distribution", "mean", "std", "low", "high")
 TOLERANCE_KEYS = ("input", "reliability", "bracket")
 DISTRIBUTIONS = ("normal", "lognormal", "uniform", "truncated_normal")
@@ -48,10 +71,11 @@ DISTRIBUTIONS = ("normal", "lognormal", "uniform", "truncated_normal")
 
 @dataclass
 class StudySettings:
-    """The ``[study]`` table, checked."""
+    """The ``[study]`` table, checked: ``outputs`` and their ``limits`` (one each, or several:
+    a series system)."""
 
-    output: Output
-    limit: float
+    outputs: List[Output]
+    limits: List[Limit]
     omega: float
     inputs: Dict[str, Distribution]
     cycles: float = 1.0
@@ -62,26 +86,57 @@ class StudySettings:
     seed: int = 0
     bin_width: float = 18.0
     tolerance: Optional[Tuple[str, float, Optional[Tuple[float, float]]]] = None
+    sobol_method: str = "saltelli"
+    step: Union[float, str] = "auto"
+
+    @property
+    def output(self) -> Output:
+        """The (first) output."""
+        return self.outputs[0]
+
+    @property
+    def limit(self) -> float:
+        """The (first) output's limit value."""
+        return self.limits[0].value
 
 
-def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySettings:
-    """Read the ``[study]`` table ``t`` (a scene ``_Table``: errors point at the key's line)."""
+def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
+    """One output and its limit from the keys of ``t`` (``[study]`` or a ``[[study.output]]``)."""
     joint = t.string("joint", None, choices=mech.clearance_joint_names) if "joint" in t else None
     if joint is not None:
         if "body" in t or "component" in t:
-            raise t.error("joint", "invalid [study]: give either joint or body (with component), not both")
+            raise t.error("joint", f"invalid {where}: give either joint or body (with component), not both")
         quantity = t.string("quantity", choices=JOINT_QUANTITIES)
         output = Output(joint=joint, quantity=quantity)
     else:
         if "body" not in t:
-            raise t.error(None, "missing key 'body' (with component) or 'joint' in [study]: the analysed output")
+            raise t.error(None, f"missing key 'body' (with component) or 'joint' in {where}: the analysed output")
         body = t.string("body", choices=mech.body_names)
         output = Output(body=body, component=t.string("component", choices=COMPONENTS), quantity=t.string("quantity", choices=BODY_QUANTITIES))
+    side = t.string("side", "below" if output.quantity == "film_thickness" else "above", choices=SIDES)
     if "limit" not in t:
-        raise t.error(None, f"missing key 'limit' in [study]: the largest acceptable {output.label} [{output.unit}] (there is no default)")
+        what = "largest acceptable" if side == "above" else "smallest acceptable"
+        raise t.error(None, f"missing key 'limit' in {where}: the {what} {output.label} [{output.unit}] (there is no default)")
     limit = t.number("limit")
-    if not limit > 0:
-        raise t.error("limit", f"invalid study.limit = {limit!r}: must be positive [{output.unit}]", limit)
+    if side == "above" and not limit > 0:
+        raise t.error("limit", f"invalid {where}.limit = {limit!r}: must be positive [{output.unit}]", limit)
+    if side == "below" and limit == 0:
+        raise t.error("limit", f"invalid {where}.limit = 0: a lower limit must be non-zero [{output.unit}]", limit)
+    if output.quantity == "film_thickness" and side != "below":
+        raise t.error("side", f"invalid {where}.side = 'above': a film thickness fails by getting thin (side = \"below\")", side)
+    return output, Limit(limit, side)
+
+
+def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySettings:
+    """Read the ``[study]`` table ``t`` (a scene ``_Table``: errors point at the key's line)."""
+    tables = t.array_of_tables("output", OUTPUT_KEYS)
+    if tables:
+        extra = [k for k in OUTPUT_KEYS if k in t]
+        if extra:
+            raise t.error(extra[0], f"invalid [study]: give the outputs either as [[study.output]] tables or by {', '.join(OUTPUT_KEYS)} in [study], not both")
+        pairs = [_output(o, mech, f"study.output[{k}]") for k, o in enumerate(tables)]
+    else:
+        pairs = [_output(t, mech, "[study]")]
     omega = t.number("omega", omega_default)
     if omega is None or omega == 0:
         raise t.error("omega", "missing key 'omega' in [study]: the drive speed [rad/s] (no constant-speed driver to take it from)", omega)
@@ -124,8 +179,14 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
             raise tt.error("reliability", f"invalid study.tolerance.reliability = {r!r}: must lie in (0, 1)", r)
         bracket = tt.numbers("bracket", None, length=2)
         tol = (name, r, tuple(bracket) if bracket else None)
+    step: Union[float, str] = "auto"
+    if "step" in t:
+        fixed = float(t.number("step"))
+        if not fixed > 0:
+            raise t.error("step", f"invalid study.step = {fixed!r}: FORM's gradient step in the standard normal space must be positive", fixed)
+        step = fixed
     return StudySettings(
-        output=output, limit=limit, omega=float(omega), inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
+        outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
         methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", 18.0), tolerance=tol,
     )  # fmt: skip
 
@@ -144,4 +205,6 @@ def scene_study(scene: Any, progress: bool = True) -> Study:
     opts: Dict[str, Any] = dict(integrator=sim.integrator, rtol=sim.rtol, atol=sim.atol)
     if sim.max_steps is not None:
         opts["max_steps"] = sim.max_steps
-    return Study(build, s.inputs, s.output, s.limit, omega=s.omega, cycles=s.cycles, skip_cycles=s.skip_cycles, bin_width=s.bin_width, progress=progress, **opts)
+    outputs: Any = s.outputs if len(s.outputs) > 1 else s.outputs[0]
+    limits: Any = s.limits if len(s.limits) > 1 else s.limits[0]
+    return Study(build, s.inputs, outputs, limits, omega=s.omega, cycles=s.cycles, skip_cycles=s.skip_cycles, bin_width=s.bin_width, progress=progress, **opts)

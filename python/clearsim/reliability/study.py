@@ -1,122 +1,102 @@
-"""A reliability study of one mechanism output: the vectorised model and every method on it.
+"""A reliability study of a mechanism: the simulation model (one Monte Carlo sample loop for
+every method) and the methods that need the mechanism itself (crude Monte Carlo, per-bin FOSM).
 
-:class:`Study` turns ``build(**inputs) -> Mechanism``, the random inputs, one :class:`Output` and
-its limit into a function of the inputs, the **peak** |error| (or peak joint quantity) over the
-analysed window, computed by the integrator at every accepted step (``docs/physics.md`` §6: not
-from stored output samples, so no answer depends on an output grid). Failure is ``peak > limit``;
-the limit-state function is ``g = 1 − peak / limit`` (failure when ``g ≤ 0``).
+:class:`Study` turns ``build(**inputs) -> Mechanism``, the random inputs, one or several
+:class:`Output` and their :class:`Limit` into a function of the inputs: each output's **peak**
+(or minimum, for a lower limit) over the analysed window, computed by the integrator at every
+accepted step (``docs/physics.md`` §6: not from stored output samples, so no answer depends on an
+output grid). One output fails when it passes its limit; the limit-state function is
+``g = 1 − peak / limit`` (``minimum / limit − 1`` for a lower limit), failure when ``g ≤ 0``.
+Several outputs make a series system: ``g = min_i g_i`` (docs/reliability.md).
 
-Methods: crude :meth:`Study.monte_carlo`, the paper's per-bin :meth:`Study.fosm`, and — on
-OpenTURNS (``pip install clearsim[uq]``), which works in the standard normal space of the inputs
-— :meth:`Study.form`, :meth:`Study.importance_sampling`, :meth:`Study.subset`,
-:meth:`Study.sobol` and the tolerance design :meth:`Study.tolerance`.
+Every method inherited from :class:`~clearsim.reliability.model.Model` (FORM, importance
+sampling, subset simulation, Sobol indices, tolerance design) runs the model through
+:meth:`Study.limit_states`; :meth:`Study.monte_carlo` and ``clearsim.monte_carlo`` run it through
+:meth:`Study.run_samples`, the one sample loop.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from collections import OrderedDict
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..errors import InputError, SimulationError, check_choice, check_finite, check_positive, renamed
+from ..errors import InputError, SimulationError, check_finite, check_positive
 from ..running import COMPONENTS
+from .bridge import check_on_failure
 from .distributions import input_stream
-from .model import Model, check_on_failure
 from .estimates import failure_reasons, wilson_interval
-from .fosm import FosmResult, allowable_statistics, normal_cdf, reliability_index
+from .fosm import FosmResult, allowable_statistics, fosm_from_monitors
+from .model import Model
+from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Output, limits_and_outputs
+from .runs import REFERENCE_POINTS_PER_CYCLE, error_of, failed, monitor_spec, output_grid, progress, reference_grid, run_all
 
-__all__ = ["Output", "Study", "Evaluation", "MonteCarloEstimate", "FosmResult"]
+__all__ = ["Output", "Limit", "Study", "Evaluation", "MonteCarloEstimate", "ModeEstimate", "FosmResult", "BODY_QUANTITIES", "JOINT_QUANTITIES", "REFERENCE_POINTS_PER_CYCLE"]
 
-BODY_QUANTITIES = ("displacement", "velocity", "acceleration")
-JOINT_QUANTITIES = ("eccentricity", "force", "contact_force", "film_force")
-#: Points per crank cycle of the ideal reference trajectory that body errors are measured
-#: against (cubic Hermite in between).
-REFERENCE_POINTS_PER_CYCLE = 7200
 #: Samples built and run together: bounds the memory of a study whatever its size.
 CHUNK = 1024
-
-
-@dataclass(frozen=True)
-class Output:
-    """The analysed output: a body coordinate's error against the ideal mechanism, or a clearance
-    joint's quantity.
-
-    ``Output(body="slider9", component="y", quantity="displacement" | "velocity" | "acceleration")``:
-    |response − ideal response| in m, m/s, m/s² (``component="x"``/``"y"``) or rad, rad/s,
-    rad/s² (``component="theta"``). ``axis=`` is the old name of ``component=``.
-
-    ``Output(joint="B", quantity="eccentricity" | "force" | "contact_force" | "film_force")``:
-    the eccentricity ratio ε = e/c [-], the magnitude of the joint's total force [N], its dry
-    normal force F_N [N] or its film force magnitude [N].
-    """
-
-    body: Optional[str] = None
-    component: Optional[str] = None
-    joint: Optional[str] = None
-    quantity: str = "displacement"
-    #: Old name of ``component``.
-    axis: Optional[str] = None
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "component", renamed("axis", "component", self.axis, self.component, "Output."))
-        object.__setattr__(self, "axis", None)
-        if (self.body is None) == (self.joint is None):
-            raise InputError("invalid Output: give exactly one of body= (with component=) or joint=", field="Output.body", value=self.body)
-        if self.body is not None:
-            check_choice("Output.component", self.component, COMPONENTS, "(there is no default)")
-            if self.quantity not in BODY_QUANTITIES:
-                raise InputError(f"invalid Output.quantity = {self.quantity!r}: a body output is one of {', '.join(BODY_QUANTITIES)}", field="Output.quantity", value=self.quantity)
-        else:
-            if self.component is not None:
-                raise InputError(f"invalid Output.component = {self.component!r}: a joint output has no component", field="Output.component", value=self.component)
-            if self.quantity not in JOINT_QUANTITIES:
-                raise InputError(f"invalid Output.quantity = {self.quantity!r}: a joint output is one of {', '.join(JOINT_QUANTITIES)}", field="Output.quantity", value=self.quantity)
-
-    @property
-    def unit(self) -> str:
-        """Unit of the output (and of its limit)."""
-        if self.joint is not None:
-            return "-" if self.quantity == "eccentricity" else "N"
-        base = "rad" if self.component == "theta" else "m"
-        return {"displacement": base, "velocity": f"{base}/s", "acceleration": f"{base}/s²"}[self.quantity]
-
-    @property
-    def label(self) -> str:
-        if self.joint is not None:
-            return f"{self.quantity} of joint {self.joint}"
-        return f"{self.component} {self.quantity} error of {self.body}"
+#: Ideal reference runs kept for reuse (random inputs that change the ideal mechanism, such as a
+#: drive speed, give one per sample).
+IDEAL_CACHE = 256
 
 
 @dataclass
 class Evaluation:
-    """The model at N input points: each one's peak [output unit] over the analysed window, the
-    first time [s] it exceeded the limit (NaN: never) and the runs that failed."""
+    """The model at N input points: each output's extreme over the analysed window
+    (``values``, (N, outputs): the peak for an upper limit, the minimum for a lower one; NaN for
+    failed runs), the first time [s] each passed its limit (``first_passage``, NaN: never or not
+    tracked), the runs that failed and, on request, each run's raw monitor results.
 
-    peaks: np.ndarray
-    first_passage_times: np.ndarray
+    ``peaks`` and ``first_passage_times`` are ``values`` and ``first_passage`` as (N,) arrays for
+    a study of one output."""
+
+    values: np.ndarray
+    first_passage: np.ndarray
     failures: List[Tuple[int, str]]
+    monitors: Optional[List[Any]] = None
+
+    @property
+    def peaks(self) -> np.ndarray:
+        return self.values[:, 0] if self.values.shape[1] == 1 else self.values
+
+    @property
+    def first_passage_times(self) -> np.ndarray:
+        return self.first_passage[:, 0] if self.first_passage.shape[1] == 1 else self.first_passage
 
     @property
     def failed(self) -> np.ndarray:
-        mask = np.zeros(self.peaks.size, dtype=bool)
+        mask = np.zeros(self.values.shape[0], dtype=bool)
         for k, _ in self.failures:
             mask[k] = True
         return mask
 
 
 @dataclass
+class ModeEstimate:
+    """One failure mode's crude Monte Carlo estimate, from the same runs as the system's."""
+
+    name: str
+    pf: float
+    interval: Tuple[float, float]
+    exceedances: int
+
+
+@dataclass
 class MonteCarloEstimate:
-    """Crude Monte Carlo estimate of the probability that the output exceeds its limit.
+    """Crude Monte Carlo estimate of the probability that the output exceeds its limit (any
+    output its limit, for a series system).
 
     ``pf`` with its Wilson ``interval``; ``cov`` its coefficient of variation; ``n_runs``
     simulations; ``failures`` ``(sample, reason)`` of every run that failed, counted as exceedances
     (``on_failure="fail"``) or left out (``"exclude"``: ``bounds`` is then the range of p_f if
     every failed sample had stayed within / exceeded the limit). ``peaks`` and
-    ``first_passage_times`` per sample (NaN for failed samples), ``inputs`` the sampled values,
-    ``traces`` the full :class:`clearsim.Result` of the first ``keep_traces`` samples."""
+    ``first_passage_times`` per sample (NaN for failed samples; (n, outputs) for a system),
+    ``inputs`` the sampled values, ``traces`` the full :class:`clearsim.Result` of the first
+    ``keep_traces`` samples; ``modes`` each output's own estimate from the same runs."""
 
     pf: float
     interval: Tuple[float, float]
@@ -130,6 +110,7 @@ class MonteCarloEstimate:
     bounds: Tuple[float, float]
     wall_time: float
     traces: List[Any] = field(default_factory=list)
+    modes: List[ModeEstimate] = field(default_factory=list)
 
     @property
     def reliability(self) -> float:
@@ -140,8 +121,22 @@ class MonteCarloEstimate:
         return failure_reasons(self.failures)
 
 
+@dataclass
+class _Job:
+    """One sample's run as the loop builds it."""
+
+    k: int
+    mechanism: Any
+    settings: Dict[str, Any]
+    period: float
+    clearances: List[float]
+    ideal_key: Optional[str] = None
+    #: Every ``refine``-th point of the ideal reference is on this run's stored output grid.
+    refine: int = 1
+
+
 class Study(Model):
-    """Reliability of one output of a mechanism with random inputs.
+    """Reliability of one or several outputs of a mechanism with random inputs.
 
     Parameters
     ----------
@@ -151,10 +146,13 @@ class Study(Model):
         ``{name: distribution or number}``: :mod:`clearsim.reliability` distributions, frozen
         ``scipy.stats`` distributions or fixed numbers, in the units ``build`` expects.
     output:
-        The analysed :class:`Output`.
+        The analysed :class:`Output`, or a list of them: a series system that fails when any
+        output passes its limit.
     limit:
-        Required: the largest acceptable peak of the output over the window, in the output's
-        unit (:attr:`Output.unit`).
+        Required: the limit of each output in its unit (:attr:`Output.unit`): a positive number
+        (the largest acceptable peak), :meth:`Limit.below` / ``("below", x)`` (the smallest
+        acceptable minimum, e.g. a film thickness) or :meth:`Limit.above`; a list for a list of
+        outputs.
     omega:
         Drive speed [rad/s] defining the crank cycle: a number or the name of an input.
     cycles, skip_cycles:
@@ -176,8 +174,8 @@ class Study(Model):
         self,
         build: Callable[..., Any],
         inputs: Mapping[str, Any],
-        output: Output,
-        limit: Optional[float] = None,
+        output: Any,
+        limit: Any = None,
         *,
         omega: Any = None,
         cycles: float = 1.0,
@@ -194,16 +192,11 @@ class Study(Model):
     ) -> None:
         if not callable(build):
             raise InputError(f"invalid build = {build!r}: must be a callable returning a Mechanism", field="build", value=build)
-        if not isinstance(output, Output):
-            raise InputError(f"invalid output = {output!r}: must be a clearsim.reliability.Output", field="output", value=output)
-        if limit is None:
-            raise InputError(f"missing limit: the largest acceptable {output.label} [{output.unit}] is required (there is no default)", field="limit", value=None)
-        self.limit = check_positive("limit", limit)
+        self.outputs, self.limits = limits_and_outputs(output, limit)
         if not inputs:
             raise InputError("missing inputs: give at least one {name: distribution or number}", field="inputs", value=inputs)
         self.build = build
         self._set_inputs(inputs)
-        self.output = output
         if omega is None:
             raise InputError("missing omega: give the drive speed [rad/s] or the name of the input that holds it", field="omega", value=None)
         if isinstance(omega, str) and omega not in self.inputs:
@@ -225,13 +218,30 @@ class Study(Model):
         self.chunk_size = chunk_size
         self.progress = progress
         self._counter = [0]  # simulations of the mechanism with clearances so far (ideal twins aside)
-        self._ideal: Dict[str, Any] = {}
+        self._ideal: "OrderedDict[str, Any]" = OrderedDict()
         self._assembly_checked = False
 
-    # ------------------------------------------------------------------ the model
-    def __repr__(self) -> str:
-        return f"Study({self.output.label} ≤ {self.limit:g} {self.output.unit}; random: {', '.join(self.random_names) or 'none'})"
+    # ------------------------------------------------------------------ outputs and limits
+    @property
+    def output(self) -> Output:
+        """The analysed output (the first one of a system)."""
+        return self.outputs[0]
 
+    @property
+    def limit(self) -> float:
+        """The limit's value [output unit] (the first output's, for a system)."""
+        return self.limits[0].value
+
+    @property
+    def mode_names(self) -> List[str]:
+        """One failure mode per output: its :attr:`Output.name`."""
+        return [o.name for o in self.outputs]
+
+    def __repr__(self) -> str:
+        modes = " or ".join(f"{o.label} {lim.text(o.unit)}" for o, lim in zip(self.outputs, self.limits))
+        return f"Study({modes}; random: {', '.join(self.random_names) or 'none'})"
+
+    # ------------------------------------------------------------------ the model
     def _omega(self, params: Mapping[str, float]) -> float:
         w = float(params[self.omega]) if isinstance(self.omega, str) else float(self.omega)
         if w == 0.0 or not math.isfinite(w):
@@ -243,16 +253,17 @@ class Study(Model):
         t0 = self.skip_cycles * period
         return t0, t0 + self.cycles * period, period
 
-    def _target(self, m: Any) -> int:
-        if self.output.body is not None:
+    def _target(self, m: Any, output: Output) -> int:
+        """The monitored coordinate (3 per body) or clearance joint's index of ``output``."""
+        if output.body is not None:
             names = m.body_names
-            if self.output.body not in names:
-                raise InputError(f"invalid Output.body = {self.output.body!r}: no such body (known: {', '.join(names)})", field="Output.body", value=self.output.body)
-            return 3 * names.index(self.output.body) + COMPONENTS.index(str(self.output.component))
+            if output.body not in names:
+                raise InputError(f"invalid Output.body = {output.body!r}: no such body (known: {', '.join(names)})", field="Output.body", value=output.body)
+            return 3 * names.index(output.body) + COMPONENTS.index(str(output.component))
         names = m.clearance_joint_names
-        if self.output.joint not in names:
-            raise InputError(f"invalid Output.joint = {self.output.joint!r}: no such clearance joint (known: {', '.join(names) or 'none'})", field="Output.joint", value=self.output.joint)
-        return names.index(self.output.joint)
+        if output.joint not in names:
+            raise InputError(f"invalid Output.joint = {output.joint!r}: no such clearance joint (known: {', '.join(names) or 'none'})", field="Output.joint", value=output.joint)
+        return names.index(output.joint)
 
     def _check_first_assembly(self, m: Any, t0: float) -> None:
         """The pose check of ``Mechanism.simulate`` (a joint point in the wrong frame is an
@@ -261,96 +272,152 @@ class Study(Model):
             m._checked_assembly(t0)
             self._assembly_checked = True
 
-    def _reference(self, m: Any, t0: float, t1: float, period: float) -> Any:
-        """The ideal mechanism's response that body errors are measured against (run once per
-        distinct ideal mechanism and window; random clearances do not change it)."""
-        n = max(2, int(math.ceil(REFERENCE_POINTS_PER_CYCLE * (t1 - t0) / period)))
-        key, desc, settings = m.reference_job(np.linspace(t0, t1, n + 1), **self.run_options)
-        if key not in self._ideal:
-            from .. import _core
+    def _references(self, jobs: Dict[str, Tuple[Any, Any]]) -> None:
+        """Run the ideal mechanisms that body errors are measured against, those not cached yet,
+        in one batch (random clearances do not change them: most studies run one)."""
+        todo = [k for k in jobs if k not in self._ideal]
+        raws = run_all([jobs[k][0] for k in todo], [jobs[k][1] for k in todo], self.executor, self.chunk_size, False, "ideal mechanisms")
+        for key, raw in zip(todo, raws):
+            self._ideal[key] = f"{error_of(raw)} (ideal mechanism)" if failed(raw) else raw
+            while len(self._ideal) > IDEAL_CACHE:
+                self._ideal.popitem(last=False)
 
-            raw = _core.run_batch([desc], [settings], 1)[0]
-            if isinstance(raw, BaseException) or raw.get("error") is not None:
-                err = raw if isinstance(raw, BaseException) else raw["error"]
-                self._ideal[key] = f"{err} (ideal mechanism)"
+    def _monitors(self, job: _Job, t0: float, reference: Any) -> List[Dict[str, Any]]:
+        specs = []
+        for o, lim, c in zip(self.outputs, self.limits, job.clearances):
+            col = self._target(job.mechanism, o)
+            if o.quantity == "film_thickness":
+                track: Optional[float] = 1.0 - lim.value / c if c > 0 else None  # ε at which h = c(1 − ε) reaches the limit
             else:
-                self._ideal[key] = raw
-        return self._ideal[key]
+                track = lim.value if lim.side == "above" else None
+            specs.append(monitor_spec(reference if o.body is not None else None, col, o.monitored, track, t0, job.period, self.cycles, self.bin_width))
+        return specs
 
-    def _monitor(self, col: int, t0: float, period: float, reference: Any) -> Dict[str, Any]:
-        from ..montecarlo import _monitor_spec
+    def run_samples(
+        self, points: Mapping[str, Any], *, keep_traces: int = 0, points_per_cycle: int = 360, trace_outputs: Optional[Sequence[str]] = None,
+        raw_traces: bool = False, keep_monitors: bool = False, check_assembly: bool = True, what: str = "runs", show: Optional[bool] = None,
+    ) -> Tuple[Evaluation, List[Any]]:  # fmt: skip
+        """The sample loop: run the model at ``points`` (``{input name: (N,) array}``; missing
+        inputs at their mean) in chunks of :data:`CHUNK`, keeping each run's extremes and
+        first-passage times (and on request its raw monitor results).
 
-        return _monitor_spec(reference, col, self.output.quantity, (0.0, self.limit), t0, period, self.cycles, self.bin_width)
-
-    def _jobs(self, points: Mapping[str, np.ndarray], start: int, stop: int, keep: int) -> Tuple[List[Any], List[Any], Dict[int, str], List[Any]]:
-        descriptions, settings, errors, mechs = [], [], {}, []
-        for k in range(start, stop):
-            params = {name: float(v[k]) for name, v in points.items()}
-            m = self.build(**params)
-            t0, t1, period = self._window(params)
-            self._check_first_assembly(m, t0)
-            col = self._target(m)
-            reference = None
-            if self.output.body is not None:
-                reference = self._reference(m, t0, t1, period)
-                if isinstance(reference, str):
-                    errors[k] = reference
-                    continue
-            grid = np.linspace(t0, t1, int(round(360 * self.cycles)) + 1) if k < keep else np.array([t0, t1])
-            s = m.run_settings(t1, t_out=grid, outputs=["states"] if k >= keep else None, **self.run_options)
-            s["monitors"] = [self._monitor(col, t0, period, reference)]
-            descriptions.append(m.description())
-            settings.append(s)
-            mechs.append((k, m, s))
-        return descriptions, settings, errors, mechs
-
-    def evaluate(self, points: Mapping[str, Any], *, keep_traces: int = 0, what: str = "runs") -> Tuple[Evaluation, List[Any]]:
-        """Run the model at ``points`` (``{input name: (N,) array}``; missing inputs at their
-        mean) in chunks of :data:`CHUNK`, keeping only each run's peak and first-passage time
-        (and the full result of the first ``keep_traces`` runs)."""
-        from ..montecarlo import _progress, _run_all
-
+        The first ``keep_traces`` runs also store their outputs on ``points_per_cycle`` points a
+        cycle (``trace_outputs``: the run's ``outputs``): as :class:`clearsim.Result` objects, or
+        with ``raw_traces`` as ``{"sample": raw run, "ideal": the ideal run on the same grid,
+        "columns": each output's monitored coordinate or joint index}``."""
         full = {name: np.atleast_1d(np.asarray(points[name], dtype=float)) if name in points else None for name in self.inputs}
         n = max((v.size for v in full.values() if v is not None), default=1)
         cols = {name: (v if v is not None else np.full(n, self.inputs[name].nominal)) for name, v in full.items()}
         for name, v in cols.items():
             if v.size != n:
                 raise InputError(f"invalid points[{name!r}]: {v.size} values, others have {n}", field=f"points.{name}", value=v.size)
-        peaks = np.full(n, np.nan)
-        first = np.full(n, np.nan)
+        m_out = len(self.outputs)
+        values = np.full((n, m_out), np.nan)
+        first = np.full((n, m_out), np.nan)
         failures: List[Tuple[int, str]] = []
+        monitors: Optional[List[Any]] = [None] * n if keep_monitors else None
         traces: List[Any] = []
-        bar = _progress(n, self.progress and n >= 256, what)  # big batches only (not FORM's gradients)
+        bar = progress(n, (self.progress and n >= 256) if show is None else show, what)  # big batches only (not FORM's gradients)
         try:
             for start in range(0, n, CHUNK):
                 stop = min(n, start + CHUNK)
-                descriptions, settings, errors, mechs = self._jobs(cols, start, stop, keep_traces)
-                raws = _run_all(descriptions, settings, self.executor, self.chunk_size, False, what) if descriptions else []
-                for (k, m, s), raw in zip(mechs, raws):
-                    if isinstance(raw, BaseException) or raw.get("error") is not None:
-                        errors[k] = str(raw if isinstance(raw, BaseException) else raw["error"])
+                jobs, errors = self._chunk_jobs(cols, start, stop, keep_traces, points_per_cycle, trace_outputs, check_assembly)
+                raws = run_all([j.mechanism.description() for j in jobs], [j.settings for j in jobs], self.executor, self.chunk_size, False, what)
+                for job, raw in zip(jobs, raws):
+                    k = job.k
+                    if failed(raw):
+                        errors[k] = str(error_of(raw))
                         continue
-                    mon = raw["monitors"][0]
-                    peaks[k] = mon["peak"]
-                    first[k] = mon["first_passage"]
+                    mons = raw["monitors"]
+                    for i, (o, lim, c) in enumerate(zip(self.outputs, self.limits, job.clearances)):
+                        mon = mons[i]
+                        if o.quantity == "film_thickness":
+                            values[k, i] = c * (1.0 - float(mon["peak"]))
+                        elif lim.side == "below":
+                            values[k, i] = float(np.min(mon["bin_min"]))
+                        else:
+                            values[k, i] = float(mon["peak"])
+                        first[k, i] = float(mon["first_passage"])
+                    if monitors is not None:
+                        monitors[k] = mons
                     if k < keep_traces:
-                        traces.append(m._finish(raw, s))
+                        traces.append(self._trace(job, raw, raw_traces))
                 failures += sorted(errors.items())
                 self.n_runs += stop - start
                 bar.update(stop - start)
         finally:
             bar.close()
-        return Evaluation(peaks, first, failures), traces
+        return Evaluation(values, first, sorted(failures), monitors), traces
+
+    def _trace(self, job: _Job, raw: Dict[str, Any], raw_traces: bool) -> Any:
+        if not raw_traces:
+            return job.mechanism._finish(raw, job.settings)
+        ideal = self._ideal.get(job.ideal_key) if job.ideal_key is not None else None
+        if isinstance(ideal, dict):
+            ideal = {key: (value[:: job.refine] if key in ("t", "q", "qd", "qdd") else value) for key, value in ideal.items()}
+        return {"sample": raw, "ideal": ideal, "columns": [self._target(job.mechanism, o) for o in self.outputs]}
+
+    def _chunk_jobs(
+        self, points: Mapping[str, np.ndarray], start: int, stop: int, keep: int, points_per_cycle: int, trace_outputs: Optional[Sequence[str]], check_assembly: bool
+    ) -> Tuple[List[_Job], Dict[int, str]]:
+        """Build the chunk's mechanisms and run settings, their ideal references in one batch,
+        and each run's monitors; a sample whose reference failed is a failure with its reason."""
+        errors: Dict[int, str] = {}
+        jobs: List[_Job] = []
+        ideal_jobs: Dict[str, Tuple[Any, Any]] = {}
+        windows = []
+        need_reference = any(o.body is not None for o in self.outputs)
+        for k in range(start, stop):
+            params = {name: float(v[k]) for name, v in points.items()}
+            m = self.build(**params)
+            t0, t1, period = self._window(params)
+            if check_assembly:
+                self._check_first_assembly(m, t0)
+            tracing = k < keep
+            t_ref, refine = reference_grid(t0, t1, period, points_per_cycle if tracing else None)
+            grid = output_grid(t0, t1, period, points_per_cycle) if tracing else np.array([t0, t1])
+            outputs = (list(trace_outputs) if trace_outputs is not None else None) if tracing else ["states"]
+            s = m.run_settings(float(grid[-1]), t_out=grid, outputs=outputs, **self.run_options)
+            contacts = m.contacts() if any(o.quantity == "film_thickness" for o in self.outputs) else {}
+            clearances = [float(contacts[o.joint]["clearance"]) if o.quantity == "film_thickness" and o.joint in contacts else 0.0 for o in self.outputs]
+            job = _Job(k, m, s, period, clearances, refine=refine)
+            if need_reference:
+                key, desc, ref_settings = m.reference_job(t_ref, **self.run_options)
+                job.ideal_key = key
+                ideal_jobs.setdefault(key, (desc, ref_settings))
+            jobs.append(job)
+            windows.append(t0)
+        if ideal_jobs:
+            self._references(ideal_jobs)
+        kept: List[_Job] = []
+        for job, t0 in zip(jobs, windows):
+            reference = self._ideal.get(job.ideal_key) if job.ideal_key is not None else None
+            if isinstance(reference, str):
+                errors[job.k] = reference
+                continue
+            job.settings["monitors"] = self._monitors(job, t0, reference)
+            kept.append(job)
+        return kept, errors
+
+    def evaluate(self, points: Mapping[str, Any], *, keep_traces: int = 0, what: str = "runs") -> Tuple[Evaluation, List[Any]]:
+        """Run the model at ``points`` (``{input name: (N,) array}``; missing inputs at their
+        mean), keeping each run's extremes and first-passage times (and the full result of the
+        first ``keep_traces`` runs). See :meth:`run_samples`."""
+        return self.run_samples(points, keep_traces=keep_traces, what=what)
+
+    def limit_states(self, u: Any, on_failure: str = "fail") -> np.ndarray:
+        """Each output's ``g_i(u)`` at standard normal points ``u`` (N × d): ``(N, outputs)``.
+        A run that fails gives ``g = −1`` in every mode (a failure) or raises
+        (``on_failure="raise"``)."""
+        ev, _ = self.run_samples(self.values(u), what="limit state")
+        _check_failures(ev, on_failure)
+        g = np.column_stack([lim.g(ev.values[:, i]) for i, lim in enumerate(self.limits)])
+        g[ev.failed, :] = -1.0
+        return g
 
     def limit_state(self, u: Any, on_failure: str = "fail") -> np.ndarray:
-        """``g(u) = 1 − peak / limit`` at standard normal points ``u`` (N × d); failure when
-        ``g ≤ 0``. A run that fails gives ``g = −1`` (an exceedance) or raises
-        (``on_failure="raise"``)."""
-        ev, _ = self.evaluate(self.values(u), what="limit state")
-        _check_failures(ev, on_failure, self)
-        g = 1.0 - ev.peaks / self.limit
-        g[ev.failed] = -1.0
-        return g
+        """``g(u) = min_i g_i(u)`` (one output: ``1 − peak / limit``); failure when ``g ≤ 0``."""
+        return np.min(self.limit_states(u, on_failure), axis=1)
 
     # ------------------------------------------------------------------ methods
     def monte_carlo(self, n: int, seed: Optional[int] = 0, executor: Any = None, on_failure: str = "fail", *, keep_traces: int = 0, confidence: float = 0.95) -> MonteCarloEstimate:
@@ -358,7 +425,7 @@ class Study(Model):
         results of the first ``keep_traces`` samples on request). Each input has its own random
         stream seeded by ``(seed, name)``. ``on_failure``: ``"fail"`` (default: a failed run
         counts as an exceedance), ``"exclude"`` (left out; ``bounds`` brackets p_f) or
-        ``"raise"``."""
+        ``"raise"``. A series system's p_f and each output's (``modes``) come from the same runs."""
         check_on_failure(on_failure)
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
             raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
@@ -368,104 +435,68 @@ class Study(Model):
             u = np.column_stack([input_stream(seed, name).standard_normal(int(n)) for name in self.random_names]) if self.random_names else np.zeros((int(n), 0))
             inputs = self.values(u)
             runs0 = self.n_runs
-            ev, traces = self.evaluate(inputs, keep_traces=keep_traces, what="Monte Carlo samples")
+            ev, traces = self.run_samples(inputs, keep_traces=keep_traces, what="Monte Carlo samples")
         finally:
             self.executor = saved
-        _check_failures(ev, on_failure, self)
-        exceed = (ev.peaks > self.limit) & ~ev.failed
-        k_out, n_fail = int(exceed.sum()), len(ev.failures)
-        if on_failure == "fail":
-            k, n_eff = k_out + n_fail, int(n)
-        else:
-            k, n_eff = k_out, int(n) - n_fail
+        _check_failures(ev, on_failure)
+        ok = ~ev.failed
+        exceed_by_mode = np.column_stack([lim.exceeded(ev.values[:, i]) & ok for i, lim in enumerate(self.limits)])
+        n_fail = len(ev.failures)
+        n_eff = int(n) if on_failure == "fail" else int(n) - n_fail
         if n_eff < 1:
             raise SimulationError(f"no Monte Carlo sample completed ({n_fail} failed); first failure: {ev.failures[0][1]}", reason=ev.failures[0][1])
-        pf = k / n_eff
-        lo, hi = wilson_interval(k, n_eff, confidence)
+        add = n_fail if on_failure == "fail" else 0
+
+        def estimate(k_out: int) -> Tuple[float, Tuple[float, float]]:
+            lo, hi = wilson_interval(k_out + add, n_eff, confidence)
+            return (k_out + add) / n_eff, (float(lo), float(hi))
+
+        k_sys = int(exceed_by_mode.any(axis=1).sum())
+        pf, interval = estimate(k_sys)
+        modes = [ModeEstimate(name, *estimate(int(exceed_by_mode[:, i].sum())), int(exceed_by_mode[:, i].sum())) for i, name in enumerate(self.mode_names)]
         cov = math.sqrt((1.0 - pf) / (pf * n_eff)) if pf > 0 else math.inf
         return MonteCarloEstimate(
-            pf=pf, interval=(float(lo), float(hi)), cov=cov, n_runs=self.n_runs - runs0, failures=ev.failures,
+            pf=pf, interval=interval, cov=cov, n_runs=self.n_runs - runs0, failures=ev.failures,
             peaks=ev.peaks, first_passage_times=ev.first_passage_times, inputs=inputs, on_failure=on_failure,
-            bounds=(k_out / int(n), (k_out + n_fail) / int(n)), wall_time=time.perf_counter() - start, traces=traces,
+            bounds=(k_sys / int(n), (k_sys + n_fail) / int(n)), wall_time=time.perf_counter() - start, traces=traces, modes=modes,
         )  # fmt: skip
 
-    def fosm(self, bin_width: Optional[float] = None) -> FosmResult:
+    def fosm(self, bin_width: Optional[float] = None, output: int = 0) -> FosmResult:
         """The paper's per-bin FOSM (Eqs. P27–P32) of the nominal mechanism (every input at its
-        mean): per crank-angle bin, the time-averaged mean and standard deviation of |error|
-        over the analysed cycles, integrated at every step (not from stored samples), against
-        the allowable range ``[0, limit]`` (μ_S = limit/2, σ_S = limit/6)."""
+        mean) for output number ``output``: per crank-angle bin, the time-averaged mean and
+        standard deviation of |error| over the analysed cycles, integrated at every step (not
+        from stored samples), against the allowable range ``[0, limit]`` (μ_S = limit/2,
+        σ_S = limit/6)."""
         width = check_positive("bin_width", bin_width) if bin_width is not None else self.bin_width
-        saved, self.bin_width = self.bin_width, width
+        if not (isinstance(output, int) and 0 <= output < len(self.outputs)):
+            raise InputError(f"invalid output = {output!r}: the index of one of {len(self.outputs)} outputs", field="output", value=output)
+        if self.limits[output].side != "above" or self.outputs[output].quantity == "film_thickness":
+            raise InputError(f"invalid output = {output}: FOSM compares an error with an allowable range [0, limit]; {self.outputs[output].label} has a lower limit", field="output", value=output)
+        saved = (self.bin_width, self.outputs, self.limits)
+        self.bin_width, self.outputs, self.limits = width, [self.outputs[output]], [self.limits[output]]
         try:
-            params = self.nominal()
-            m = self.build(**params)
-            t0, t1, period = self._window(params)
-            self._check_first_assembly(m, t0)
-            col = self._target(m)
-            reference = self._reference(m, t0, t1, period) if self.output.body is not None else None
-            if isinstance(reference, str):
-                raise SimulationError(f"FOSM: {reference}", reason=reference)
-            s = m.run_settings(t1, t_out=np.array([t0, t1]), outputs=["states"], **self.run_options)
-            s["monitors"] = [self._monitor(col, t0, period, reference)]
+            ev, _ = self.run_samples({}, keep_monitors=True, what="FOSM")
         finally:
-            self.bin_width = saved
-        from .. import _core
-
-        raw = _core.run_batch([m.description()], [s], 1)[0]
-        self.n_runs += 1
-        if isinstance(raw, BaseException) or raw.get("error") is not None:
-            err = raw if isinstance(raw, BaseException) else raw["error"]
-            raise SimulationError(f"FOSM: the nominal mechanism failed: {err}", reason=str(err))
-        mon = raw["monitors"][0]
+            self.bin_width, self.outputs, self.limits = saved
+        if ev.failures:
+            reason = ev.failures[0][1]
+            raise SimulationError(f"FOSM: the nominal mechanism failed: {reason}", reason=reason)
+        assert ev.monitors is not None
         per_cycle = int(math.ceil(360.0 / width - 1e-9))
-        n_time = len(mon["bin_time"])
-        fold = np.arange(n_time) % per_cycle
-        integ = np.zeros((3, per_cycle))
-        for row, key in enumerate(("bin_abs", "bin_sq", "bin_time")):
-            np.add.at(integ[row], fold, np.asarray(mon[key], dtype=float))
-        count = np.bincount(fold[np.asarray(mon["bin_time"]) > 0], minlength=per_cycle)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            mu_s = integ[0] / integ[2]
-            sigma_s = np.sqrt(np.maximum(integ[1] / integ[2] - mu_s**2, 0.0))
-        mu_S, sigma_S = allowable_statistics(0.0, self.limit)
-        beta = np.asarray(reliability_index(mu_S, sigma_S, mu_s, sigma_s), dtype=float)
+        mon = ev.monitors[0][0]
+        fold = np.arange(len(mon["bin_time"])) % per_cycle
         starts = np.arange(per_cycle) * width
         centres = np.minimum(starts + 0.5 * width, 0.5 * (starts + np.minimum(starts + width, 360.0)))
-        return FosmResult(starts, centres, np.zeros(per_cycle, dtype=int), count, mu_s, sigma_s, beta, np.asarray(normal_cdf(beta)), mu_S, sigma_S, width)
+        mu_S, sigma_S = allowable_statistics(0.0, self.limits[output].value)
+        return fosm_from_monitors([mon], fold, starts, centres, np.zeros(per_cycle, dtype=int), mu_S, sigma_S, width)
+
+    # ------------------------------------------------------------------ methods of other rooms
+    # Reliability over life (life.py) and active-learning surrogates (akmcs.py) add their
+    # methods here, each a thin call into its own module (as Model's methods call form.py etc.).
 
 
-    def importance_sampling(self, cov: float = 0.1, max_runs: int = 20000, seed: Optional[int] = 0, *, design_point: Any = None, block: int = 64, on_failure: str = "fail") -> Any:
-        """Importance sampling around the FORM design point until the estimate's coefficient of
-        variation reaches ``cov`` (or ``max_runs``). See :func:`clearsim.reliability.uq.importance_sampling`."""
-        from . import uq
-
-        return uq.importance_sampling(self, cov=cov, max_runs=max_runs, seed=seed, design_point=design_point, block=block, on_failure=on_failure)
-
-    def subset(self, seed: Optional[int] = 0, *, n_per_level: int = 1000, conditional_probability: float = 0.1, on_failure: str = "fail") -> Any:
-        """Subset simulation (OpenTURNS). See :func:`clearsim.reliability.uq.subset`."""
-        from . import uq
-
-        return uq.subset(self, seed=seed, n_per_level=n_per_level, conditional_probability=conditional_probability, on_failure=on_failure)
-
-    def sobol(self, n: int, seed: Optional[int] = 0, *, on_failure: str = "fail") -> Any:
-        """First-order and total Sobol indices of the peak output (OpenTURNS, Martinez):
-        ``n × (d + 2)`` runs. See :func:`clearsim.reliability.uq.sobol`."""
-        from . import uq
-
-        return uq.sobol(self, n, seed=seed, on_failure=on_failure)
-
-    def tolerance(self, name: str, reliability: float, *, bracket: Optional[Tuple[float, float]] = None, cov: float = 0.1, max_runs: int = 20000, seed: Optional[int] = 0) -> Any:
-        """The largest mean of input ``name`` (its spread kept) for which the reliability is
-        still ``reliability``. See :func:`clearsim.reliability.uq.tolerance`."""
-        from . import uq
-
-        return uq.tolerance(self, name, reliability, bracket=bracket, cov=cov, max_runs=max_runs, seed=seed)
-
-
-def _check_failures(ev: Evaluation, on_failure: str, study: Study) -> None:
+def _check_failures(ev: Evaluation, on_failure: str) -> None:
     check_on_failure(on_failure)
     if ev.failures and on_failure == "raise":
         k, reason = ev.failures[0]
-        raise SimulationError(f"run {k} of {ev.peaks.size} failed: {reason}; {len(ev.failures)} failed in all", reason=reason)
-
-
+        raise SimulationError(f"run {k} of {ev.values.shape[0]} failed: {reason}; {len(ev.failures)} failed in all", reason=reason)

@@ -1,0 +1,349 @@
+"""FORM on limit states that may be noisy, and the first-order reliability of a series system.
+
+A simulated limit state is not smooth at small scales: dry impacts, event location and step-size
+control make ``g`` jitter when the inputs move by 1e-3 of their spread. FORM here is the improved
+Hasofer–Lind–Rackwitz–Fiessler search (Zhang & Der Kiureghian 1995; docs/reliability.md, "Noisy
+limit states"), with three guards against that noise:
+
+1. the noise σ_g of the limit state is measured before the search (9 runs): g on 9 points 0.01 apart
+   (in u) along a random direction, a quadratic fitted by least squares, σ_g its residual
+   standard deviation;
+2. the gradient is a regression over the 2d points ``u ± h e_i`` (one batch of runs, in
+   parallel) with the step ``h = 35 σ_g / |∇g|`` (the gradient's noise ≤ 2 % of its size),
+   clipped to [0.001, 0.5]; ``step=`` fixes h instead;
+3. a design point is accepted when ``|g(u*)| ≤ 3 σ_g`` with a :class:`ReliabilityWarning` that
+   gives β's uncertainty from the noise, ``σ_g / |∇g|``; a search that does not converge, or
+   whose β the noise leaves uncertain by more than 10 %, raises :class:`ReliabilityError` naming
+   its best point and what to use instead.
+
+A series system (the mechanism fails when any mode fails) gets FORM per mode and, from the modes'
+design points, the correlation ρ_ij = α_i·α_j of their linearised margins, the first-order series
+probability ``1 − Φ_m(β; ρ)`` and Ditlevsen's bounds.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+from scipy import special, stats
+
+from ..errors import InputError, ReliabilityError, ReliabilityWarning, check_positive
+from .bridge import ModelLike, check_model
+
+__all__ = ["FormResult", "SystemFormResult", "form", "system_form", "limit_state_noise", "ditlevsen_bounds", "series_probability"]
+
+#: Spacing in u of the noise-measuring points and their number.
+NOISE_SPACING = 0.01
+NOISE_POINTS = 9
+#: Gradient step h = STEP_FACTOR · σ_g / |∇g| (the regression gradient's noise ≤ 2 % of |∇g|),
+#: clipped to [MIN_STEP, MAX_STEP] in u.
+STEP_FACTOR = 35.0
+MIN_STEP, MAX_STEP = 1e-3, 0.5
+#: The first gradient's step in u (before |∇g| is known).
+FIRST_STEP = 0.05
+#: A design point is on the limit state when |g| ≤ G_TOLERANCE · max(1, |g(start)|), or within
+#: NOISE_BAND σ_g of it on a noisy limit state (then with a warning).
+G_TOLERANCE = 1e-4
+NOISE_BAND = 3.0
+#: A limit state whose noise exceeds this fraction of |g| and of |∇g| (per unit of u) at the start
+#: has no gradient to follow.
+NOISE_MARGIN = 0.2
+#: Beyond this uncertainty of β from the noise (relative, at least 1 in u) there is no design
+#: point to speak of: FORM raises.
+BETA_NOISE_LIMIT = 0.1
+
+
+@dataclass
+class FormResult:
+    """FORM: the design point (most probable failure point) in physical units and in the
+    standard normal space, the reliability index β (negative when the mean point already fails),
+    p_f ≈ Φ(−β), the importance factors α_i² (sum 1) by input, and the cost.
+
+    ``noise``: the limit state's measured noise σ_g (in g's scale, g = 1 − peak/limit for a
+    study); ``step``: the gradient step in u used last; ``g_design``: g at the design point;
+    ``beta_noise``: β's uncertainty from the noise, σ_g / |∇g|; ``accepted_at_noise``: whether
+    the design point was accepted within the noise band rather than the nominal tolerance."""
+
+    beta: float
+    pf: float
+    design_point: Dict[str, float]
+    design_point_u: np.ndarray
+    importance: Dict[str, float]
+    n_runs: int
+    wall_time: float
+    converged: bool = True
+    noise: float = 0.0
+    step: float = math.nan
+    g_design: float = math.nan
+    beta_noise: float = 0.0
+    accepted_at_noise: bool = False
+    iterations: int = 0
+
+    @property
+    def reliability(self) -> float:
+        return 1.0 - self.pf
+
+    @property
+    def alpha(self) -> np.ndarray:
+        """The unit normal α = −∇g/|∇g| at the design point (u* = β α; the linearised margin is
+        β − α·u)."""
+        return self.design_point_u / self.beta if self.beta != 0 else np.zeros_like(self.design_point_u)
+
+
+def limit_state_noise(model: ModelLike, u0: np.ndarray, on_failure: str = "fail", seed: int = 0) -> float:
+    """The noise σ_g of the limit state near ``u0``: g on :data:`NOISE_POINTS` points
+    :data:`NOISE_SPACING` apart along a random direction (one batch), minus a least-squares
+    quadratic; σ_g is the residual's standard deviation (6 degrees of freedom)."""
+    d = u0.size
+    p = np.random.default_rng(seed).standard_normal(d)
+    p /= np.linalg.norm(p)
+    s = (np.arange(NOISE_POINTS) - NOISE_POINTS // 2) * NOISE_SPACING
+    g = model.limit_state(u0[None, :] + s[:, None] * p[None, :], on_failure)
+    ok = np.isfinite(g)
+    if ok.sum() < 4:
+        return 0.0
+    v = np.vander(s[ok], 3)
+    coef, *_ = np.linalg.lstsq(v, g[ok], rcond=None)
+    resid = g[ok] - v @ coef
+    return float(math.sqrt(np.sum(resid**2) / max(1, ok.sum() - 3)))
+
+
+def _gradient(model: ModelLike, u: np.ndarray, h: float, on_failure: str) -> Tuple[float, np.ndarray]:
+    """g(u) and the regression gradient over ``u ± h e_i`` (one batch of 1 + 2d runs). For a
+    design symmetric about u the least-squares slope is the centred difference, the centre
+    value entering only g(u)."""
+    d = u.size
+    pts = np.vstack([u, u + h * np.eye(d), u - h * np.eye(d)])
+    g = model.limit_state(pts, on_failure)
+    return float(g[0]), (g[1 : d + 1] - g[d + 1 :]) / (2.0 * h)
+
+
+def form(
+    model: ModelLike, *, start: Optional[Sequence[float]] = None, step: Union[float, str] = "auto", max_iterations: int = 50, on_failure: str = "fail",
+    tolerance: float = 1e-3,
+) -> FormResult:  # fmt: skip
+    """First-order reliability method: the design point u* nearest the origin on g(u) = 0 by the
+    improved HL-RF search (each iteration one parallel batch of 1 + 2d runs), β = |u*| (signed),
+    p_f ≈ Φ(−β).
+
+    ``start``: the starting point in u (default: the mean point, u = 0); ``step``: the gradient
+    step in u, ``"auto"`` (default: from the measured noise, see the module docs) or a number;
+    ``max_iterations`` of the search; ``tolerance``: convergence when u moves by less than this
+    (in u). Raises :class:`ReliabilityError` when the search does not converge."""
+    t0, runs0 = time.perf_counter(), model.n_runs
+    check_model(model, on_failure)
+    d = model.dimension
+    auto = isinstance(step, str)
+    if auto and step != "auto":
+        raise InputError(f"invalid step = {step!r}: give 'auto' or a step in the standard normal space (e.g. 0.05)", field="step", value=step)
+    h = FIRST_STEP if auto else check_positive("step", step)
+    if isinstance(max_iterations, bool) or int(max_iterations) < 1:
+        raise InputError(f"invalid max_iterations = {max_iterations!r}: must be a positive integer", field="max_iterations", value=max_iterations)
+    u = np.zeros(d) if start is None else np.asarray([float(v) for v in start], dtype=float)
+    if u.size != d:
+        raise InputError(f"invalid start: {u.size} values for {d} random inputs", field="start", value=list(u))
+    noise = limit_state_noise(model, u, on_failure)
+    g, grad = _gradient(model, u, h, on_failure)
+    if auto:
+        h = _step(noise, grad, h)
+        g, grad = _gradient(model, u, h, on_failure)
+    g_scale = max(1.0, abs(g))
+    if noise > NOISE_MARGIN * max(abs(g), float(np.linalg.norm(grad))):
+        raise _no_convergence(model, (abs(g), u, g, grad), noise, f"the limit state's noise σ_g = {noise:.3g} is not small against its value g = {g:.3g} and slope |∇g| = {float(np.linalg.norm(grad)):.3g} at the start")
+    best = (abs(g), u.copy(), g, grad.copy())
+    history: List[float] = []
+    converged = False
+    iteration = 0
+    for iteration in range(1, int(max_iterations) + 1):
+        norm2 = float(grad @ grad)
+        if not (norm2 > 0 and math.isfinite(norm2)):
+            raise _no_convergence(model, best, noise, f"the gradient of g vanished or is not finite at u = {_fmt(u)} (g flat at the step h = {h:.3g}: try a larger step=)")
+        direction = (grad @ u - g) / norm2 * grad - u  # HL-RF step
+        # Line search on the merit ½|u|² + c|g| (Zhang & Der Kiureghian 1995), c > |u|/|∇g|.
+        c = 2.0 * max(float(np.linalg.norm(u)) / math.sqrt(norm2), 1.0)
+        merit0 = 0.5 * float(u @ u) + c * abs(g)
+        lam = 1.0
+        for _ in range(6):
+            trial = u + lam * direction
+            g_t = float(model.limit_state(trial[None, :], on_failure)[0])
+            if 0.5 * float(trial @ trial) + c * abs(g_t) <= merit0 + max(noise * c, 0.0) or lam < 0.1:
+                break
+            lam *= 0.5
+        moved = float(np.linalg.norm(trial - u))
+        u = trial
+        g, grad = _gradient(model, u, h, on_failure)
+        if auto:
+            h = _step(noise, grad, h)
+        if abs(g) < best[0]:
+            best = (abs(g), u.copy(), g, grad.copy())
+        history.append(moved)
+        on_surface = abs(g) <= G_TOLERANCE * g_scale or abs(g) <= NOISE_BAND * noise
+        # How far u moves from one iteration to the next from the noise alone: the gradient's
+        # direction is uncertain by about √d σ_g / (√2 h |∇g|), which turns u* on the sphere
+        # |u| = β, plus g's own noise along the gradient, σ_g / |∇g|.
+        wander = (math.sqrt(d) * noise / (math.sqrt(2.0) * h) * float(np.linalg.norm(u)) + noise) / math.sqrt(float(grad @ grad) or 1.0)
+        if on_surface and moved < max(tolerance * max(1.0, float(np.linalg.norm(u))), NOISE_BAND * wander):
+            converged = True
+            break
+    if not converged:
+        # One more look at the noise where the search ended: the start may have been smoother.
+        if auto:
+            noise_here = limit_state_noise(model, best[1], on_failure, seed=1)
+            if abs(best[2]) <= NOISE_BAND * noise_here:
+                noise = max(noise, noise_here)
+                u, g, grad = best[1], best[2], best[3]
+                converged = True
+        if not converged:
+            moves = ", ".join(f"{m:.3g}" for m in history[-3:])
+            raise _no_convergence(model, best, noise, f"no design point after {iteration} iterations (the last moves of u: {moves}; |g| at the best point {best[0]:.3g}, noise σ_g = {noise:.3g})")
+    norm_grad = float(np.linalg.norm(grad))
+    alpha = -grad / norm_grad
+    beta = float(alpha @ u)
+    beta_noise = noise / norm_grad if norm_grad > 0 else math.inf
+    accepted_at_noise = abs(g) > G_TOLERANCE * g_scale
+    grad_noise = math.sqrt(d) * noise / (math.sqrt(2.0) * h)  # the regression gradient's own noise
+    if norm_grad < 3.0 * grad_noise:
+        raise _no_convergence(model, (abs(g), u, g, grad), noise, f"the gradient |∇g| = {norm_grad:.3g} is lost in its noise ({grad_noise:.3g} at the step h = {h:.3g} from σ_g = {noise:.3g})")
+    if beta_noise > BETA_NOISE_LIMIT * max(1.0, abs(beta)):
+        raise _no_convergence(model, (abs(g), u, g, grad), noise, f"the limit state's noise σ_g = {noise:.3g} makes β = {beta:.3g} uncertain by ±{beta_noise:.2g} (σ_g / |∇g|)")
+    if accepted_at_noise:
+        warnings.warn(
+            f"FORM: design point accepted at the noise level of the limit state: |g(u*)| = {abs(g):.3g} is within {NOISE_BAND:g} σ_g "
+            f"(σ_g = {noise:.3g} measured) but above the nominal tolerance {G_TOLERANCE * g_scale:.3g}; β = {beta:.4g} is uncertain by about "
+            f"±{beta_noise:.2g} from the noise alone. Check p_f by importance sampling around this point.",
+            ReliabilityWarning, stacklevel=2,
+        )  # fmt: skip
+    pf = float(special.ndtr(-beta))
+    x_star = {k: float(v[0]) for k, v in model.values(u[None, :]).items()}
+    imp = dict(zip(model.random_names, map(float, alpha**2)))
+    return FormResult(beta, pf, x_star, u.copy(), imp, model.n_runs - runs0, time.perf_counter() - t0, True, noise, h, g, beta_noise, accepted_at_noise, iteration)
+
+
+def _step(noise: float, grad: np.ndarray, h: float) -> float:
+    norm = float(np.linalg.norm(grad))
+    if not (norm > 0 and math.isfinite(norm)):
+        return min(MAX_STEP, 10 * h)
+    return float(np.clip(STEP_FACTOR * noise / norm, MIN_STEP, MAX_STEP))
+
+
+def _fmt(u: np.ndarray) -> str:
+    return "[" + ", ".join(f"{v:.3g}" for v in u) + "]"
+
+
+def _no_convergence(model: ModelLike, best: Tuple[float, np.ndarray, float, np.ndarray], noise: float, why: str) -> ReliabilityError:
+    x = {k: float(v[0]) for k, v in model.values(best[1][None, :]).items()}
+    where = ", ".join(f"{k} = {v:.6g}" for k, v in x.items())
+    return ReliabilityError(
+        f"FORM did not converge: {why}. The limit state is too noisy or too curved for a gradient search here. "
+        f"Best point: u = {_fmt(best[1])} ({where}), g = {best[2]:.3g}. Instead use importance sampling around the best point "
+        f"(study.importance_sampling(design_point=err.best)), AK-MCS (study.ak_mcs) or subset simulation (study.subset), "
+        f"or give a larger step= (now chosen from the noise σ_g = {noise:.3g}).",
+        method="form", best=best[1].copy(),
+    )  # fmt: skip
+
+
+# ---------------------------------------------------------------- series systems
+@dataclass
+class SystemFormResult:
+    """FORM of a series system (failure when any mode fails): each mode's :class:`FormResult`
+    (``modes``, named by ``mode_names``), the correlation ``rho`` of their linearised margins
+    (ρ_ij = α_i·α_j), the first-order series probability ``pf = 1 − Φ_m(β; ρ)`` with its
+    generalised ``beta = −Φ⁻¹(pf)``, and Ditlevsen's ``bounds`` on the same first-order terms.
+    ``design_point``, ``design_point_u`` and ``importance`` are the dominant mode's (largest
+    Φ(−β_i))."""
+
+    modes: List[FormResult]
+    mode_names: List[str]
+    rho: np.ndarray
+    pf: float
+    beta: float
+    bounds: Tuple[float, float]
+    n_runs: int
+    wall_time: float
+    dominant: int = 0
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def reliability(self) -> float:
+        return 1.0 - self.pf
+
+    @property
+    def design_point(self) -> Dict[str, float]:
+        return self.modes[self.dominant].design_point
+
+    @property
+    def design_point_u(self) -> np.ndarray:
+        return self.modes[self.dominant].design_point_u
+
+    @property
+    def importance(self) -> Dict[str, float]:
+        return self.modes[self.dominant].importance
+
+    @property
+    def converged(self) -> bool:
+        return all(m.converged for m in self.modes)
+
+
+def series_probability(beta: Any, rho: np.ndarray) -> float:
+    """First-order probability of a series system of linear modes with indices ``beta`` and
+    correlation ``rho``: ``1 − Φ_m(β; ρ)`` (multinormal CDF, scipy's Genz algorithm)."""
+    b = np.asarray(beta, dtype=float)
+    if b.size == 1:
+        return float(special.ndtr(-b[0]))
+    r = np.array(rho, dtype=float)
+    r = 0.5 * (r + r.T)
+    np.fill_diagonal(r, 1.0)
+    # A nearly singular ρ (two modes with the same design direction): nudge to positive definite.
+    w, v = np.linalg.eigh(r)
+    if w.min() < 1e-10:
+        r = (v * np.maximum(w, 1e-10)) @ v.T
+        dd = np.sqrt(np.diag(r))
+        r = r / np.outer(dd, dd)
+    p_safe = float(stats.multivariate_normal(mean=np.zeros(b.size), cov=r, allow_singular=True, abseps=1e-10, releps=1e-8).cdf(b))
+    return float(min(1.0, max(0.0, 1.0 - p_safe, float(special.ndtr(-b).max()))))
+
+
+def ditlevsen_bounds(beta: Any, rho: np.ndarray) -> Tuple[float, float]:
+    """Ditlevsen's bounds on the first-order series probability from the modes' P_i = Φ(−β_i)
+    and their joint failure probabilities P_ij = Φ₂(−β_i, −β_j; ρ_ij), modes taken in the order
+    of decreasing P_i:  P₁ + Σ_{i≥2} max(0, P_i − Σ_{j<i} P_ij) ≤ p_f ≤ Σ P_i − Σ_{i≥2} max_{j<i} P_ij."""
+    b = np.asarray(beta, dtype=float)
+    order = np.argsort(b)
+    b = b[order]
+    r = np.asarray(rho, dtype=float)[np.ix_(order, order)]
+    p = special.ndtr(-b)
+    m = b.size
+    pij = np.zeros((m, m))
+    for i in range(m):
+        for j in range(i):
+            rr = float(np.clip(r[i, j], -0.999999, 0.999999))
+            pij[i, j] = pij[j, i] = float(stats.multivariate_normal(mean=[0.0, 0.0], cov=[[1.0, rr], [rr, 1.0]]).cdf([-b[i], -b[j]]))
+    lower = float(p[0]) + sum(max(0.0, float(p[i]) - float(pij[i, :i].sum())) for i in range(1, m))
+    upper = float(p.sum()) - sum(float(pij[i, :i].max()) for i in range(1, m))
+    return min(1.0, lower), min(1.0, upper)
+
+
+def system_form(model: ModelLike, *, step: Union[float, str] = "auto", max_iterations: int = 50, on_failure: str = "fail") -> SystemFormResult:
+    """FORM on each failure mode of a series system (each mode's own search, runs shared by
+    nothing but the counter), then the system's first-order probability and bounds."""
+    t0, runs0 = time.perf_counter(), model.n_runs
+    names = list(model.mode_names)
+    results: List[FormResult] = []
+    for i, name in enumerate(names):
+        try:
+            results.append(form(model.mode(i), step=step, max_iterations=max_iterations, on_failure=on_failure))
+        except ReliabilityError as err:
+            raise ReliabilityError(f"mode {i} ({name}): {err}", method="form", best=err.best, mode=name) from None
+    beta = np.array([r.beta for r in results])
+    alpha = np.array([r.alpha for r in results])
+    rho = alpha @ alpha.T
+    pf = series_probability(beta, rho)
+    bounds = ditlevsen_bounds(beta, rho)
+    dominant = int(np.argmin(beta))
+    return SystemFormResult(results, names, rho, pf, float(-special.ndtri(pf)) if 0 < pf < 1 else (math.inf if pf == 0 else -math.inf),
+                            bounds, model.n_runs - runs0, time.perf_counter() - t0, dominant)  # fmt: skip
