@@ -5,7 +5,7 @@ analyses the results. SI units throughout.
 """
 
 from . import _core
-from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError
+from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError
 from .joints import Archard, Dry, Lubricated
 from .mechanism import GROUND, Mechanism
 from .result import Result
@@ -26,6 +26,7 @@ __all__ = [
     "InterruptedRun",
     "Lubricated",
     "Mechanism",
+    "PlausibilityWarning",
     "Result",
     "load_scene",
     "SimulationError",
