@@ -69,6 +69,27 @@ class Mechanism(Running):
         self._names: set = set()
         self._compiled: Any = None
 
+    def __repr__(self) -> str:
+        joints = ", ".join(f"{name} {c['kind']}" for name, c in self.contacts().items())
+        counts = [(len(self._bodies), "body", "bodies"), (len(self._joints), "joint", "joints"), (len(self._drivers), "driver", "drivers"),
+                  (len(self._forces), "force element", "force elements")]  # fmt: skip
+        parts = [f"{n} {one if n == 1 else many}" for n, one, many in counts if n or one == "body"]
+        parts.append(f"clearance joints: {joints}" if joints else "no clearance joint")
+        return f"<clearsim.Mechanism {', '.join(parts)}>"
+
+    def _repr_png_(self) -> Optional[bytes]:
+        """The mechanism drawn at t = 0 (for notebooks); ``None`` (text instead) if it does not assemble."""
+        from . import display
+
+        try:
+            from matplotlib.figure import Figure
+
+            fig = Figure(figsize=(5.0, 3.6), layout="constrained")
+            self.plot(0.0, ax=fig.add_subplot(1, 1, 1))
+            return display.png(fig)
+        except Exception:  # noqa: BLE001 — a picture is optional: the text repr stands in
+            return None
+
     def __deepcopy__(self, memo: Dict[int, Any]) -> "Mechanism":
         # The compiled Rust model cannot be copied (nor pickled); a copy recompiles on demand.
         new = self.__class__.__new__(self.__class__)

@@ -137,7 +137,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tupl
 
 import numpy as np
 
-from . import _core
+from . import _core, display
 from .errors import InputError, SimulationError
 from .joints import Dry, Lubricated
 from .mechanism import Mechanism
@@ -251,6 +251,9 @@ class SceneRun:
     errors: Dict[Tuple[str, str], np.ndarray] = field(default_factory=dict)
     reliability: Dict[str, Any] = field(default_factory=dict)
     failure: Optional[SimulationError] = None
+
+    def __repr__(self) -> str:
+        return display.text(self, "result", "ideal", "errors", "reliability", "failure")
 
 
 @dataclass

@@ -27,6 +27,7 @@ from .distributions import input_stream
 from .model import Model, check_on_failure
 from .estimates import failure_reasons, wilson_interval
 from .fosm import FosmResult, allowable_statistics, normal_cdf, reliability_index
+from .. import display
 
 __all__ = ["Output", "Study", "Evaluation", "MonteCarloEstimate", "FosmResult"]
 
@@ -99,6 +100,12 @@ class Evaluation:
     first_passage_times: np.ndarray
     failures: List[Tuple[int, str]]
 
+    def __repr__(self) -> str:
+        return display.text(self, "peaks", "first_passage_times", "failures")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "peaks", "first_passage_times", "failures")
+
     @property
     def failed(self) -> np.ndarray:
         mask = np.zeros(self.peaks.size, dtype=bool)
@@ -130,6 +137,12 @@ class MonteCarloEstimate:
     bounds: Tuple[float, float]
     wall_time: float
     traces: List[Any] = field(default_factory=list)
+
+    def __repr__(self) -> str:
+        return display.text(self, "pf", "interval", "cov", "n_runs", "failures", "on_failure", "bounds", "wall_time", "peaks", "inputs")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "pf", "interval", "cov", "n_runs", "failures", "on_failure", "bounds", "wall_time", "peaks", "inputs")
 
     @property
     def reliability(self) -> float:

@@ -20,6 +20,7 @@ from scipy import optimize, special
 
 from ..errors import InputError, check_positive
 from .model import Model, check_on_failure
+from .. import display
 
 __all__ = ["FormResult", "SamplingResult", "SobolResult", "ToleranceResult", "form", "importance_sampling", "subset", "sobol", "tolerance"]
 
@@ -74,6 +75,12 @@ class FormResult:
     wall_time: float
     converged: bool = True
 
+    def __repr__(self) -> str:
+        return display.text(self, "pf", "beta", "design_point", "importance", "n_runs", "converged", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "pf", "beta", "design_point", "importance", "n_runs", "converged", "wall_time")
+
     @property
     def reliability(self) -> float:
         return 1.0 - self.pf
@@ -121,6 +128,12 @@ class SamplingResult:
     method: str
     design_point_u: Optional[np.ndarray] = None
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return display.text(self, "method", "pf", "interval", "cov", "n_runs", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "method", "pf", "interval", "cov", "n_runs", "wall_time")
 
     @property
     def reliability(self) -> float:
@@ -193,6 +206,12 @@ class SobolResult:
     n_runs: int
     wall_time: float
 
+    def __repr__(self) -> str:
+        return display.text(self, "first", "total", "n_runs", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "first", "total", "n_runs", "wall_time")
+
 
 def sobol(model: Model, n: int, *, seed: Optional[int] = 0, on_failure: str = "fail") -> SobolResult:
     """Sobol indices of the limit-state value (for a :class:`~clearsim.reliability.Study`,
@@ -238,6 +257,12 @@ class ToleranceResult:
     history: List[Tuple[float, float]]
     n_runs: int
     wall_time: float
+
+    def __repr__(self) -> str:
+        return display.text(self, "name", "value", "interval", "reliability", "form_value", "n_runs", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "name", "value", "interval", "reliability", "form_value", "n_runs", "wall_time")
 
 
 def tolerance(
