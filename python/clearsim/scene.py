@@ -131,6 +131,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
@@ -138,7 +139,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tupl
 import numpy as np
 
 from . import _core, display
-from .errors import InputError, SimulationError
+from .errors import InputError, PlausibilityWarning, SimulationError
 from .joints import Dry, Lubricated
 from .mechanism import Mechanism
 from .running import COMPONENTS, OUTPUTS
@@ -383,6 +384,8 @@ _STUDY_KEYS = ("body", "component", "joint", "quantity", "limit", "cycles", "ski
 _RELIABILITY_KEYS = ("body", "component", "bin_width", "omega", "t_start", "allowable")
 # Builder field → scene key, for errors raised by Mechanism methods.
 _FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "point_b": "points", "driver": None}
+# How error messages name an element (clearsim.references.label) → its scene table.
+_ELEMENT_KINDS = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint", "spring": "force", "rotational spring": "force", "torque": "force", "motor": "force"}
 
 
 def _model_fields(cls: type) -> Tuple[str, ...]:
@@ -416,6 +419,7 @@ class _Builder:
         self.src = src
         self.top = top
         self.entries: Dict[Tuple[str, str], Table] = {}  # (kind, name) → its table
+        self.drivers: List[str] = []  # the drivers' names in the order of the file
         self.mechanism_table = top.table("mechanism", _MECHANISM_KEYS) or Table(src, ("mechanism",), {}, ())
 
     def call(self, table: Table, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
@@ -428,15 +432,15 @@ class _Builder:
     def relocate(self, err: InputError, table: Optional[Table]) -> InputError:
         """``err`` (raised by the builder or the Rust core) with the file and line."""
         fld = getattr(err, "field", "") or ""
-        m = re.match(r"^(body|clearance joint|joint|driver|revolute|prismatic|force) '([^']*)'\.(.+)$", fld)
+        m = re.match(r"^(body|clearance joint|joint|driver|revolute|prismatic|force|spring|rotational spring|torque|motor) '([^']*)'\.(.+)$", fld)
         if m:
-            kind = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint"}.get(m.group(1), m.group(1))
+            kind = _ELEMENT_KINDS.get(m.group(1), m.group(1))
             table = self.entries.get((kind, m.group(2)), table)
             fld = m.group(3)
         parts = [re.sub(r"\[\d+\]$", "", p) for p in fld.split(".")] if fld else []
         # The deepest part that is a key of the table (value.driver → value), else the last.
         key = next((p for p in reversed(parts) if table is not None and p in table.data), parts[-1] if parts else None)
-        key = _FIELD_KEYS.get(key, key) if key else None
+        key = key if key is None or (table is not None and key in table.data) else _FIELD_KEYS.get(key, key)
         if table is None:
             return InputError(f"{self.src.path}: {err.reason}", field=err.field, value=err.value, file=str(self.src.path), line=None)
         return table.error(key, err.reason, err.value)
@@ -449,14 +453,14 @@ class _Builder:
         for t in top.array_of_tables("body", _BODY_KEYS):
             self.body(m, t)
         for t in top.array_of_tables("joint", sorted(set(_JOINT_KEYS["revolute"]) | set(_JOINT_KEYS["prismatic"]))):
-            self.joint(m, t)
+            self._add("joint", m, self.joint, t)
         for t in top.array_of_tables("driver", _DRIVER_KEYS):
-            self.driver(m, t)
+            self._add("driver", m, self.driver, t)
         for t in top.array_of_tables("clearance_joint", sorted(set(_CLEARANCE_KEYS) | set(_PRISMATIC_CLEARANCE_KEYS))):
-            self.clearance_joint(m, t)
+            self._add("clearance_joint", m, self.clearance_joint, t)
         all_keys = sorted({k for keys in _FORCE_KEYS.values() for k in keys})
         for t in top.array_of_tables("force", all_keys):
-            self.force_element(m, t)
+            self._add("force", m, self.force_element, t)
         return m
 
     def _load(self, t: Table, key: str, columns: Sequence[str]) -> Any:
@@ -505,6 +509,16 @@ class _Builder:
     def _register(self, kind: str, name: Optional[str], table: Table) -> None:
         if name is not None:
             self.entries[(kind, name)] = table
+
+    def _add(self, kind: str, m: Mechanism, add: Callable[[Mechanism, Table], None], table: Table) -> None:
+        """``add(m, table)``, then register the entry under the name the mechanism gave it
+        (unnamed ones too), so an error found when the mechanism compiles points at its table."""
+        before = set(m._names)
+        add(m, table)
+        for name in set(m._names) - before:
+            self.entries.setdefault((kind, name), table)
+            if kind == "driver":
+                self.drivers.append(name)
 
     def body(self, m: Mechanism, t: Table) -> None:
         name = t.string("name")
@@ -582,11 +596,13 @@ class _Builder:
         )  # fmt: skip
 
 
-def _drive_speed(m: Mechanism) -> Optional[float]:
-    """ω [rad/s] of the first constant-speed driver, if any."""
-    for d in m.description()["drivers"]:
-        if d["law"]["kind"] == "constant_speed":
-            return float(d["law"]["omega"])
+def _drive_speed(m: Mechanism, order: Sequence[str] = ()) -> Optional[float]:
+    """ω [rad/s] of the first constant-speed driver (in the file's ``order`` of names, else by
+    name), if any."""
+    drivers = {d["name"]: d for d in m.description()["drivers"]}
+    for name in [n for n in order if n in drivers] + sorted(drivers):
+        if drivers[name]["law"]["kind"] == "constant_speed":
+            return float(drivers[name]["law"]["omega"])
     return None
 
 
@@ -604,7 +620,7 @@ def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationS
         t_end = t.number("t_end")
     elif cycles is not None:
         if period is None:
-            omega = _drive_speed(m)
+            omega = _drive_speed(m, b.drivers)
             if not omega:
                 raise t.error("cycles", "invalid [simulation]: cycles needs period = ... [s] (no constant-speed driver to take it from)")
             period = 2 * math.pi / abs(omega)
@@ -669,7 +685,7 @@ def _reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]:
             raise a.error(None, "invalid [reliability.allowable]: give at least one of " + ", ".join(RELIABILITY_QUANTITIES))
     omega = t.number("omega", None)
     if omega is None:
-        omega = _drive_speed(m)
+        omega = _drive_speed(m, b.drivers)
         if omega is None:
             raise t.error(None, "missing key 'omega' in [reliability] (no constant-speed driver to take it from)")
     if omega == 0.0 or not math.isfinite(omega):
@@ -705,13 +721,21 @@ def load_scene_file(path: PathLike) -> Scene:
     src, data = read_toml(path)
     top = Table(src, (), data, _TOP_KEYS)
     builder = _Builder(src, top)
-    mech = builder.build()
-    try:
-        # The Rust core's checks, located in the file. Not mech.compile(): a cached compiled
-        # model would make Mechanism.idealized() (a deepcopy) fail.
-        _core.compile(mech.description())
-    except InputError as err:
-        raise builder.relocate(err, None) from None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mech = builder.build()
+        try:
+            # The Rust core's checks, located in the file. Not mech.compile(): a cached compiled
+            # model would make Mechanism.idealized() (a deepcopy) fail.
+            _core.compile(mech.description())
+        except InputError as err:
+            raise builder.relocate(err, None) from None
+    for w in caught:  # a plausibility warning located in the file, like an error
+        if isinstance(w.message, PlausibilityWarning):
+            where = builder.relocate(InputError(str(w.message), field=getattr(w.message, "field", "")), None)
+            warnings.warn(PlausibilityWarning(str(where)), stacklevel=2)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     name = builder.mechanism_table.string("name", path.stem)
     description = builder.mechanism_table.string("description", "")
     outputs = _outputs(builder, mech)
@@ -722,7 +746,7 @@ def load_scene_file(path: PathLike) -> Scene:
     if study_table is not None:
         from .reliability.scene import parse_study  # only scenes with [study] need it
 
-        study = parse_study(study_table, mech, _drive_speed(mech))
+        study = parse_study(study_table, mech, _drive_speed(mech, builder.drivers))
     # The ideal counterpart is made now: Mechanism.idealized() deep-copies, which fails once the
     # mechanism holds a compiled Rust model (after a run).
     return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, _ideal=mech.idealized())
