@@ -10,6 +10,7 @@ from __future__ import annotations
 import bisect
 import copy
 import math
+import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import forces as _forces
@@ -359,6 +360,9 @@ class Mechanism(Running):
             raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
         # Valid but implausible (a unit slip, a film outside its laws' range): PlausibilityWarning.
         plausibility.warn_new(plausibility.joint_findings(name, r_j, c, model._as_dict()), self._warned, stacklevel=2)
+        note = plausibility.micrometre_film_note(name, r_j, c, model.film) if isinstance(model, Lubricated) else None
+        if note:
+            warnings.warn(note, stacklevel=2)
         _insert(
             self._clearance,
             {

@@ -44,7 +44,7 @@ def joint_findings(name: str, r_j: float, c: float, model: Dict[str, Any]) -> Li
             out.append((f"{j}.clearance", f"{j}.clearance = {c:g} m is {c / r_j:.3g} × the journal radius {r_j:g} m (machine bearings have "
                         "c/R_j ≈ 0.001): is it given in metres? clearsim takes the radial clearance in metres"))  # fmt: skip
         return out
-    mu, film = float(model["viscosity"]), model["film"]
+    mu = float(model["viscosity"])
     lo, hi = VISCOSITY_RANGE
     if mu > hi:
         out.append((f"{j}.viscosity", f"{j}.viscosity = {mu:g} Pa·s is above {hi:g} Pa·s, thicker than lubricating oils at their working "
@@ -62,11 +62,17 @@ def joint_findings(name: str, r_j: float, c: float, model: Dict[str, Any]) -> Li
         out.append((f"{j}.clearance", f"{j}.clearance = {c:g} m is R_j/{ratio:.3g} ({c * 1e6:.3g} µm on a {r_j:g} m journal): thinner than "
                     f"machined surfaces are rough, where the smooth-film laws stop holding (meant for R_j/c ≤ {FILM_RATIO_RANGE[1]:g}): "
                     "is it given in metres? clearsim takes metres"))  # fmt: skip
-    if film in ("long", "long_paper") and ratio >= MICROMETRE_FILM_RATIO:
-        out.append((f"{j}.film", f"{j}: a {film!r} film in a {c * 1e6:.3g} µm clearance (R_j/c = {ratio:.0f}): a journal that whirls near "
-                    "the centre (started off-centre, say) meets the half-Sommerfeld film's negative squeeze damping and the run can "
-                    "crawl (measured: c ≤ 2 µm at R_j ≈ 10 mm); film='finite' damps it (docs/hard_cases.md)"))  # fmt: skip
     return out
+
+
+def micrometre_film_note(name: str, r_j: float, c: float, film: str) -> Optional[str]:
+    """A note (a plain UserWarning, not a plausibility one: the value is meant) on a long-bearing
+    film in a µm clearance, where a whirl near the centre can make the run crawl."""
+    if film not in ("long", "long_paper") or r_j / c < MICROMETRE_FILM_RATIO:
+        return None
+    return (f"clearance joint '{name}': a {film!r} film in a {c * 1e6:.3g} µm clearance (R_j/c = {r_j / c:.0f}): a journal that whirls "
+            "near the centre (started off-centre, say) meets the half-Sommerfeld film's negative squeeze damping and the run can "
+            "crawl (measured at R_j ≈ 10 mm: docs/hard_cases.md, µm films); film='finite' damps it")
 
 
 def span(desc: Dict[str, Any]) -> float:
@@ -126,4 +132,4 @@ def warn_new(findings: Sequence[Finding], warned: Set[str], stacklevel: int) -> 
         warnings.warn(w, stacklevel=stacklevel + 1)
 
 
-__all__ = ["FILM_RATIO_RANGE", "VISCOSITY_RANGE", "joint_findings", "mechanism_findings", "span", "warn_new"]
+__all__ = ["FILM_RATIO_RANGE", "VISCOSITY_RANGE", "joint_findings", "mechanism_findings", "micrometre_film_note", "span", "warn_new"]
