@@ -556,7 +556,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Run the [study] of a scene file (random inputs, one output and its limit): p_f by each method, "
         "Sobol indices, tolerance design; writes CSV tables, reliability.png and report.md.",
     )  # fmt: skip
-    rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table (format: python -m pydoc clearsim.reliability.scene)")
+    rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table (format: python -m pydoc clearsim.scene)")
     rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
     rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm")
     rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")
