@@ -123,7 +123,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     velocity = [0.0, 0.6]            # m/s
     acceleration = [0.0, 200.0]      # m/s²
 
-    [study]                          # optional: `clearsim reliability scene.toml` (docs/physics.md §6)
+    [study]                          # optional: `clearsim reliability scene.toml` (docs/physics.md §6;
+                                     #   every option: python -m pydoc clearsim.reliability.scene)
     body = "slider"                  # the output: a body coordinate's error against the ideal
     component = "x"                  #   mechanism (x | y | theta) ...
     # joint = "rod-slider"           # ... or a clearance joint's quantity instead
@@ -135,9 +136,14 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # omega = 523.6                  # rad/s (default: the first constant-speed driver)
     methods = ["form", "importance_sampling"]   # of monte_carlo, form, importance_sampling,
                                      #   subset, sobol, fosm
-    samples = 1000                   # Monte Carlo samples; Sobol base size (× (d + 2) runs)
+    samples = 1000                   # Monte Carlo samples; Sobol base size
     cov = 0.1                        # importance sampling's target coefficient of variation
     seed = 0
+    # bin_width = 18.0               # deg: FOSM's crank-angle bins (methods = [..., "fosm"])
+    # sobol_method = "saltelli"      # or "pce"; step = 0.05: FORM's gradient step in u
+    # [[study.output]]               # several outputs (a series system) instead of the one
+    # body = "slider"                #   above: body/component or joint, quantity, limit and
+    # ...                            #   side = "above" (default) or "below"
     [[study.input]]                  # one per random input
     path = "rod-slider.clearance"    # element.field of the mechanism (Mechanism.with_values), SI
     distribution = "normal"          # normal | lognormal (mean, std) | uniform (low, high)
