@@ -5,7 +5,7 @@ analyses the results. SI units throughout.
 """
 
 from . import _core
-from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, ReliabilityError, SimulationError
+from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, ReliabilityError, SimulationError
 from .joints import Archard, Dry, Lubricated
 from .mechanism import GROUND, Mechanism
 from .result import Result
@@ -27,6 +27,7 @@ __all__ = [
     "Lubricated",
     "Mechanism",
     "ReliabilityError",
+    "PlausibilityWarning",
     "Result",
     "load_scene",
     "SimulationError",

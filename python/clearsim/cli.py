@@ -11,18 +11,26 @@ Subcommands::
 naming every column and its unit (``bodies.csv``, ``bodies_ideal.csv``, ``errors.csv``,
 ``joints.csv``, ``reliability_<quantity>.csv``), PNG figures and ``summary.json`` /
 ``summary.md``. A :class:`clearsim.ClearsimError` is printed as one line on stderr with exit
-code 2 (no traceback); a failed simulation also writes its partial results.
+code 2 (no traceback); a failed simulation also writes its partial results. Any other failure
+(a bug) is one line too, with exit code 1; ``--debug`` adds the traceback. A failure while the
+outputs are written stops only that output: the others and the summary (``summary.md`` of
+``run``, ``report.md`` of ``reliability`` and ``paper``) are still written and name what failed.
+Warnings (e.g. :class:`clearsim.PlausibilityWarning`) are printed as ``clearsim: warning: ...``.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import json
 import math
 import sys
+import time
+import traceback
+import warnings
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -33,6 +41,50 @@ from .scene import BODY_QUANTITIES, COMPONENTS, ERROR_QUANTITIES, JOINT_QUANTITI
 
 #: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
 EXIT_ERROR = 2
+#: Exit code of any other failure (a bug in clearsim or a library: ``--debug`` shows where).
+EXIT_FAILURE = 1
+
+
+class OutputsFailed(RuntimeError):
+    """A command stopped, or some of its outputs could not be written; what was written and the
+    summary naming the failure are on disk.
+
+    ``failed`` lists (output or command, exception); ``files`` the paths written; the first
+    exception is the ``__cause__``."""
+
+    def __init__(self, message: str, failed: Sequence[Tuple[str, BaseException]], files: Sequence[Path]) -> None:
+        super().__init__(message)
+        self.failed = list(failed)
+        self.files = list(files)
+        self.__cause__ = failed[0][1]
+
+
+def _describe(err: BaseException) -> str:
+    """``Type: message`` on one line (a ClearsimError: its message). An error passed through
+    another library with the original traceback in its text (OpenTURNS does that) is named by
+    the traceback's last line."""
+    text = str(err)
+    if "Traceback (most recent call last)" in text:
+        last = text.strip().splitlines()[-1]
+        return last.split("clearsim.errors.", 1)[-1] if "clearsim.errors." in last else last
+    text = " ".join(text.split())
+    return text if isinstance(err, ClearsimError) else f"{type(err).__name__}: {text}" if text else type(err).__name__
+
+
+class _Steps:
+    """The outputs of a command, each written on its own: one that fails does not stop the others."""
+
+    def __init__(self) -> None:
+        self.files: List[Path] = []
+        self.failed: List[Tuple[str, BaseException]] = []
+
+    def __call__(self, what: str, write: Callable[[], Union[Path, List[Path]]]) -> None:
+        try:
+            written = write()
+        except Exception as err:  # noqa: BLE001 — recorded, named in the summary and re-raised at the end
+            self.failed.append((what, err))
+            return
+        self.files += written if isinstance(written, list) else [written]
 
 _THETA_INFO = {  # plot labels of the error of an angle (plots.QUANTITIES covers x and y)
     "displacement": ("Angle error", "rad", 1.0),
@@ -117,9 +169,9 @@ def _model_label(scene: Scene) -> str:
     return " + ".join(kinds) if kinds else "mechanism"
 
 
-def _figures(run: SceneRun, out_dir: Path) -> List[Path]:
-    """PNG figures: body histories (with the ideal response), errors, journal orbits (in units
-    of the clearance) and FOSM reliability."""
+def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
+    """PNG figures, each its own step: body histories (with the ideal response), errors,
+    journal orbits (in units of the clearance) and FOSM reliability."""
     from matplotlib.figure import Figure
 
     from . import plots
@@ -127,49 +179,61 @@ def _figures(run: SceneRun, out_dir: Path) -> List[Path]:
     scene, result, out = run.scene, run.result, run.scene.outputs
     label = _model_label(scene)
     title = scene.name
-    written: List[Path] = []
-    for body in out.bodies:
-        for component in out.components:
-            c = COMPONENTS.index(component)
-            series = {label: result}
-            if run.ideal is not None:
-                series["ideal"] = run.ideal
-            styles = plots.series_style(series)
-            with plots.style():
-                fig = Figure(figsize=(7.0, 2.3 * len(out.quantities) + 0.6), layout="constrained")
-                axes = fig.subplots(len(out.quantities), 1, sharex=True, squeeze=False)[:, 0]
-                for ax, quantity in zip(axes, out.quantities):
-                    for name, res in series.items():
-                        st = styles[name]
-                        ax.plot(res.t, getattr(res, quantity)(body)[:, c], color=st["color"], linestyle=st["linestyle"], label=name)
-                    ax.set_ylabel(f"{quantity.capitalize()} {component} [{_unit(quantity, component).replace('^2', '²')}]")
-                axes[-1].set_xlabel("Time [s]")
-                axes[0].legend(loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=len(series))
-                fig.suptitle(f"{title}: {body}")
-            written.append(plots.save(fig, out_dir / f"{body}_{component}.png"))
-            errors = {ERROR_QUANTITIES[q]: run.errors[(body, ERROR_QUANTITIES[q])][:, c] for q in out.quantities if (body, ERROR_QUANTITIES[q]) in run.errors}
-            if errors:
-                n = len(next(iter(errors.values())))
-                fig = plots.plot_error_histories(
-                    result.t[:n], {label: errors}, quantities=list(errors),
-                    quantity_info=_THETA_INFO if component == "theta" else None, title=f"{title}: {body} {component} error",
-                )  # fmt: skip
-                written.append(plots.save(fig, out_dir / f"{body}_{component}_error.png"))
-    if out.joints and len(result.t):
+
+    def history(body: str, component: str) -> Path:
+        c = COMPONENTS.index(component)
+        series = {label: result}
+        if run.ideal is not None:
+            series["ideal"] = run.ideal
+        styles = plots.series_style(series)
+        with plots.style():
+            fig = Figure(figsize=(7.0, 2.3 * len(out.quantities) + 0.6), layout="constrained")
+            axes = fig.subplots(len(out.quantities), 1, sharex=True, squeeze=False)[:, 0]
+            for ax, quantity in zip(axes, out.quantities):
+                for name, res in series.items():
+                    st = styles[name]
+                    ax.plot(res.t, getattr(res, quantity)(body)[:, c], color=st["color"], linestyle=st["linestyle"], label=name)
+                ax.set_ylabel(f"{quantity.capitalize()} {component} [{_unit(quantity, component).replace('^2', '²')}]")
+            axes[-1].set_xlabel("Time [s]")
+            axes[0].legend(loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=len(series))
+            fig.suptitle(f"{title}: {body}")
+        return plots.save(fig, out_dir / f"{body}_{component}.png")
+
+    def error(body: str, component: str, errors: Dict[str, np.ndarray]) -> Path:
+        n = len(next(iter(errors.values())))
+        fig = plots.plot_error_histories(
+            result.t[:n], {label: errors}, quantities=list(errors),
+            quantity_info=_THETA_INFO if component == "theta" else None, title=f"{title}: {body} {component} error",
+        )  # fmt: skip
+        return plots.save(fig, out_dir / f"{body}_{component}_error.png")
+
+    def orbits() -> Path:
         contacts = scene.mechanism.contacts()
         names = {j: f"{j} ({contacts[j]['kind']})" for j in out.joints}
-        orbits = {names[j]: tuple(result.eccentricity(j).T) for j in out.joints}
+        orbit = {names[j]: tuple(result.eccentricity(j).T) for j in out.joints}
         clearance = {names[j]: contacts[j]["clearance"] for j in out.joints}
         band = {names[j]: _transition_band(contacts[j]["entry"]) for j in out.joints if contacts[j]["kind"] == "lubricated"}
-        fig = plots.plot_journal_orbits(orbits, clearance, transition_band=band or None, title=title)
-        written.append(plots.save(fig, out_dir / "orbits.png"))
-    if run.reliability:
+        fig = plots.plot_journal_orbits(orbit, clearance, transition_band=band or None, title=title)
+        return plots.save(fig, out_dir / "orbits.png")
+
+    def reliability() -> Path:
         spec = scene.reliability
         assert spec is not None
         # No title: plot_reliability_panels puts its legend where a suptitle would go.
         fig = plots.plot_reliability_panels({q: {f"{label}, {spec.body} {spec.component}": res} for q, res in run.reliability.items()})
-        written.append(plots.save(fig, out_dir / "reliability.png"))
-    return written
+        return plots.save(fig, out_dir / "reliability.png")
+
+    for body in out.bodies:
+        for component in out.components:
+            step(f"{body}_{component}.png", lambda: history(body, component))
+            c = COMPONENTS.index(component)
+            errors = {ERROR_QUANTITIES[q]: run.errors[(body, ERROR_QUANTITIES[q])][:, c] for q in out.quantities if (body, ERROR_QUANTITIES[q]) in run.errors}
+            if errors:
+                step(f"{body}_{component}_error.png", lambda: error(body, component, errors))
+    if out.joints and len(result.t):
+        step("orbits.png", orbits)
+    if run.reliability:
+        step("reliability.png", reliability)
 
 
 def _transition_band(joint: Dict[str, Any]) -> float:
@@ -267,41 +331,66 @@ def _markdown(summary: Dict[str, Any], files: Sequence[Path]) -> str:
             beta = "–" if m["beta"] is None else f"{m['beta']:.3f}"
             lines.append(f"| {q} | [{m['allowable'][0]:g}, {m['allowable'][1]:g}] | {r_min} | {beta} | {m['angle_deg']:g} |")
     lines += ["", "Files: " + ", ".join(f"`{p.name}`" for p in files), ""]
+    if summary.get("not_written"):
+        lines += ["**Not written** (the run's other outputs are complete):", ""]
+        lines += [f"- `{name}`: {why}" for name, why in summary["not_written"].items()] + [""]
     return "\n".join(lines)
 
 
-def write_run(run: SceneRun, out_dir: Path, plots: bool = True) -> List[Path]:
-    """Write the CSV files, figures (if ``plots`` and the scene asks for them) and summaries of
-    a scene run into ``out_dir``; returns the paths written."""
+def write_run(
+    run: SceneRun, out_dir: Path, plots: bool = True, extra: Sequence[Tuple[str, Callable[[], Path]]] = ()
+) -> List[Path]:
+    """Write the CSV files, figures (if ``plots`` and the scene asks for them), the ``extra``
+    outputs ((file name, writer) pairs, e.g. an animation) and the summaries of a scene run into
+    ``out_dir``; returns the paths written.
+
+    Each output is written on its own: if one fails, the others and the summaries (which name
+    the failed ones) are still written, then :class:`OutputsFailed` is raised."""
     out_dir.mkdir(parents=True, exist_ok=True)
     scene, result = run.scene, run.result
-    files: List[Path] = []
+    step = _Steps()
     if scene.outputs.csv:
         if scene.outputs.bodies:
-            files.append(write_csv(out_dir / "bodies.csv", result.t, _body_columns(run, "result")))
+            step("bodies.csv", lambda: write_csv(out_dir / "bodies.csv", result.t, _body_columns(run, "result")))
             if run.ideal is not None:
-                files.append(write_csv(out_dir / "bodies_ideal.csv", run.ideal.t, _body_columns(run, "ideal")))
-            errors = _body_columns(run, "errors")
-            if errors:
-                files.append(write_csv(out_dir / "errors.csv", result.t, errors))
+                ideal = run.ideal
+                step("bodies_ideal.csv", lambda: write_csv(out_dir / "bodies_ideal.csv", ideal.t, _body_columns(run, "ideal")))
+            step("errors.csv", lambda: _errors_csv(run, out_dir))
         if scene.outputs.joints:
-            files.append(write_csv(out_dir / "joints.csv", result.t, _joint_columns(run)))
+            step("joints.csv", lambda: write_csv(out_dir / "joints.csv", result.t, _joint_columns(run)))
         for quantity, fosm in run.reliability.items():
-            path = out_dir / f"reliability_{quantity}.csv"
-            rows = fosm.to_rows()
-            with path.open("w", newline="", encoding="utf-8") as fh:
-                writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-                writer.writeheader()
-                writer.writerows(rows)
-            files.append(path)
+            step(f"reliability_{quantity}.csv", lambda: _fosm_csv(out_dir / f"reliability_{quantity}.csv", fosm))
     if plots and scene.outputs.plots:
-        files += _figures(run, out_dir)
+        _figures(run, out_dir, step)
+    for what, write in extra:
+        step(what, write)
     summary = summarize(run)
-    files += [out_dir / "summary.json", out_dir / "summary.md"]
+    files = step.files + [out_dir / "summary.json", out_dir / "summary.md"]
     summary["files"] = [p.name for p in files]
+    if step.failed:
+        summary["not_written"] = {what: _describe(err) for what, err in step.failed}
     (out_dir / "summary.json").write_text(json.dumps(summary, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
     (out_dir / "summary.md").write_text(_markdown(summary, files), encoding="utf-8")
+    if step.failed:
+        (what, err), more = step.failed[0], [w for w, _ in step.failed[1:]]
+        also = f" (and {len(more)} more: {', '.join(more)})" if more else ""
+        message = f"writing {what} failed: {_describe(err)}{also}; summary.md in {out_dir} lists what was written"
+        raise OutputsFailed(message, step.failed, files)
     return files
+
+
+def _errors_csv(run: SceneRun, out_dir: Path) -> List[Path]:
+    errors = _body_columns(run, "errors")
+    return [write_csv(out_dir / "errors.csv", run.result.t, errors)] if errors else []
+
+
+def _fosm_csv(path: Path, fosm: Any) -> Path:
+    rows = fosm.to_rows()
+    with path.open("w", newline="", encoding="utf-8") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    return path
 
 
 # ====================================================================== commands
@@ -309,11 +398,16 @@ def _cmd_run(args: argparse.Namespace) -> int:
     scene = load_scene_file(args.scene).with_overrides(t_end=args.t_end, integrator=args.integrator)
     out_dir = Path(args.output) if args.output else Path(f"clearsim-{Path(args.scene).stem}")
     run = scene.run(progress=not args.quiet)
-    files = write_run(run, out_dir, plots=not args.no_plots)
+    extra: List[Tuple[str, Callable[[], Path]]] = []
     if args.animate:
         span = float(run.result.t[-1] - run.result.t[0]) if len(run.result.t) else 1.0
         speed = args.speed or max(span, 1e-9) / 8.0  # default: the whole run in 8 s
-        files.append(run.result.animate(args.animate, speed=speed, magnify=args.magnify))
+        extra.append((Path(args.animate).name, lambda: run.result.animate(args.animate, speed=speed, magnify=args.magnify)))
+    failed: Optional[OutputsFailed] = None
+    try:
+        files = write_run(run, out_dir, plots=not args.no_plots, extra=extra)
+    except OutputsFailed as err:
+        failed, files = err, err.files
     if not args.quiet:
         r = run.result.summary()
         print(f"{scene.name}: {r['outputs']} outputs to t = {r['t_reached']:g} s in {r['steps']} steps ({r['wall_time']:.3g} s)")
@@ -323,10 +417,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print(f"FOSM {q}: min R = {res.min_reliability:.6f} (β = {res.min_beta:.3f}) at {res.min_angle:g}°")
         print(f"wrote {len(files)} files to {out_dir}")
     if run.failure is not None:
-        err = run.failure
-        print(f"clearsim: simulation failed: {err.reason}", file=sys.stderr)
-        print(f"clearsim: partial results (to t = {run.result.stats.get('t_reached', float('nan')):g} s) written to {out_dir}", file=sys.stderr)
+        t_reached = run.result.stats.get("t_reached", float("nan"))
+        print(f"clearsim: simulation failed: {_describe(run.failure)}; partial results (to t = {t_reached:g} s) written to {out_dir}", file=sys.stderr)
         return EXIT_ERROR
+    if failed is not None:
+        raise failed
     return 0
 
 
@@ -335,12 +430,13 @@ def _cmd_reliability(args: argparse.Namespace) -> int:
 
     scene = load_scene_file(args.scene)
     if scene.study is None:
-        print(f"clearsim: error: {args.scene} has no [study] table (random inputs, output and limit; python -m pydoc clearsim.reliability.scene)", file=sys.stderr)
+        print(f"clearsim: error: {args.scene} has no [study] table (random inputs, output and limit; python -m pydoc clearsim.scene)", file=sys.stderr)
         return EXIT_ERROR
     out_dir = Path(args.output) if args.output else Path(f"clearsim-{Path(args.scene).stem}-reliability")
     methods = args.methods.split(",") if args.methods else None
     echo = (lambda *a, **k: None) if args.quiet else print
-    files = run_study(scene, out_dir, methods=methods, samples=args.samples, progress=not args.quiet, plots=not args.no_plots, echo=echo)
+    with _summary_on_failure(out_dir, "clearsim reliability", "report.md"):
+        files = run_study(scene, out_dir, methods=methods, samples=args.samples, progress=not args.quiet, plots=not args.no_plots, echo=echo)
     echo(f"wrote {len(files)} files to {out_dir}")
     return 0
 
@@ -353,10 +449,34 @@ def _cmd_paper(args: argparse.Namespace) -> int:
             raise
         print("clearsim: error: the paper study (clearsim.study.paper) is not available in this installation", file=sys.stderr)
         return EXIT_ERROR
-    out = run_paper_study(Path(args.output), cycles=args.cycles, quick=args.quick, progress=not args.quiet, film=args.film, compare_films=not args.no_film_comparison)
+    with _summary_on_failure(Path(args.output), "clearsim paper", "report.md"):
+        out = run_paper_study(Path(args.output), cycles=args.cycles, quick=args.quick, progress=not args.quiet, film=args.film, compare_films=not args.no_film_comparison)
     if not args.quiet:
         print(f"paper study written to {out}")
     return 0
+
+
+@contextlib.contextmanager
+def _summary_on_failure(out_dir: Path, command: str, summary: str) -> Iterator[None]:
+    """If the body fails, write what it had written (files changed since it began) and the
+    cause into ``out_dir/summary`` (appended if the command wrote it already), then re-raise
+    the failure as :class:`OutputsFailed` (or a ClearsimError as itself, named there too)."""
+    began = time.time() - 1.0  # file times are coarse on some file systems
+    try:
+        yield
+    except (Exception, KeyboardInterrupt) as err:
+        if not out_dir.is_dir():
+            raise
+        path = out_dir / summary
+        written = sorted(p for p in out_dir.rglob("*") if p.is_file() and p.stat().st_mtime >= began and p != path)
+        fresh = not path.exists() or path.stat().st_mtime < began
+        lines = [f"# {command} stopped early", ""] if fresh else ["", "## Stopped early", ""]
+        lines += [f"Cause: {_describe(err)}", "", "Written before it stopped: " + (", ".join(f"`{p.relative_to(out_dir)}`" for p in written) or "nothing"), ""]
+        with path.open("w" if fresh else "a", encoding="utf-8") as fh:
+            fh.write("\n".join(lines) + "\n")
+        if isinstance(err, (ClearsimError, KeyboardInterrupt)):
+            raise
+        raise OutputsFailed(f"{command} stopped: {_describe(err)}; {summary} in {out_dir} lists what was written", [(command, err)], written) from err
 
 
 def _first_line(obj: Any) -> str:
@@ -415,6 +535,7 @@ def build_parser() -> argparse.ArgumentParser:
         prog="clearsim", description="Planar mechanisms with dry and lubricated revolute clearance joints."
     )
     parser.add_argument("--version", action="version", version=f"clearsim {__version__}")
+    parser.add_argument("--debug", action="store_true", help="print the traceback of a failure")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
 
     run = sub.add_parser("run", help="run a scene file: CSV, figures and a summary", description="Run a scene file (TOML).")
@@ -427,6 +548,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--speed", type=_positive_float, default=None, metavar="S", help="animation speed × real time (default: the run lasts 8 s)")
     run.add_argument("--magnify", type=_positive_float, metavar="M", help="clearance magnification in pictures (default: automatic)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar, no summary on stdout")
+    run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")
     run.set_defaults(func=_cmd_run)
 
     rel = sub.add_parser(
@@ -434,12 +556,13 @@ def build_parser() -> argparse.ArgumentParser:
         description="Run the [study] of a scene file (random inputs, one output and its limit): p_f by each method, "
         "Sobol indices, tolerance design; writes CSV tables, reliability.png and report.md.",
     )  # fmt: skip
-    rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table (format: python -m pydoc clearsim.reliability.scene)")
+    rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table (format: python -m pydoc clearsim.scene)")
     rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
     rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm")
     rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")
     rel.add_argument("--no-plots", action="store_true", help="write no figure")
     rel.add_argument("-q", "--quiet", action="store_true", help="no progress bars, nothing on stdout")
+    rel.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")
     rel.set_defaults(func=_cmd_reliability)
 
     paper = sub.add_parser("paper", help="reproduce the paper's study", description="Reproduce the paper's study (docs/physics.md §7).")
@@ -449,6 +572,7 @@ def build_parser() -> argparse.ArgumentParser:
     paper.add_argument("--film", choices=("long", "short", "finite", "long_paper"), default="long", help="film model of the lubricated joints (default long)")
     paper.add_argument("--no-film-comparison", action="store_true", help="skip the runs comparing the film models")
     paper.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
+    paper.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")
     paper.set_defaults(func=_cmd_paper)
 
     info = sub.add_parser("info", help="version and model catalogue", description="Print the version and the model catalogue.")
@@ -457,20 +581,45 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
-    """Entry point of the ``clearsim`` command; returns the exit code (0, or 2 on error)."""
+    """Entry point of the ``clearsim`` command; returns the exit code (0; 2 on a clearsim error;
+    1 on any other failure). A failure is one line on stderr; ``--debug`` adds the traceback."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command is None:
         parser.print_help(sys.stderr)
         return EXIT_ERROR
-    try:
-        return int(args.func(args))
-    except ClearsimError as err:
-        print(f"clearsim: error: {err}", file=sys.stderr)
-        return EXIT_ERROR
+    debug = bool(getattr(args, "debug", False))
+    with _warnings_as_lines():
+        try:
+            return int(args.func(args))
+        except ClearsimError as err:
+            if debug:
+                traceback.print_exc()
+            print(f"clearsim: error: {err}", file=sys.stderr)
+            return EXIT_ERROR
+        except KeyboardInterrupt:
+            print("clearsim: interrupted", file=sys.stderr)
+            return 130
+        except Exception as err:  # noqa: BLE001 — a bug: one line, the traceback with --debug
+            if debug:
+                traceback.print_exc()
+            cause = str(err) if isinstance(err, OutputsFailed) else _describe(err)
+            print(f"clearsim: error: {cause}{'' if debug else ' (--debug prints the traceback)'}", file=sys.stderr)
+            return EXIT_FAILURE
 
 
-__all__ = ["build_parser", "main", "summarize", "write_csv", "write_run"]
+@contextlib.contextmanager
+def _warnings_as_lines() -> Iterator[None]:
+    """Warnings printed as ``clearsim: warning: <message>``, without the source line."""
+    def show(message: Any, category: Any, filename: str, lineno: int, file: Any = None, line: Optional[str] = None) -> None:
+        print(f"clearsim: warning: {message}", file=sys.stderr)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield
+
+
+__all__ = ["EXIT_ERROR", "EXIT_FAILURE", "OutputsFailed", "build_parser", "main", "summarize", "write_csv", "write_run"]
 
 
 if __name__ == "__main__":

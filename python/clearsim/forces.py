@@ -22,7 +22,7 @@ A component left out of a force table is zero.
 
 from __future__ import annotations
 
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -30,8 +30,9 @@ from .errors import InputError, check_finite, check_positive
 
 #: A load: a constant, or a table (see the module docstring).
 Load = Union[float, Sequence[float], Mapping[str, Any]]
-#: Resolves a driver's (or motor's) name to the index of the body it turns.
-DriverBody = Callable[[str, str], int]
+#: A body as an entry names it: a body's name (or "ground"), resolved to its index when the
+#: mechanism compiles (clearsim.references), so elements may be added in any order.
+BodyRef = Optional[str]
 
 
 def _numbers(field: str, values: Any) -> List[float]:
@@ -42,7 +43,7 @@ def _numbers(field: str, values: Any) -> List[float]:
     return [check_finite(f"{field}[{k}]", v) for k, v in enumerate(arr)]
 
 
-def _table(field: str, value: Mapping[str, Any], columns: Sequence[str], driver_body: DriverBody) -> Tuple[Dict[str, Any], Dict[str, List[float]]]:
+def _table(field: str, value: Mapping[str, Any], columns: Sequence[str]) -> Tuple[Dict[str, Any], Dict[str, List[float]]]:
     """The argument and the checked columns of a load table."""
     keys = set(value)
     if "t" in keys and "driver" not in keys:
@@ -50,7 +51,10 @@ def _table(field: str, value: Mapping[str, Any], columns: Sequence[str], driver_
         xs = _numbers(f"{field}.t", value["t"])
         xkey = "t"
     elif "driver" in keys and "angle" in keys and "t" not in keys:
-        argument = {"kind": "angle", "body": driver_body(f"{field}.driver", value["driver"])}
+        driver = value["driver"]
+        if not isinstance(driver, str) or not driver:
+            raise InputError(f"invalid {field}.driver = {driver!r}: must be the name of a driver or motor", field=f"{field}.driver", value=driver)
+        argument = {"kind": "angle", "driver": driver}  # its body is found when the mechanism compiles
         xs = _numbers(f"{field}.angle", value["angle"])
         xkey = "angle"
     else:
@@ -93,7 +97,7 @@ def _constant(field: str, v: Any) -> Dict[str, Any]:
 
 
 def spring(
-    name: str, body_a: Optional[int], point_a: List[float], body_b: Optional[int], point_b: List[float],
+    name: str, body_a: BodyRef, point_a: List[float], body_b: BodyRef, point_b: List[float],
     stiffness: Optional[float], damping: float, free_length: Optional[float], force_table: Optional[Mapping[str, Any]],
 ) -> Dict[str, Any]:  # fmt: skip
     """The entry of a translational spring-damper (see :meth:`Mechanism.spring`)."""
@@ -124,7 +128,7 @@ def spring(
     }  # fmt: skip
 
 
-def rotational_spring(name: str, body_a: Optional[int], body_b: Optional[int], stiffness: float, damping: float, angle0: Optional[float]) -> Dict[str, Any]:
+def rotational_spring(name: str, body_a: BodyRef, body_b: BodyRef, stiffness: float, damping: float, angle0: Optional[float]) -> Dict[str, Any]:
     """The entry of a rotational spring-damper (see :meth:`Mechanism.rotational_spring`)."""
     return {
         "kind": "rotational_spring_damper", "name": name, "body_a": body_a, "body_b": body_b,
@@ -133,12 +137,12 @@ def rotational_spring(name: str, body_a: Optional[int], body_b: Optional[int], s
     }  # fmt: skip
 
 
-def applied_force(name: str, body: int, point: List[float], value: Load, frame: str, driver_body: DriverBody) -> Dict[str, Any]:
+def applied_force(name: str, body: str, point: List[float], value: Load, frame: str) -> Dict[str, Any]:
     """The entry of an applied force (see :meth:`Mechanism.force`)."""
     if frame not in ("global", "body"):
         raise InputError(f"invalid frame = {frame!r}: must be 'global' or 'body'", field="frame", value=frame)
     if isinstance(value, Mapping):
-        head, cols = _table("value", value, ("fx", "fy"), driver_body)
+        head, cols = _table("value", value, ("fx", "fy"))
         fx, fy = _profile(head, cols["fx"]), _profile(head, cols["fy"])
     else:
         try:
@@ -149,17 +153,17 @@ def applied_force(name: str, body: int, point: List[float], value: Load, frame: 
     return {"kind": "force", "name": name, "body": body, "point": point, "frame": frame, "fx": fx, "fy": fy}
 
 
-def applied_torque(name: str, body: int, value: Load, reaction: Optional[int], driver_body: DriverBody) -> Dict[str, Any]:
+def applied_torque(name: str, body: str, value: Load, reaction: BodyRef) -> Dict[str, Any]:
     """The entry of an applied torque (see :meth:`Mechanism.torque`)."""
     if isinstance(value, Mapping):
-        head, cols = _table("value", value, ("torque",), driver_body)
+        head, cols = _table("value", value, ("torque",))
         magnitude = _profile(head, cols["torque"])
     else:
         magnitude = _constant("value", value)
     return {"kind": "torque", "name": name, "body": body, "reaction": reaction, "magnitude": magnitude}
 
 
-def motor(name: str, body: int, reaction: Optional[int], stall_torque: float, no_load_speed: float) -> Dict[str, Any]:
+def motor(name: str, body: str, reaction: BodyRef, stall_torque: float, no_load_speed: float) -> Dict[str, Any]:
     """The entry of a motor (see :meth:`Mechanism.motor`)."""
     w0 = check_finite("no_load_speed", no_load_speed)
     if w0 == 0.0:

@@ -29,9 +29,8 @@ def _check_non_negative(field: str, value: Any) -> float:
     return v
 FILM_MODELS = ("long", "short", "long_paper", "finite")
 #: R_j/c from which a lubricated joint counts as a µm film: a long-bearing film there can crawl in
-#: a whirl near the centre (measured, R_j = 9.5 mm: c = 1, 1.25 and 2 µm crawl, 1.5 µm finishes
-#: in 1.6 s, 3 µm in 0.03 s; docs/hard_cases.md), and a journal released at rest against the
-#: wall can stall at once.
+#: a whirl near the centre, and a journal released at rest against the wall can stall at once
+#: (measured at R_j = 9.5 mm: docs/hard_cases.md, *µm films*).
 MICROMETRE_FILM_RATIO = 4000.0
 
 
@@ -181,21 +180,17 @@ class Lubricated:
     film:
         ``"long"`` (default: Pinkus–Sternlicht long bearing, Gümbel condition, quadrature of the
         positive pressure; the paper's model), ``"short"`` (Ocvirk short bearing), ``"finite"``
-        (any 1/16 ≤ L/D ≤ 16: the Reynolds equation with the Reynolds cavitation condition solved
-        once per L/D into a table, a few seconds the first time in a process; within 1.5 % of
-        Butenschön's tables) or ``"long_paper"`` (the paper's printed closed forms P13–P14, wrong
-        for a receding journal; for comparison only, and they can stall the integrator).
-        Measured against ``"finite"`` (Sommerfeld number, pure rotation | approaching squeeze;
-        ``python benches/finite_bearing.py``): the long form is +250 % | +330 % at L/D = 1,
-        +40 % | +100 % at L/D = 2, +17 % | +47 % at L/D = 2.5 (ε = 0.5), −12 % | +26 % at L/D = 4
-        and −31 % | +12 % at L/D = 8; the short form is +3 % at L/D = 1/4, +20 % at L/D = 1/2 and
-        +69 % at L/D = 1 (ε = 0.5), and worse at larger ε. Neither closed form is accurate between
-        L/D ≈ 1/2 and 8: use ``"finite"`` there. Also for clearances of a few µm: a journal whirling
-        at half the shaft speed sees a negative squeeze damping in the long bearing's
-        half-Sommerfeld film, and with c ≤ 2 µm (R ≈ 10 mm) the run can crawl; the finite film damps
-        (docs/hard_cases.md). A journal released at rest against the wall with the drive at speed
-        leaves it at default settings from c = 5 µm with the long film, 20 µm with the finite and
-        50 µm with the short (slider-crank, 5000 rpm, L = 40 mm): start µm films centred.
+        (any 1/16 ≤ L/D ≤ 16: the Reynolds equation with the Reynolds cavitation condition, solved
+        once per L/D into a table; checked against Butenschön's tables) or ``"long_paper"`` (the
+        paper's printed closed forms P13–P14, wrong for a receding journal; for comparison only,
+        and they can stall the integrator). Neither closed form is accurate between L/D ≈ 1/2
+        and 8: use ``"finite"`` there (how far each is off, measured against the finite bearing
+        across L/D and ε: docs/physics.md §4, *Validity of the closed forms*). Also for
+        clearances of a few µm: a journal whirling at half the shaft speed sees a negative
+        squeeze damping in the long bearing's half-Sommerfeld film and the run can crawl, where
+        the finite film damps; and a journal released at rest against the wall with the drive at
+        speed leaves it at default settings only above a clearance that depends on the film
+        (docs/hard_cases.md, *µm films*): start µm films centred.
     eps0, m:
         Below ε0 both film components are scaled by (ε/ε0)^m (P15–P16, made continuous at
         ε0: docs/physics.md §4).

@@ -7,14 +7,16 @@ SI units throughout: metres, kilograms, seconds, radians.
 
 from __future__ import annotations
 
+import bisect
 import copy
 import math
 import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import forces as _forces
+from . import plausibility, references
 from .errors import InputError, SimulationError, check_finite, check_positive
-from .joints import MICROMETRE_FILM_RATIO, Dry, Lubricated
+from .joints import Dry, Lubricated
 from .running import DEFAULT_OUTPUTS, INTEGRATORS, MAX_OUTPUTS, OUTPUTS, RunOptions, Running  # noqa: F401 (re-exported)
 
 GROUND = "ground"
@@ -67,7 +69,30 @@ class Mechanism(Running):
         self._forces: List[Dict[str, Any]] = []
         self._prismatic_clearance: List[Dict[str, Any]] = []
         self._names: set = set()
+        self._motor_angles: Dict[str, float] = {}  # body → angle0 of a motor on it (applied when the body is added)
+        self._warned: set = set()  # plausibility findings warned already (clearsim.plausibility)
         self._compiled: Any = None
+
+    def __repr__(self) -> str:
+        joints = ", ".join(f"{name} {c['kind']}" for name, c in self.contacts().items())
+        counts = [(len(self._bodies), "body", "bodies"), (len(self._joints), "joint", "joints"), (len(self._drivers), "driver", "drivers"),
+                  (len(self._forces), "force element", "force elements")]  # fmt: skip
+        parts = [f"{n} {one if n == 1 else many}" for n, one, many in counts if n or one == "body"]
+        parts.append(f"clearance joints: {joints}" if joints else "no clearance joint")
+        return f"<clearsim.Mechanism {', '.join(parts)}>"
+
+    def _repr_png_(self) -> Optional[bytes]:
+        """The mechanism drawn at t = 0 (for notebooks); ``None`` (text instead) if it does not assemble."""
+        from . import display
+
+        try:
+            from matplotlib.figure import Figure
+
+            fig = Figure(figsize=(5.0, 3.6), layout="constrained")
+            self.plot(0.0, ax=fig.add_subplot(1, 1, 1))
+            return display.png(fig)
+        except Exception:  # noqa: BLE001 — a picture is optional: the text repr stands in
+            return None
 
     def __deepcopy__(self, memo: Dict[int, Any]) -> "Mechanism":
         # The compiled Rust model cannot be copied (nor pickled); a copy recompiles on demand.
@@ -86,6 +111,8 @@ class Mechanism(Running):
     def __setstate__(self, state: Dict[str, Any]) -> None:
         state.setdefault("_forces", [])
         state.setdefault("_prismatic_clearance", [])
+        state.setdefault("_motor_angles", {})
+        state.setdefault("_warned", set())
         self.__dict__.update(state)
 
     # ------------------------------------------------------------------ building
@@ -139,13 +166,15 @@ class Mechanism(Running):
             "position": _point(f"body '{name}'.position", position),
             "angle": check_finite(f"body '{name}'.angle", angle),
         }
+        if name in self._motor_angles:  # a motor added before its body sets its start angle
+            body["angle"] = self._motor_angles[name]
         if velocity is not None:
             v = list(velocity)
             if len(v) != 3:
                 raise InputError(f"invalid body '{name}'.velocity = {velocity!r}: must be (vx, vy, omega)", field=f"body '{name}'.velocity", value=velocity)
             body["velocity"] = [check_finite(f"body '{name}'.velocity[{k}]", x) for k, x in enumerate(v)]
-        self._index[name] = len(self._bodies)
-        self._bodies.append(body)
+        _insert(self._bodies, body)
+        self._index = {b["name"]: k for k, b in enumerate(self._bodies)}
         self._compiled = None
         return self
 
@@ -156,6 +185,15 @@ class Mechanism(Running):
             known = ", ".join(self._index) or "none yet"
             raise InputError(f"invalid {field} = {name!r}: no such body (known: {known})", field=field, value=name)
         return self._index[name]
+
+    def _ref(self, field: str, name: Any, allow_ground: bool = True) -> str:
+        """A reference to a body by name, checked for its type now and resolved when the
+        mechanism compiles (:mod:`clearsim.references`): bodies may be added later."""
+        if not isinstance(name, str) or not name:
+            raise InputError(f"invalid {field} = {name!r}: must be a body's name", field=field, value=name)
+        if name == GROUND and not allow_ground:
+            raise InputError(f"invalid {field} = 'ground': must be a moving body", field=field, value=name)
+        return name
 
     def _new_name(self, kind: str, name: Optional[str]) -> str:
         if name is None:
@@ -177,11 +215,12 @@ class Mechanism(Running):
         Points are in the body's frame (from its centroid, at angle 0) [m]; on ``"ground"`` they
         are global coordinates.
         """
-        a = self._body("body_a", body_a)
-        b = self._body("body_b", body_b)
+        a = self._ref("body_a", body_a)
+        b = self._ref("body_b", body_b)
         if a == b:
             raise InputError(f"invalid body_b = {body_b!r}: a joint needs two different bodies", field="body_b", value=body_b)
-        self._joints.append(
+        _insert(
+            self._joints,
             {
                 "kind": "revolute",
                 "name": self._new_name("revolute", name),
@@ -205,14 +244,15 @@ class Mechanism(Running):
         """Ideal prismatic (translational) joint: ``point_b`` of ``body_b`` (the slider) moves on
         the line through ``point_a`` of ``body_a`` (the guide, may be ``"ground"``) with direction
         ``axis`` (in body a's frame); the relative angle stays at its initial value."""
-        a = self._body("body_a", body_a)
-        b = self._body("body_b", body_b, allow_ground=False)
+        a = self._ref("body_a", body_a)
+        b = self._ref("body_b", body_b, allow_ground=False)
         if a == b:
             raise InputError(f"invalid body_b = {body_b!r}: a joint needs two different bodies", field="body_b", value=body_b)
         ax = _point("axis", axis)
         if math.hypot(*ax) == 0.0:
             raise InputError(f"invalid axis = {axis!r}: must be a non-zero direction", field="axis", value=axis)
-        self._joints.append(
+        _insert(
+            self._joints,
             {
                 "kind": "prismatic",
                 "name": self._new_name("prismatic", name),
@@ -239,16 +279,15 @@ class Mechanism(Running):
         """Drive a body's angle: θ = angle0 + ω t (``omega`` [rad/s]; ``angle0`` [rad] defaults
         to the body's angle), or θ = Σ cₖ tᵏ (``polynomial``), or θ sampled at ``times`` and
         interpolated by a natural cubic spline (``times``, ``angles``)."""
-        b = self._body("body", body, allow_ground=False)
-        assert b is not None  # allow_ground=False: a body index, never the ground's None
+        b = self._ref("body", body, allow_ground=False)
         given = sum(x is not None for x in (omega, polynomial, times))
         if given != 1:
             raise InputError(
                 "invalid driver: give exactly one of omega, polynomial or times/angles", field="driver", value=body
             )
         if omega is not None:
-            a0 = self._bodies[b]["angle"] if angle0 is None else angle0
-            law = {"kind": "constant_speed", "omega": check_finite("omega", omega), "angle0": check_finite("angle0", a0)}
+            # angle0 None: the body's angle, filled in when the mechanism compiles (references.resolve)
+            law = {"kind": "constant_speed", "omega": check_finite("omega", omega), "angle0": None if angle0 is None else check_finite("angle0", angle0)}
         elif polynomial is not None:
             law = {"kind": "polynomial", "coefficients": [check_finite(f"polynomial[{k}]", c) for k, c in enumerate(polynomial)]}
         else:
@@ -259,7 +298,7 @@ class Mechanism(Running):
                 "times": [check_finite(f"times[{k}]", c) for k, c in enumerate(times)],  # type: ignore[arg-type]
                 "angles": [check_finite(f"angles[{k}]", c) for k, c in enumerate(angles)],
             }
-        self._drivers.append({"name": self._new_name("driver", name), "body": b, "law": law})
+        _insert(self._drivers, {"name": self._new_name("driver", name), "body": b, "law": law})
         return self
 
     def clearance_joint(
@@ -283,8 +322,8 @@ class Mechanism(Running):
         or :class:`Lubricated`. The journal starts at ``initial_eccentricity`` (global vector
         e = r_Pj − r_Pi [m]); (0, 0) is centred.
         """
-        i = self._body("bearing_body", bearing_body)
-        j = self._body("journal_body", journal_body)
+        i = self._ref("bearing_body", bearing_body)
+        j = self._ref("journal_body", journal_body)
         if i == j:
             raise InputError(
                 f"invalid journal_body = {journal_body!r}: bearing and journal must be on different bodies",
@@ -317,25 +356,15 @@ class Mechanism(Running):
                 value=initial_eccentricity,
             )
         model = Dry() if model is None else model
-        if isinstance(model, Dry) and c > 0.25 * r_j:
-            # Lubricated joints reject this (thin-film theory); a dry one may be meant, but a
-            # clearance a quarter of the pin radius is more often a unit slip.
-            warnings.warn(
-                f"clearance joint '{name}': clearance {c!r} m is {c / r_j:.3g} × the journal radius {r_j!r} m "
-                "(machine bearings have c/R_j ≈ 1e-3): is it given in metres?",
-                stacklevel=2,
-            )
         if not isinstance(model, (Dry, Lubricated)):
             raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
-        if isinstance(model, Lubricated) and model.film in ("long", "long_paper") and r_j / c >= MICROMETRE_FILM_RATIO:
-            warnings.warn(
-                f"clearance joint '{name}': a {model.film!r} film in a {c * 1e6:.3g} µm clearance (R_j/c = {r_j / c:.0f}): "
-                "a journal that whirls near the centre (started off-centre, say) meets the half-Sommerfeld film's negative "
-                "squeeze damping and the run can crawl (measured: c ≤ 2 µm at R_j ≈ 10 mm); film='finite' damps it "
-                "(docs/hard_cases.md)",
-                stacklevel=2,
-            )
-        self._clearance.append(
+        # Valid but implausible (a unit slip, a film outside its laws' range): PlausibilityWarning.
+        plausibility.warn_new(plausibility.joint_findings(name, r_j, c, model._as_dict()), self._warned, stacklevel=2)
+        note = plausibility.micrometre_film_note(name, r_j, c, model.film) if isinstance(model, Lubricated) else None
+        if note:
+            warnings.warn(note, stacklevel=2)
+        _insert(
+            self._clearance,
             {
                 "name": self._new_name("clearance", name),
                 "bearing_body": i,
@@ -375,8 +404,8 @@ class Mechanism(Running):
         The joint's results are two contacts, ``"<name> front"`` (+axis end) and
         ``"<name> rear"``. It starts centred and aligned with the guide.
         """
-        g = self._body("guide_body", guide_body)
-        s = self._body("slider_body", slider_body, allow_ground=False)
+        g = self._ref("guide_body", guide_body)
+        s = self._ref("slider_body", slider_body, allow_ground=False)
         if g == s:
             raise InputError(f"invalid slider_body = {slider_body!r}: guide and slider must be different bodies", field="slider_body", value=slider_body)
         ax = _point("axis", axis)
@@ -386,7 +415,8 @@ class Mechanism(Running):
         if not isinstance(model, Dry):
             raise InputError(f"invalid model = {model!r}: a prismatic clearance joint is dry: clearsim.Dry(...)", field="model", value=model)
         jname = self._new_name("prismatic_clearance", name)
-        self._prismatic_clearance.append(
+        _insert(
+            self._prismatic_clearance,
             {
                 "name": jname, "guide_body": g, "guide_point": _point("guide_point", guide_point), "slider_body": s, "axis": ax,
                 "clearance": check_positive(f"clearance joint '{jname}'.clearance", clearance),
@@ -398,24 +428,13 @@ class Mechanism(Running):
         return self
 
     # ------------------------------------------------------------------ force elements (docs/physics.md §10)
-    def _driver_body(self, field: str, name: str) -> int:
-        """The body a driver or motor turns (for load tables in a driver's angle)."""
-        for d in self._drivers:
-            if d["name"] == name:
-                return int(d["body"])
-        for f in self._forces:
-            if f["name"] == name and f["kind"] == "motor":
-                return int(f["body"])
-        known = ", ".join([d["name"] for d in self._drivers] + [f["name"] for f in self._forces if f["kind"] == "motor"]) or "none yet"
-        raise InputError(f"invalid {field} = {name!r}: no such driver or motor (known: {known})", field=field, value=name)
-
     def _add_force(self, entry: Dict[str, Any]) -> "Mechanism":
-        self._forces.append(entry)
+        _insert(self._forces, entry)
         self._compiled = None
         return self
 
-    def _pair(self, body_a: str, body_b: str) -> Tuple[Optional[int], Optional[int]]:
-        a, b = self._body("body_a", body_a), self._body("body_b", body_b)
+    def _pair(self, body_a: str, body_b: str) -> Tuple[str, str]:
+        a, b = self._ref("body_a", body_a), self._ref("body_b", body_b)
         if a == b:
             raise InputError(f"invalid body_b = {body_b!r}: a spring acts between two different bodies", field="body_b", value=body_b)
         return a, b
@@ -470,22 +489,20 @@ class Mechanism(Running):
         "fy": [...], "period": 2π}``; see :mod:`clearsim.forces`), e.g. a stamping load over
         part of the stroke. ``frame="body"``: the components turn with the body (a follower
         force)."""
-        b = self._body("body", body, allow_ground=False)
-        assert b is not None
+        b = self._ref("body", body, allow_ground=False)
         p = _point("point", point)
-        return self._add_force(_forces.applied_force(self._new_name("force", name), b, p, value, frame, self._driver_body))
+        return self._add_force(_forces.applied_force(self._new_name("force", name), b, p, value, frame))
 
     def torque(self, body: str, value: "_forces.Load", name: Optional[str] = None, *, reaction: Optional[str] = None) -> "Mechanism":
         """An applied torque [N m] on ``body`` (counter-clockwise positive): a number or a load
         table (``{"t": [...], "torque": [...]}`` or ``{"driver": ..., "angle": [...], "torque":
         [...]}``, see :mod:`clearsim.forces`). With ``reaction``, the opposite torque acts on
         that body."""
-        b = self._body("body", body, allow_ground=False)
-        assert b is not None
-        r = None if reaction is None else self._body("reaction", reaction)
+        b = self._ref("body", body, allow_ground=False)
+        r = None if reaction is None else self._ref("reaction", reaction)
         if r == b:
             raise InputError(f"invalid reaction = {reaction!r}: must differ from the loaded body", field="reaction", value=reaction)
-        return self._add_force(_forces.applied_torque(self._new_name("torque", name), b, value, r, self._driver_body))
+        return self._add_force(_forces.applied_torque(self._new_name("torque", name), b, value, r))
 
     def motor(
         self,
@@ -504,13 +521,14 @@ class Mechanism(Running):
         (default: as added). Unlike :meth:`driver` it leaves the speed free, so the crank slows
         at each impact; it starts from the body's ``velocity`` (default at rest). A load table
         can follow its angle: ``{"driver": <motor name>, "angle": ...}``."""
-        b = self._body("body", body, allow_ground=False)
-        assert b is not None
-        r = self._body("reaction", reaction)
+        b = self._ref("body", body, allow_ground=False)
+        r = self._ref("reaction", reaction)
         if r == b:
             raise InputError(f"invalid reaction = {reaction!r}: must differ from the rotor body", field="reaction", value=reaction)
         if angle0 is not None:
-            self._bodies[b]["angle"] = check_finite("angle0", angle0)
+            self._motor_angles[b] = check_finite("angle0", angle0)
+            if b in self._index:
+                self._bodies[self._index[b]]["angle"] = self._motor_angles[b]
         return self._add_force(_forces.motor(self._new_name("motor", name), b, r, stall_torque, no_load_speed))
 
     # ------------------------------------------------------------------ queries
@@ -539,8 +557,12 @@ class Mechanism(Running):
         return out
 
     def description(self) -> Dict[str, Any]:
-        """The plain-data description handed to the Rust core (a deep copy)."""
-        return copy.deepcopy(
+        """The plain-data description handed to the Rust core (a deep copy), with every
+        reference between elements resolved: the order in which they were added does not
+        matter, and a name that refers to nothing is an :class:`InputError` naming the element
+        and its field (``force 'gas'.value.driver``). A size that looks like millimetres
+        against the mechanism's span is a :class:`~clearsim.PlausibilityWarning` (once)."""
+        desc = references.resolve(copy.deepcopy(
             {
                 "gravity": self.gravity,
                 "baumgarte": self.baumgarte,
@@ -551,7 +573,9 @@ class Mechanism(Running):
                 "prismatic_clearance_joints": self._prismatic_clearance,
                 "forces": self._forces,
             }
-        )
+        ))
+        plausibility.warn_new(plausibility.mechanism_findings(desc), self._warned, stacklevel=2)
+        return desc
 
     def copy(self) -> "Mechanism":
         """An independent copy (the compiled Rust model, if any, is not copied)."""
@@ -587,7 +611,8 @@ class Mechanism(Running):
         """A copy with every clearance joint replaced by an ideal revolute joint (docs/physics.md §5)."""
         m = self.copy()
         for c in m._clearance:
-            m._joints.append(
+            _insert(
+                m._joints,
                 {
                     "kind": "revolute",
                     "name": c["name"],
@@ -598,7 +623,8 @@ class Mechanism(Running):
                 }
             )
         for p in m._prismatic_clearance:
-            m._joints.append(
+            _insert(
+                m._joints,
                 {"kind": "prismatic", "name": p["name"], "body_a": p["guide_body"], "point_a": p["guide_point"],
                  "axis": p["axis"], "body_b": p["slider_body"], "point_b": [0.0, 0.0]}
             )  # fmt: skip
@@ -608,6 +634,13 @@ class Mechanism(Running):
         return m
 
 __all__ = ["Mechanism", "GROUND", "SimulationError"]
+
+
+def _insert(entries: List[Dict[str, Any]], entry: Dict[str, Any]) -> None:
+    """Insert ``entry`` in ``entries``, kept sorted by name: the description, and so every
+    answer, does not depend on the order in which the elements were defined."""
+    k = bisect.bisect_right([e["name"] for e in entries], entry["name"])
+    entries.insert(k, entry)
 
 
 def _find_key(d: Dict[str, Any], key: str) -> Optional[Dict[str, Any]]:

@@ -18,6 +18,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
+from . import display
 from .errors import InputError, SimulationError, check_choice, check_positive, renamed
 from .mechanism import Mechanism
 from .running import COMPONENTS
@@ -95,6 +96,17 @@ class MonteCarloResult:
     first_passage_times: Dict[str, np.ndarray] = field(default_factory=dict)
     wall_time: float = 0.0
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    def _display_rows(self) -> List[Tuple[str, Any]]:
+        rows: List[Tuple[str, Any]] = [("samples", int(self.ok.size)), ("completed", int(self.ok.sum())), ("failures", self.n_failed), ("on_failure", self.on_failure)]
+        rows += [(f"p_f {q}", f"{est.p:.4g} [{est.lo:.4g}, {est.hi:.4g}]") for q, est in self.first_passage.items()]
+        return rows + [("allowable", self.allowable), ("errors", self.errors), ("wall_time", self.wall_time)]
+
+    def __repr__(self) -> str:
+        return display.line("MonteCarloResult", self._display_rows())
+
+    def _repr_html_(self) -> str:
+        return display.table("MonteCarloResult", self._display_rows())
 
     @property
     def n_failed(self) -> int:

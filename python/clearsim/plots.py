@@ -272,7 +272,8 @@ def plot_journal_orbits(
         Radial clearance c [m] — one value, or ``{label: c}``.
     transition_band:
         Width e0 [m] of the film-to-contact transition band (P18); if given, the circle
-        e = c + e0 is drawn dashed. One value or ``{label: e0}``.
+        e = c + e0 is drawn dashed. One value or ``{label: e0}`` (a label left out, e.g. a
+        dry joint's, gets no band).
     ncols:
         Panels per row (default: 2, or 1 for a single orbit).
     """
@@ -301,7 +302,8 @@ def plot_journal_orbits(
             _check_same_length(f"orbits[{label!r}][1]", y, x.shape[0], "e_x")
             lim = 1.12
             ax.add_patch(Circle((0, 0), 1.0, fill=False, color="0.25", linewidth=1.2, zorder=1.5))
-            e0 = transition_band[label] if isinstance(transition_band, Mapping) else transition_band
+            # A mapping may leave panels out (a dry joint beside lubricated ones has no band).
+            e0 = transition_band.get(label) if isinstance(transition_band, Mapping) else transition_band
             if e0 is not None:
                 rb = 1.0 + float(e0) / c
                 ax.add_patch(Circle((0, 0), rb, fill=False, color="0.45", linewidth=0.9, linestyle="--", zorder=1.5))

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from . import _core
+from . import _core, display
 from .errors import InputError, check_choice
 
 JOINT_COLUMNS: List[str] = list(_core.JOINT_COLUMNS)
@@ -48,7 +49,19 @@ class Result:
 
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"
-        return f"<clearsim.Result {len(self.t)} outputs, t ∈ [{self.t[0] if len(self.t) else 0:g}, {self.t[-1] if len(self.t) else 0:g}] s, {status}>"
+        steps = f"{self.stats.get('integrator', '?')} in {self.stats.get('steps', 0)} steps"
+        return f"<clearsim.Result {len(self.t)} outputs, t ∈ [{self.t[0] if len(self.t) else 0:g}, {self.t[-1] if len(self.t) else 0:g}] s, {steps}, {status}>"
+
+    def _repr_html_(self) -> str:
+        s = self.summary()
+        t = f"[{self.t[0]:.6g}, {self.t[-1]:.6g}] s" if len(self.t) else "none"
+        rows = [("outputs", f"{s['outputs']}, t ∈ {t}"), ("integrator", s.get("integrator", "?")),
+                ("steps", f"{s.get('steps', 0)} ({s.get('rejected_steps', 0)} rejected)"), ("wall time [s]", s.get("wall_time", math.nan)),
+                ("impacts", ", ".join(f"{j}: {n}" for j, n in self.impacts.items()) or "–")]  # fmt: skip
+        if "max_constraint_violation" in s:
+            rows.append(("max ‖Φ‖ [m]", s["max_constraint_violation"]))
+        rows.append(("status", "complete" if self.failure is None else f"stopped early: {self.failure}"))
+        return display.table("clearsim.Result", rows)
 
     @property
     def completed(self) -> bool:

@@ -243,8 +243,9 @@ class Running:
             adaptive), ``"dop853"`` (8th order, for
             tight tolerances), ``"radau"`` (RADAU5: implicit Radau IIA of order 5, L-stable,
             with Newton matrices built from the clearance joints' force derivatives — the
-            method for lubricated joints, whose film makes the problem stiff; 4–10× faster than
-            RK45 at the same error there, slower on dry impacts), ``"rodas4"`` (L-stable
+            method for lubricated joints, whose film makes the problem stiff; faster than RK45
+            at the same error there by the factors in the README's *Choosing an integrator*,
+            slower on dry impacts), ``"rodas4"`` (L-stable
             Rosenbrock 4(3) with a finite-difference Jacobian, ``state_dim + 7`` right-hand
             sides per step) or ``"rk4"`` (classic, fixed ``step`` [s]).
         rtol, atol:

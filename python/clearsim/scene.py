@@ -123,6 +123,42 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     velocity = [0.0, 0.6]            # m/s
     acceleration = [0.0, 200.0]      # m/s²
 
+    [study]                          # optional: `clearsim reliability scene.toml` (docs/physics.md §6;
+                                     #   every option: python -m pydoc clearsim.reliability.scene)
+    body = "slider"                  # the output: a body coordinate's error against the ideal
+    component = "x"                  #   mechanism (x | y | theta) ...
+    # joint = "rod-slider"           # ... or a clearance joint's quantity instead
+    quantity = "displacement"        # displacement | velocity | acceleration; a joint:
+                                     #   eccentricity | force | contact_force | film_force
+    limit = 1.0e-3                   # required: the largest acceptable peak, in its unit (m here)
+    cycles = 1.0                     # analysed crank turns ...
+    skip_cycles = 1.0                # ... after this many start-up turns (default 0)
+    # omega = 523.6                  # rad/s (default: the first constant-speed driver)
+    methods = ["form", "importance_sampling"]   # of monte_carlo, form, importance_sampling,
+                                     #   subset, sobol, fosm
+    samples = 1000                   # Monte Carlo samples; Sobol base size
+    cov = 0.1                        # importance sampling's target coefficient of variation
+    seed = 0
+    # bin_width = 18.0               # deg: FOSM's crank-angle bins (methods = [..., "fosm"])
+    # sobol_method = "saltelli"      # or "pce"; step = 0.05: FORM's gradient step in u
+    # [[study.output]]               # several outputs (a series system) instead of the one
+    # body = "slider"                #   above: body/component or joint, quantity, limit and
+    # ...                            #   side = "above" (default) or "below"
+    [[study.input]]                  # one per random input
+    path = "rod-slider.clearance"    # element.field of the mechanism (Mechanism.with_values), SI
+    distribution = "normal"          # normal | lognormal (mean, std) | uniform (low, high)
+    mean = 0.5e-3                    #   | truncated_normal (mean, std, low, high)
+    std = 0.05e-3
+    [study.tolerance]                # optional: the largest mean of one input that still
+    input = "rod-slider.clearance"   #   meets a reliability
+    reliability = 0.9999
+    # bracket = [0.3e-3, 0.6e-3]     # where to look (default ½× to 2× its mean)
+
+Elements may come in any order: names that refer to other elements (a joint's bodies, a load
+table's driver) are resolved when the whole file is read. A value that is valid but looks like
+a unit slip (a journal radius in mm, a viscosity in cP) is a :class:`clearsim.PlausibilityWarning`
+naming the file and line. Example scenes: ``scenes/`` (``docs/examples.md``).
+
 TOML is read with :mod:`tomllib` (Python ≥ 3.11) or the ``tomli`` package.
 """
 
@@ -130,20 +166,20 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
-from .errors import InputError, SimulationError
-from .joints import Dry, Lubricated
+from . import _core, display
+from .errors import InputError, PlausibilityWarning, SimulationError
 from .mechanism import Mechanism
 from .running import COMPONENTS, OUTPUTS
 from .result import Result
-from .toml_reader import REQUIRED, Source, Table, dotted_key, read_toml
+from .scene_builder import _Builder
+from .toml_reader import Table, dotted_key, read_toml
 
 PathLike = Union[str, Path]
 
@@ -252,6 +288,9 @@ class SceneRun:
     reliability: Dict[str, Any] = field(default_factory=dict)
     failure: Optional[SimulationError] = None
 
+    def __repr__(self) -> str:
+        return display.text(self, "result", "ideal", "errors", "reliability", "failure")
+
 
 @dataclass
 class Scene:
@@ -354,235 +393,18 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 _TOP_KEYS = (
     "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study",
 )  # fmt: skip
-_FORCE_KEYS = {
-    "spring": ("type", "name", "body_a", "point_a", "body_b", "point_b", "stiffness", "damping", "free_length", "force_table"),
-    "rotational_spring": ("type", "name", "body_a", "body_b", "stiffness", "damping", "angle0"),
-    "force": ("type", "name", "body", "point", "value", "frame"),
-    "torque": ("type", "name", "body", "value", "reaction"),
-    "motor": ("type", "name", "body", "stall_torque", "no_load_speed", "angle0", "reaction"),
-}
-_MECHANISM_KEYS = ("name", "description", "gravity", "baumgarte")
-_BODY_KEYS = ("name", "mass", "inertia", "position", "angle", "ends", "velocity")
-_JOINT_KEYS = {"revolute": ("type", "name", "bodies", "points"), "prismatic": ("type", "name", "bodies", "points", "axis")}
-_DRIVER_KEYS = ("name", "body", "omega", "rpm", "angle0", "polynomial", "times", "angles")
-_PRISMATIC_CLEARANCE_KEYS = (
-    "type", "name", "guide_body", "guide_point", "slider_body", "axis", "clearance", "slider_length", "corner_radius", "model", "dry",
-)  # fmt: skip
-_CLEARANCE_KEYS = (
-    "type", "name", "bearing_body", "bearing_point", "journal_body", "journal_point",
-    "journal_radius", "clearance", "initial_eccentricity", "model", "dry", "lubricated",
-)  # fmt: skip
 _SIM_KEYS = (
     "t_end", "cycles", "period", "t0", "integrator", "rtol", "atol", "step", "dt_out", "h_max", "h_min", "max_steps", "outputs",
 )  # fmt: skip
 _OUTPUT_KEYS = ("bodies", "quantities", "components", "joints", "joint_quantities", "ideal", "csv", "plots")
 _RELIABILITY_KEYS = ("body", "component", "bin_width", "omega", "t_start", "allowable")
-# Builder field → scene key, for errors raised by Mechanism methods.
-_FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "point_b": "points", "driver": None}
-
-
-def _model_fields(cls: type) -> Tuple[str, ...]:
-    return tuple(f.name for f in dataclasses.fields(cls))
-
-
-def _read_model(table: Table, cls: type) -> Any:
-    """A :class:`Dry` or :class:`Lubricated` from a sub-table using the dataclass's field names."""
-    kwargs: Dict[str, Any] = {}
-    for f in dataclasses.fields(cls):
-        if f.name not in table:
-            continue
-        if f.name == "dry":
-            sub = table.table("dry", _model_fields(Dry))
-            assert sub is not None
-            kwargs["dry"] = _read_model(sub, Dry)
-        elif isinstance(f.default, str):
-            kwargs[f.name] = table.string(f.name)
-        else:
-            kwargs[f.name] = table.number(f.name)
-    try:
-        return cls(**kwargs)
-    except InputError as err:
-        raise table.error(err.field or None, err.reason, err.value) from None
-
-
-class _Builder:
-    """Builds the Mechanism of a scene, entry by entry, locating every error in the file."""
-
-    def __init__(self, src: Source, top: Table) -> None:
-        self.src = src
-        self.top = top
-        self.entries: Dict[Tuple[str, str], Table] = {}  # (kind, name) → its table
-        self.mechanism_table = top.table("mechanism", _MECHANISM_KEYS) or Table(src, ("mechanism",), {}, ())
-
-    def call(self, table: Table, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
-        """``fn(*args, **kwargs)``, with an InputError relocated to ``table``'s key."""
-        try:
-            return fn(*args, **kwargs)
-        except InputError as err:
-            raise self.relocate(err, table) from None
-
-    def relocate(self, err: InputError, table: Optional[Table]) -> InputError:
-        """``err`` (raised by the builder or the Rust core) with the file and line."""
-        fld = getattr(err, "field", "") or ""
-        m = re.match(r"^(body|clearance joint|joint|driver|revolute|prismatic|force) '([^']*)'\.(.+)$", fld)
-        if m:
-            kind = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint"}.get(m.group(1), m.group(1))
-            table = self.entries.get((kind, m.group(2)), table)
-            fld = m.group(3)
-        parts = [re.sub(r"\[\d+\]$", "", p) for p in fld.split(".")] if fld else []
-        # The deepest part that is a key of the table (value.driver → value), else the last.
-        key = next((p for p in reversed(parts) if table is not None and p in table.data), parts[-1] if parts else None)
-        key = _FIELD_KEYS.get(key, key) if key else None
-        if table is None:
-            return InputError(f"{self.src.path}: {err.reason}", field=err.field, value=err.value, file=str(self.src.path), line=None)
-        return table.error(key, err.reason, err.value)
-
-    def build(self) -> Mechanism:
-        top = self.top
-        mech_t = self.mechanism_table
-        kwargs = {k: mech_t.point(k) for k in ("gravity", "baumgarte") if k in mech_t}
-        m: Mechanism = self.call(mech_t, Mechanism, **kwargs)
-        for t in top.array_of_tables("body", _BODY_KEYS):
-            self.body(m, t)
-        for t in top.array_of_tables("joint", sorted(set(_JOINT_KEYS["revolute"]) | set(_JOINT_KEYS["prismatic"]))):
-            self.joint(m, t)
-        for t in top.array_of_tables("driver", _DRIVER_KEYS):
-            self.driver(m, t)
-        for t in top.array_of_tables("clearance_joint", sorted(set(_CLEARANCE_KEYS) | set(_PRISMATIC_CLEARANCE_KEYS))):
-            self.clearance_joint(m, t)
-        all_keys = sorted({k for keys in _FORCE_KEYS.values() for k in keys})
-        for t in top.array_of_tables("force", all_keys):
-            self.force_element(m, t)
-        return m
-
-    def _load(self, t: Table, key: str, columns: Sequence[str]) -> Any:
-        """A load: a number, a pair, or an inline table (see :mod:`clearsim.forces`)."""
-        value = t._get(key, REQUIRED)
-        if isinstance(value, dict):
-            sub = t.table(key, ("t", "driver", "angle", "period", *columns))
-            assert sub is not None
-            out: Dict[str, Any] = {k: sub.numbers(k) for k in ("t", "angle", *columns) if k in sub}
-            if "driver" in sub:
-                out["driver"] = sub.string("driver")
-            if "period" in sub:
-                out["period"] = sub.number("period")
-            return out
-        return t.number(key) if columns == ("torque",) else t.point(key)
-
-    def force_element(self, m: Mechanism, t: Table) -> None:
-        kind = t.string("type", choices=tuple(_FORCE_KEYS))
-        for key in t.data:
-            if key not in _FORCE_KEYS[kind]:
-                raise t.error(key, f"unknown key '{key}' in a {kind} [[force]] (known: {', '.join(_FORCE_KEYS[kind])})", t.data[key])
-        name = t.string("name", None)
-        self._register("force", name, t)
-        if kind == "spring":
-            table = None
-            if "force_table" in t:
-                sub = t.table("force_table", ("deflection", "force"))
-                assert sub is not None
-                table = {"deflection": sub.numbers("deflection"), "force": sub.numbers("force")}
-            self.call(
-                t, m.spring, t.string("body_a"), t.point("point_a"), t.string("body_b"), t.point("point_b"),
-                t.number("stiffness", None), t.number("damping", 0.0), t.number("free_length", None), name, force_table=table,
-            )  # fmt: skip
-        elif kind == "rotational_spring":
-            self.call(t, m.rotational_spring, t.string("body_a"), t.string("body_b"), t.number("stiffness"), t.number("damping", 0.0), t.number("angle0", None), name)
-        elif kind == "force":
-            self.call(t, m.force, t.string("body"), t.point("point", [0.0, 0.0]), self._load(t, "value", ("fx", "fy")), t.string("frame", "global"), name)
-        elif kind == "torque":
-            self.call(t, m.torque, t.string("body"), self._load(t, "value", ("torque",)), name, reaction=t.string("reaction", None))
-        else:
-            self.call(
-                t, m.motor, t.string("body"), t.number("stall_torque"), t.number("no_load_speed"), t.number("angle0", None), name,
-                reaction=t.string("reaction", "ground"),
-            )  # fmt: skip
-
-    def _register(self, kind: str, name: Optional[str], table: Table) -> None:
-        if name is not None:
-            self.entries[(kind, name)] = table
-
-    def body(self, m: Mechanism, t: Table) -> None:
-        name = t.string("name")
-        self._register("body", name, t)
-        if "ends" in t:
-            for key in ("position", "angle"):
-                if key in t:
-                    raise t.error(key, f"[[body]] '{name}': give either ends or position/angle, not both")
-            where: Dict[str, Any] = {"ends": tuple(t.points("ends", 2))}
-        else:
-            where = {"position": t.point("position", [0.0, 0.0]), "angle": t.number("angle", 0.0)}
-        self.call(
-            t, m.add_body, name, mass=t.number("mass"), inertia=t.number("inertia"),
-            velocity=t.numbers("velocity", None, length=3), **where,
-        )  # fmt: skip
-
-    def joint(self, m: Mechanism, t: Table) -> None:
-        kind = t.string("type", choices=tuple(_JOINT_KEYS))
-        for key in t.data:
-            if key not in _JOINT_KEYS[kind]:
-                raise t.error(key, f"unknown key '{key}' in a {kind} [[joint]] (known: {', '.join(_JOINT_KEYS[kind])})", t.data[key])
-        name = t.string("name", None)
-        self._register("joint", name, t)
-        bodies = t.strings("bodies")
-        if len(bodies) != 2:
-            raise t.error("bodies", f"invalid {dotted_key(t.where, 'bodies')} = {bodies!r}: must name two bodies", bodies)
-        (pa, pb) = t.points("points", 2)
-        extra = {"axis": t.point("axis")} if "axis" in t else {}
-        fn = m.revolute if kind == "revolute" else m.prismatic
-        self.call(t, fn, bodies[0], pa, bodies[1], pb, name=name, **extra)
-
-    def driver(self, m: Mechanism, t: Table) -> None:
-        name = t.string("name", None)
-        self._register("driver", name, t)
-        body = t.string("body")
-        if "rpm" in t:
-            if "omega" in t:
-                raise t.error("rpm", "invalid [[driver]]: give omega [rad/s] or rpm, not both")
-            omega: Optional[float] = t.number("rpm") * 2 * math.pi / 60.0
-        else:
-            omega = t.number("omega", None)
-        kwargs = dict(
-            omega=omega, angle0=t.number("angle0", None), polynomial=t.numbers("polynomial", None),
-            times=t.numbers("times", None), angles=t.numbers("angles", None), name=name,
-        )  # fmt: skip
-        self.call(t, m.driver, body, **kwargs)
-
-    def clearance_joint(self, m: Mechanism, t: Table) -> None:
-        kind = t.string("type", "revolute", choices=("revolute", "prismatic"))
-        known = _CLEARANCE_KEYS if kind == "revolute" else _PRISMATIC_CLEARANCE_KEYS
-        for key in t.data:
-            if key not in known:
-                raise t.error(key, f"unknown key '{key}' in a {kind} [[clearance_joint]] (known: {', '.join(known)})", t.data[key])
-        name = t.string("name")
-        self._register("clearance_joint", name, t)
-        if kind == "prismatic":
-            t.string("model", "dry", choices=("dry",))
-            sub = t.table("dry", _model_fields(Dry))
-            model = Dry() if sub is None else _read_model(sub, Dry)
-            self.call(
-                t, m.prismatic_clearance, t.string("guide_body"), t.point("guide_point"), t.string("slider_body"), t.point("axis"),
-                t.number("clearance"), t.number("slider_length"), model, name, corner_radius=t.number("corner_radius", 1e-3),
-            )  # fmt: skip
-            return
-        kind = t.string("model", "dry", choices=("dry", "lubricated"))
-        other = "lubricated" if kind == "dry" else "dry"
-        if other in t:
-            raise t.error(other, f"[clearance_joint.{other}] given but model = {kind!r} (set model = {other!r} or remove the table)")
-        sub = t.table(kind, _model_fields(Dry if kind == "dry" else Lubricated))
-        model = (Dry() if kind == "dry" else Lubricated()) if sub is None else _read_model(sub, Dry if kind == "dry" else Lubricated)
-        self.call(
-            t, m.clearance_joint, name, t.string("bearing_body"), t.point("bearing_point"),
-            t.string("journal_body"), t.point("journal_point"), journal_radius=t.number("journal_radius"),
-            clearance=t.number("clearance"), model=model, initial_eccentricity=t.point("initial_eccentricity", [0.0, 0.0]),
-        )  # fmt: skip
-
-
-def _drive_speed(m: Mechanism) -> Optional[float]:
-    """ω [rad/s] of the first constant-speed driver, if any."""
-    for d in m.description()["drivers"]:
-        if d["law"]["kind"] == "constant_speed":
-            return float(d["law"]["omega"])
+def _drive_speed(m: Mechanism, order: Sequence[str] = ()) -> Optional[float]:
+    """ω [rad/s] of the first constant-speed driver (in the file's ``order`` of names, else by
+    name), if any."""
+    drivers = {d["name"]: d for d in m.description()["drivers"]}
+    for name in [n for n in order if n in drivers] + sorted(drivers):
+        if drivers[name]["law"]["kind"] == "constant_speed":
+            return float(drivers[name]["law"]["omega"])
     return None
 
 
@@ -600,7 +422,7 @@ def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationS
         t_end = t.number("t_end")
     elif cycles is not None:
         if period is None:
-            omega = _drive_speed(m)
+            omega = _drive_speed(m, b.drivers)
             if not omega:
                 raise t.error("cycles", "invalid [simulation]: cycles needs period = ... [s] (no constant-speed driver to take it from)")
             period = 2 * math.pi / abs(omega)
@@ -665,7 +487,7 @@ def _reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]:
             raise a.error(None, "invalid [reliability.allowable]: give at least one of " + ", ".join(RELIABILITY_QUANTITIES))
     omega = t.number("omega", None)
     if omega is None:
-        omega = _drive_speed(m)
+        omega = _drive_speed(m, b.drivers)
         if omega is None:
             raise t.error(None, "missing key 'omega' in [reliability] (no constant-speed driver to take it from)")
     if omega == 0.0 or not math.isfinite(omega):
@@ -701,13 +523,21 @@ def load_scene_file(path: PathLike) -> Scene:
     src, data = read_toml(path)
     top = Table(src, (), data, _TOP_KEYS)
     builder = _Builder(src, top)
-    mech = builder.build()
-    try:
-        # The Rust core's checks, located in the file. Not mech.compile(): a cached compiled
-        # model would make Mechanism.idealized() (a deepcopy) fail.
-        _core.compile(mech.description())
-    except InputError as err:
-        raise builder.relocate(err, None) from None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mech = builder.build()
+        try:
+            # The Rust core's checks, located in the file. Not mech.compile(): a cached compiled
+            # model would make Mechanism.idealized() (a deepcopy) fail.
+            _core.compile(mech.description())
+        except InputError as err:
+            raise builder.relocate(err, None) from None
+    for w in caught:  # a plausibility warning located in the file, like an error
+        if isinstance(w.message, PlausibilityWarning):
+            where = builder.relocate(InputError(str(w.message), field=getattr(w.message, "field", "")), None)
+            warnings.warn(PlausibilityWarning(str(where)), stacklevel=2)
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     name = builder.mechanism_table.string("name", path.stem)
     description = builder.mechanism_table.string("description", "")
     outputs = _outputs(builder, mech)
@@ -717,7 +547,7 @@ def load_scene_file(path: PathLike) -> Scene:
     if "study" in builder.top:
         from .reliability.scene import STUDY_KEYS, parse_study  # only scenes with [study] need it; its keys live there
 
-        study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech))
+        study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech, builder.drivers))
     # The ideal counterpart is made now: Mechanism.idealized() deep-copies, which fails once the
     # mechanism holds a compiled Rust model (after a run).
     return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, _ideal=mech.idealized())

@@ -17,6 +17,7 @@ EXAMPLES = {
     "engine.toml": 0.02,
     "slider_crank_guide_clearance.toml": 0.01,
     "four_bar_spring.toml": 0.1,
+    "compressor.toml": 0.01,
 }
 
 
@@ -48,3 +49,46 @@ def test_press_workpiece_load_acts_near_bottom_dead_centre():
     loaded = scene.mechanism.simulate(0.4, dt_out=1e-3, outputs=["states", "energy"], progress=False)
     e = loaded.energy()
     assert e["load"][-1] < -1.0  # the workpiece takes work out of the press each stroke
+
+
+def _gas_work_closed_form(r: float, l: float, e: float, table: dict) -> float:
+    """∮ F_x dx_p over one crank turn [J] of the gas-force table against the ideal offset
+    slider-crank's piston position x_p(θ) = r cos θ + √(l² − (e − r sin θ)²), by quadrature."""
+    theta = np.linspace(0.0, 2 * np.pi, 200_001)
+    x = r * np.cos(theta) + np.sqrt(l**2 - (e - r * np.sin(theta)) ** 2)
+    f = np.interp(theta % table["period"], table["angle"], table["fx"])
+    return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(x)))
+
+
+def test_compressor_takes_the_gas_work_of_its_table_each_turn():
+    """The gas-force table follows the crank angle: the work the piston does against it over
+    the second turn matches the table integrated along the ideal piston stroke (the clearances
+    move the piston by tens of µm: 1 %), and it is negative (a compressor absorbs work)."""
+    scene = load_scene_file(SCENES / "compressor.toml")
+    gas = next(f for f in scene.mechanism.description()["forces"] if f["name"] == "gas")
+    table = {"angle": gas["fx"]["table"]["x"], "fx": gas["fx"]["table"]["y"], "period": gas["fx"]["table"]["period"]}
+    period = 2 * np.pi / 157.07963267948966
+    res = scene.mechanism.simulate(2 * period, dt_out=period / 2000, outputs=["states", "energy", "joints"], progress=False)
+    load = res.energy()["load"]
+    turn = np.searchsorted(res.t, period)
+    expected = _gas_work_closed_form(0.04, 0.14, 0.01, table)
+    assert expected < -20.0
+    assert load[-1] - load[turn] == pytest.approx(expected, rel=0.01)
+    # the crank pin's film carries the load off the wall; the dry wrist pin runs on it
+    eps = {j: np.linalg.norm(res.eccentricity(j), axis=1) / c for j, c in (("crank-pin", 30e-6), ("wrist-pin", 20e-6))}
+    assert eps["crank-pin"].max() < 1.0 and eps["wrist-pin"][turn:].max() > 1.0
+
+
+def test_compressor_reliability_study_from_the_cli(tmp_path, capsys):
+    """The scene's [study]: FORM on the two pins' clearance tolerances."""
+    text = (SCENES / "compressor.toml").read_text()
+    # TODO(lead): drop this override once starts after t = 0 work (issue 28 item 1, branch run-core):
+    # the scene skips the start-up turn (skip_cycles = 1.0), which fails on main today.
+    text = text.replace("skip_cycles = 1.0", "skip_cycles = 0.0")
+    scene = tmp_path / "compressor.toml"
+    scene.write_text(text)
+    out = tmp_path / "rel"
+    assert main(["reliability", str(scene), "-o", str(out), "-q", "--no-plots"]) == 0
+    rows = (out / "reliability.csv").read_text().splitlines()
+    method, pf = rows[1].split(",")[:2]
+    assert method == "form" and 1e-3 < float(pf) < 0.2

@@ -32,6 +32,7 @@ def test_nine_bar_runs_with_the_finite_bearing():
     assert max(eps) < 1.0 and res.film_force("B").any()
 
 
+@pytest.mark.filterwarnings("ignore::clearsim.errors.PlausibilityWarning")  # a 2 m bearing on purpose
 def test_bearing_outside_the_finite_range_is_named():
     lub = clearsim.Lubricated(viscosity=0.4, length=2.0, film="finite")  # L/D = 100
     m = clearsim.models.nine_bar("lubricated", 0.5e-3, lubricated=lub)

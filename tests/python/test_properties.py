@@ -32,6 +32,11 @@ from clearsim import Dry, Lubricated, models  # noqa: E402
 SCALE = int(os.environ.get("CLEARSIM_HYPOTHESIS_SCALE", "1"))
 
 
+# Property tests draw implausible numbers on purpose (metres of clearance, kilo-Pa·s): they
+# check that values are accepted or named, not that they are plausible.
+pytestmark = pytest.mark.filterwarnings("ignore::clearsim.errors.PlausibilityWarning")
+
+
 def examples(n: int) -> settings:
     return settings(
         max_examples=n * SCALE,

@@ -115,6 +115,7 @@ def test_auto_picks_radau_for_lubricated_joints_only():
     assert lub.simulate(t_end, integrator="rk45", progress=False).stats["integrator"] == "rk45"
 
 
+@pytest.mark.filterwarnings("ignore::clearsim.errors.PlausibilityWarning")  # c/R_j = 0.2 on purpose
 def test_radau_giving_up_reports_the_step_where_it_failed():
     """A case found by the property test: RADAU5's Newton iteration stops converging at
     t ≈ 0.019 s; the error used to say 'non-finite state at t = 0 s' (a stale error from the

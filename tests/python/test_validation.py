@@ -113,9 +113,10 @@ CASES: List[Row] = [
     ("core: m out of range", lambda: (lambda m: (m._clearance[0]["model"].update(m=-0.5), m.compile()))(models.nine_bar("lubricated")), ".m", "-0.5"),
     ("core: viscosity zero", lambda: (lambda m: (m._clearance[0]["model"].update(viscosity=0.0), m.compile()))(models.nine_bar("lubricated")), "viscosity", "0"),
     # Names.
-    ("unknown body in joint", lambda: body().revolute("ground", (0, 0), "b", (0, 0)), "body_b", "'b'"),
-    ("unknown bearing body", lambda: body().clearance_joint("pin", "hub", (0, 0), "a", (0, 0), journal_radius=0.01, clearance=1e-4), "bearing_body", "'hub'"),
-    ("unknown driven body", lambda: body().driver("crank", omega=1.0), "body", "'crank'"),
+    # References to other elements are resolved when the mechanism compiles (any definition order).
+    ("unknown body in joint", lambda: body().revolute("ground", (0, 0), "b", (0, 0)).compile(), "joint 'revolute1'.body_b", "'b'"),
+    ("unknown bearing body", lambda: body().clearance_joint("pin", "hub", (0, 0), "a", (0, 0), journal_radius=0.01, clearance=1e-4).compile(), "clearance joint 'pin'.bearing_body", "'hub'"),
+    ("unknown driven body", lambda: body().driver("crank", omega=1.0).compile(), "driver 'driver1'.body", "'crank'"),
     ("duplicate body", lambda: body(body(), "a"), "name", "'a'"),
     ("duplicate joint", lambda: pendulum().revolute("ground", (0, 0), "a", (0, 0), name="pivot"), "name", "'pivot'"),
     ("joint named like a driver", lambda: pendulum().driver("a", omega=1.0, name="d").revolute("ground", (1, 0), "a", (0, 0), name="d"), "name", "'d'"),
@@ -346,7 +347,8 @@ def test_two_drivers_on_one_body_are_named():
 
 def test_lubricated_clearance_must_be_small_against_the_radius():
     """0.2 m of clearance on a 5 mm pin (a unit slip) is refused for a film; warned for dry."""
-    m = cs.models.slider_crank("lubricated", clearance=0.2, journal_radius=5e-3)
+    with pytest.warns(cs.PlausibilityWarning, match=r"clearance joint 'rod-slider'.clearance = 0.2 m is 40 × the journal radius 0.005 m: the film laws are thin-film"):
+        m = cs.models.slider_crank("lubricated", clearance=0.2, journal_radius=5e-3)
     with pytest.raises(cs.InputError, match=r"c/R_j = 40 > 0.25.*thin-film") as info:
         m.simulate(1e-3, progress=False)
     assert info.value.field == "clearance joint 'rod-slider'.clearance" and float(info.value.value) == 0.2

@@ -10,6 +10,7 @@ from typing import Any, Dict, List, NamedTuple, Optional, Tuple
 import numpy as np
 
 from ..errors import InputError, check_finite
+from .. import display
 from .fosm import (
     FosmResult,
     _as_finite_array,
@@ -145,6 +146,12 @@ class MonteCarloBins:
     upper: float
     confidence: float
     bin_width: float
+
+    def __repr__(self) -> str:
+        return display.text(self, "overall", "lower", "upper", "confidence", "bin_width", "bin_starts", "n_samples")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "overall", "lower", "upper", "confidence", "bin_width", "bin_starts", "n_samples")
 
     def to_rows(self) -> List[Dict[str, float]]:
         """The :func:`compare_fosm_mc` table."""

@@ -32,6 +32,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 from scipy import special, stats
 
+from .. import display
 from ..errors import InputError, ReliabilityError, ReliabilityWarning, check_positive
 from .bridge import ModelLike, check_model
 
@@ -83,6 +84,12 @@ class FormResult:
     beta_noise: float = 0.0
     accepted_at_noise: bool = False
     iterations: int = 0
+
+    def __repr__(self) -> str:
+        return display.text(self, "pf", "beta", "design_point", "importance", "n_runs", "converged", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "pf", "beta", "design_point", "importance", "n_runs", "converged", "wall_time")
 
     @property
     def reliability(self) -> float:
@@ -267,6 +274,12 @@ class SystemFormResult:
     wall_time: float
     dominant: int = 0
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return display.text(self, "pf", "beta", "bounds", "mode_names", "n_runs", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "pf", "beta", "bounds", "mode_names", "n_runs", "wall_time")
 
     @property
     def reliability(self) -> float:

@@ -30,6 +30,7 @@ import numpy as np
 from scipy import special
 
 from ..errors import InputError, check_finite
+from .. import display
 
 #: The paper's allowable error ranges ``(Δv, Δu)`` of the slider (section 5): displacement [m],
 #: velocity [m/s], acceleration [m/s²].
@@ -237,6 +238,12 @@ class FosmResult:
     min_centre: float = field(init=False)
     min_beta: float = field(init=False)
     per_cycle: Optional["FosmResult"] = None
+
+    def __repr__(self) -> str:
+        return display.text(self, "min_reliability", "min_beta", "min_angle", "bin_width", "bin_starts", "mu_S", "sigma_S")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "min_reliability", "min_beta", "min_angle", "bin_width", "bin_starts", "mu_S", "sigma_S")
 
     def __post_init__(self) -> None:
         k = _nanargmin(self.reliability, self.beta)

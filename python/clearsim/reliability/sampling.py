@@ -13,6 +13,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 from scipy import special
 
+from .. import display
 from ..errors import check_positive
 from .bridge import ModelLike, event, normal_interval, ot, seed_ot
 from .form import FormResult, SystemFormResult, form, system_form
@@ -33,6 +34,12 @@ class SamplingResult:
     method: str
     design_point_u: Optional[np.ndarray] = None
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return display.text(self, "method", "pf", "interval", "cov", "n_runs", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "method", "pf", "interval", "cov", "n_runs", "wall_time")
 
     @property
     def reliability(self) -> float:

@@ -30,6 +30,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 from scipy import special
 
+from .. import display
 from ..errors import InputError, ReliabilityWarning, check_choice
 from .bridge import ModelLike, check_model, ot, seed_ot
 
@@ -65,6 +66,12 @@ class SobolResult:
     raw_first: Dict[str, float] = field(default_factory=dict)
     raw_total: Dict[str, float] = field(default_factory=dict)
     extra: Dict[str, Any] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        return display.text(self, "method", "first", "total", "n_runs", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "method", "first", "total", "n_runs", "wall_time")
 
     @property
     def widest(self) -> float:

@@ -34,6 +34,7 @@ from .fosm import FosmResult, allowable_statistics, fosm_from_monitors
 from .model import Model
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Output, limits_and_outputs
 from .runs import REFERENCE_POINTS_PER_CYCLE, error_of, failed, monitor_spec, output_grid, progress, reference_grid, run_all
+from .. import display
 
 __all__ = ["Output", "Limit", "Study", "Evaluation", "MonteCarloEstimate", "ModeEstimate", "FosmResult", "BODY_QUANTITIES", "JOINT_QUANTITIES", "REFERENCE_POINTS_PER_CYCLE"]
 
@@ -66,6 +67,12 @@ class Evaluation:
     @property
     def first_passage_times(self) -> np.ndarray:
         return self.first_passage[:, 0] if self.first_passage.shape[1] == 1 else self.first_passage
+
+    def __repr__(self) -> str:
+        return display.text(self, "peaks", "first_passage_times", "failures")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "peaks", "first_passage_times", "failures")
 
     @property
     def failed(self) -> np.ndarray:
@@ -111,6 +118,12 @@ class MonteCarloEstimate:
     wall_time: float
     traces: List[Any] = field(default_factory=list)
     modes: List[ModeEstimate] = field(default_factory=list)
+
+    def __repr__(self) -> str:
+        return display.text(self, "pf", "interval", "cov", "n_runs", "failures", "on_failure", "bounds", "wall_time", "peaks", "inputs")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "pf", "interval", "cov", "n_runs", "failures", "on_failure", "bounds", "wall_time", "peaks", "inputs")
 
     @property
     def reliability(self) -> float:

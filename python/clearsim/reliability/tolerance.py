@@ -11,6 +11,7 @@ from typing import Any, List, Optional, Tuple, Union
 
 from scipy import optimize, special
 
+from .. import display
 from ..errors import InputError
 from .bridge import ModelLike
 from .form import form
@@ -34,6 +35,12 @@ class ToleranceResult:
     history: List[Tuple[float, float]]
     n_runs: int
     wall_time: float
+
+    def __repr__(self) -> str:
+        return display.text(self, "name", "value", "interval", "reliability", "form_value", "n_runs", "wall_time")
+
+    def _repr_html_(self) -> str:
+        return display.html(self, "name", "value", "interval", "reliability", "form_value", "n_runs", "wall_time")
 
 
 def tolerance(

@@ -1,0 +1,92 @@
+"""Unit-plausibility warnings (issue 28 item 6): valid values that look like a unit slip (mm as m,
+cP as Pa·s) or lie outside the range the film laws are meant for warn, once, naming the element,
+the field, the value and the unit clearsim expected. No shipped model or scene warns (the
+test suite turns a PlausibilityWarning into an error: tests/python/conftest.py)."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import pytest
+
+import clearsim
+from clearsim import Dry, Lubricated, PlausibilityWarning, models
+
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+
+
+def _caught(fn):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        out = fn()
+    return out, [str(w.message) for w in caught if issubclass(w.category, PlausibilityWarning)]
+
+
+def test_a_journal_radius_in_millimetres():
+    m, found = _caught(lambda: models.slider_crank("dry", journal_radius=10))
+    assert found == []  # the span is known only when the mechanism compiles
+    _, found = _caught(lambda: m.compile())
+    assert found == ["clearance joint 'rod-slider'.journal_radius = 10 m is larger than half the mechanism's span 0.17 m: did you give mm? clearsim takes metres"]
+    _, again = _caught(lambda: (m.simulate(1e-4, progress=False), m.copy().with_values({"rod-slider.clearance": 4e-4}).compile()))
+    assert again == []  # once per mechanism (and its copies), not once per run
+
+
+def test_a_bearing_length_in_millimetres():
+    m = models.slider_crank("lubricated", lubricated=Lubricated(viscosity=0.4, length=20))
+    _, found = _caught(m.description)
+    assert len(found) == 1 and found[0].startswith("clearance joint 'rod-slider'.length = 20 m (the bearing's length) is more than 2 × the mechanism's span 0.17 m")
+    assert found[0].endswith("did you give mm? clearsim takes metres")
+
+
+@pytest.mark.parametrize(
+    "viscosity, says",
+    [(30.0, "did you give centipoise (mPa·s)? clearsim takes Pa·s (1 cP = 0.001 Pa·s: 30 cP = 0.03 Pa·s)"),
+     (2e-5, "did you give a kinematic viscosity (m²/s) or Pa·s / 1000? clearsim takes the dynamic viscosity in Pa·s")],
+)  # fmt: skip
+def test_a_viscosity_outside_lubricating_oils(viscosity, says):
+    _, found = _caught(lambda: models.slider_crank("lubricated", lubricated=Lubricated(viscosity=viscosity, length=0.04)))
+    assert len(found) == 1 and found[0].startswith(f"clearance joint 'rod-slider'.viscosity = {viscosity:g} Pa·s") and says in found[0]
+
+
+@pytest.mark.parametrize(
+    "clearance, says",
+    [(1.5e-3, "the film laws are thin-film theory, meant for R_j/c ≥ 10 (machine bearings R_j/c ≈ 1000): did you give millimetres, or the diametral clearance? clearsim takes the radial clearance in metres"),
+     (0.5e-6, "thinner than machined surfaces are rough, where the smooth-film laws stop holding (meant for R_j/c ≤ 10000): is it given in metres? clearsim takes metres")],
+)  # fmt: skip
+def test_a_film_clearance_outside_the_film_laws(clearance, says):
+    lub = Lubricated(viscosity=0.4, length=0.04, film="finite")
+    _, found = _caught(lambda: models.slider_crank("lubricated", clearance=clearance, lubricated=lub))
+    assert len(found) == 1 and found[0].startswith(f"clearance joint 'rod-slider'.clearance = {clearance:g} m") and says in found[0]
+
+
+def test_a_dry_clearance_of_a_quarter_of_the_radius():
+    _, found = _caught(lambda: models.slider_crank("dry", clearance=3e-3))
+    assert found == ["clearance joint 'rod-slider'.clearance = 0.003 m is 0.316 × the journal radius 0.0095 m (machine bearings have c/R_j ≈ 0.001): is it given in metres? clearsim takes the radial clearance in metres"]
+
+
+def test_plausible_values_pass_silently():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        for c, lub in ((5e-6, Lubricated(viscosity=0.4, length=0.04)), (6e-4, Lubricated(viscosity=1e-3, length=0.02, film="short"))):
+            models.slider_crank("lubricated", clearance=c, lubricated=lub).description()
+        models.nine_bar("dry", journal_radius=0.05).description()
+
+
+def test_no_shipped_model_or_scene_warns():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        for kind in models.JOINT_KINDS:
+            models.slider_crank(kind).description()
+            models.nine_bar(kind).description()
+        for path in sorted(SCENES.glob("*.toml")):
+            clearsim.scene.load_scene_file(path).mechanism.description()
+
+
+def test_a_scene_warning_names_the_file_and_line(tmp_path):
+    text = (SCENES / "compressor.toml").read_text().replace("viscosity = 0.02 ", "viscosity = 20.0 ")
+    path = tmp_path / "c.toml"
+    path.write_text(text)
+    line = 1 + next(k for k, ln in enumerate(text.splitlines()) if ln.startswith("viscosity = 20.0"))
+    _, found = _caught(lambda: clearsim.scene.load_scene_file(path))
+    assert len(found) == 1 and found[0].startswith(f"{path}:{line}: clearance joint 'crank-pin'.viscosity = 20 Pa·s")
