@@ -15,6 +15,7 @@ pub mod controller;
 pub mod dense;
 mod driver;
 mod explicit_rk;
+mod lu;
 mod radau;
 mod stiff;
 pub mod tableau;

@@ -28,7 +28,7 @@ use faer::Mat;
 
 use super::controller::{Decision, NewtonLimit, Predictive};
 use super::driver::{all_finite, non_finite, Stepper, Trial};
-use super::stiff::{ComplexLu, Lu};
+use super::lu::{ComplexLu, Lu};
 use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
