@@ -3,7 +3,7 @@
 //!
 //! One concept per file: `driver.rs` (the one driver loop and the `Stepper`
 //! trait a method implements), `tableau.rs` (Butcher tableaus with their sources),
-//! `explicit_rk.rs` (the RK4, DOPRI5 and DOP853 steppers), `stiff.rs` (RODAS4), `radau.rs`
+//! `explicit_rk.rs` (the RK4, DOPRI5 and DOP853 steppers), `rodas4.rs` (RODAS4), `radau.rs`
 //! (RADAU5), `controller.rs` (PI step-size control, initial step), `dense.rs` (continuous
 //! extensions). [`integrate`] picks the stepper; the driver samples the solution on a user grid
 //! through the dense output, so output times never shorten a step.
@@ -17,7 +17,7 @@ mod driver;
 mod explicit_rk;
 mod lu;
 mod radau;
-mod stiff;
+mod rodas4;
 pub mod tableau;
 
 /// A first-order ODE system `ẏ = f(t, y)` with hooks the mechanism needs.
@@ -120,7 +120,7 @@ pub enum Method {
     /// Dormand–Prince 8(5,3) with 7th-order dense output (Hairer's DOP853).
     Dop853,
     /// RODAS4: L-stable, stiffly accurate Rosenbrock 4(3) with 3rd-order dense output and a
-    /// finite-difference Jacobian (Hairer–Wanner's RODAS), for stiff phases (`stiff.rs`).
+    /// finite-difference Jacobian (Hairer–Wanner's RODAS), for stiff phases (`rodas4.rs`).
     Rodas4,
     /// RADAU5: 3-stage Radau IIA of order 5 (L-stable, stiffly accurate) with simplified Newton
     /// iterations and the collocation polynomial as dense output (`radau.rs`).
@@ -190,7 +190,7 @@ pub fn integrate<S: OdeSystem>(
         Method::Rk4 { step } => drive(sys, &mut explicit_rk::Rk4::new(n, step), span, settings, &mut stats),
         Method::Dopri5 => drive(sys, &mut explicit_rk::ExplicitRk::new(n, false), span, settings, &mut stats),
         Method::Dop853 => drive(sys, &mut explicit_rk::ExplicitRk::new(n, true), span, settings, &mut stats),
-        Method::Rodas4 => drive(sys, &mut stiff::Rodas4::new(n), span, settings, &mut stats),
+        Method::Rodas4 => drive(sys, &mut rodas4::Rodas4::new(n), span, settings, &mut stats),
         Method::Radau5 => drive(sys, &mut radau::Radau5Stepper::new(n, settings), span, settings, &mut stats),
     });
     match res {

@@ -7,8 +7,8 @@
 //! in the film-to-contact transition. Each step solves six linear systems with the same matrix
 //! `E = I/(hγ) − J`, where `J = ∂f/∂y` is a forward-difference Jacobian (one `f` per state
 //! component, recomputed after every accepted step and kept on rejections) and `∂f/∂t` a forward
-//! difference in `t`. `E` is factorised by faer's partial-pivoting LU, in place, with a scratch
-//! stack allocated once; the whole workspace is allocated once per run.
+//! difference in `t`. `E` is factorised by [`Lu`] (`lu.rs`); the whole workspace is allocated
+//! once per run.
 //!
 //! In the transformed form (Hairer–Wanner IV.7.25) with `u_i` the stage increments,
 //! `(I/(hγ) − J) u_i = f(t + c_i h, y + Σ_{j<i} a_ij u_j) + Σ_{j<i} (c_ij/h) u_j + h d_i f_t`;
@@ -29,7 +29,7 @@ use crate::error::Error;
 
 /// Coefficients of RODAS4 (Hairer's `ROCOE`, `METH = 1`).
 #[allow(clippy::excessive_precision)]
-pub mod rodas4 {
+mod coefficients {
     pub const GAMMA: f64 = 0.25;
     pub const C2: f64 = 0.386;
     pub const C3: f64 = 0.21;
@@ -182,7 +182,7 @@ impl<S: OdeSystem> Stepper<S> for Rodas4 {
         &mut self.f0
     }
     fn attempt(&mut self, sys: &mut S, stats: &mut Stats, st: &Settings, t: f64, t1: f64, hs: f64, y: &[f64], ynew: &mut [f64]) -> Result<Trial, Error> {
-        use rodas4::*;
+        use coefficients::*;
         let n = y.len();
         if self.need_jac {
             self.jacobian(sys, stats, t, y)?;
