@@ -17,6 +17,7 @@ mod driver;
 mod explicit_rk;
 mod lu;
 mod radau;
+mod radau_newton;
 mod rodas4;
 pub mod tableau;
 
