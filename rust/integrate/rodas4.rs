@@ -268,8 +268,8 @@ impl<S: OdeSystem> Stepper<S> for Rodas4 {
 }
 
 #[cfg(test)]
-#[allow(clippy::excessive_precision)] // literature values of the test problems
 mod tests {
+    #![allow(clippy::excessive_precision)] // literature values of the test problems
     use super::super::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
     use crate::error::Error;
 
