@@ -2,7 +2,7 @@
 //! (Hairer I, §II.4 "Automatic Step Size Control" and "Starting Step Size"; the PI
 //! "Lund-stabilization" of Gustafsson as implemented in Hairer's DOPRI5/DOP853 codes).
 
-use super::OdeSystem;
+use super::ode::OdeSystem;
 use crate::error::Error;
 
 /// Error scale of one component, `sc = atol + rtol·max(|y0|, |y1|)` (Hairer I, eq. II.4.10).

@@ -7,7 +7,8 @@
 //! means writing a stepper (and, for a Runge–Kutta method, a tableau); the loop is [`drive`].
 
 use super::controller::initial_step;
-use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
+use super::method::{Settings, Span, Stats};
+use super::ode::{DenseOutput, OdeSystem};
 use crate::error::Error;
 
 /// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.

@@ -8,8 +8,9 @@
 use super::controller::{dop853_error, rms_error, Controller, Decision};
 use super::dense::{combine, ContinuousExtension};
 use super::driver::{all_finite, fresh_rhs, non_finite, Stepper, Trial};
+use super::method::{Settings, Stats};
+use super::ode::{DenseOutput, OdeSystem};
 use super::tableau::{dop853, dopri5, rk4};
-use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
 /// Stage time `t + c h`, exactly `t1` for `c = 1`.

@@ -28,8 +28,9 @@
 
 use super::controller::{Decision, NewtonLimit, Predictive};
 use super::driver::{all_finite, non_finite, Stepper, Trial};
+use super::method::{Settings, Stats};
+use super::ode::{DenseOutput, OdeSystem};
 use super::radau_newton::NewtonSystems;
-use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
 /// The method's constants (Hairer's `RADCOR` / `ESTRAD`): nodes, the eigenvalues of `A⁻¹`

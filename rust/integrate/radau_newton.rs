@@ -7,7 +7,8 @@
 use faer::Mat;
 
 use super::lu::{ComplexLu, Lu};
-use super::{OdeSystem, Stats};
+use super::method::Stats;
+use super::ode::OdeSystem;
 use crate::error::Error;
 
 /// The two Newton matrices `σ₁I − W` (real `σ₁ = u1/h`) and `σ₂I − W` (complex

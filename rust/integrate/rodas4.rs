@@ -24,7 +24,8 @@ use faer::Mat;
 use super::controller::{Decision, Predictive};
 use super::driver::{non_finite, Stepper, Trial};
 use super::lu::Lu;
-use super::{DenseOutput, OdeSystem, Settings, Stats};
+use super::method::{Settings, Stats};
+use super::ode::{DenseOutput, OdeSystem};
 use crate::error::Error;
 
 /// Coefficients of RODAS4 (Hairer's `ROCOE`, `METH = 1`).
