@@ -1,7 +1,7 @@
 //! Explicit Runge–Kutta steppers for the driver loop ([`drive`](super::driver::drive)): RK4 with
 //! a fixed step, DOPRI5 and DOP853 with PI step control (Hairer I, §II.4–II.6; the steps of
 //! Hairer's codes DOPRI5 and DOP853). A method is its tableau (`tableau.rs`) plus how its error
-//! and dense output are formed here.
+//! is formed here; its dense output is `dense.rs`'s, filled here after an accepted step.
 //!
 //! All work vectors are allocated once per run; a step allocates nothing.
 
