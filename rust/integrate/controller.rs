@@ -1,8 +1,10 @@
-//! Step-size control: error norms, the PI controller and the automatic initial step
+//! Step-size control: error norms, the PI controller of the explicit methods, the predictive
+//! controller and the Newton-failure limit of the implicit ones, and the automatic initial step
 //! (Hairer I, §II.4 "Automatic Step Size Control" and "Starting Step Size"; the PI
-//! "Lund-stabilization" of Gustafsson as implemented in Hairer's DOPRI5/DOP853 codes).
+//! "Lund-stabilization" of Gustafsson as implemented in Hairer's DOPRI5/DOP853 codes;
+//! Gustafsson's predictive controller as in Hairer's RODAS and RADAU5, Hairer–Wanner IV.8).
 
-use super::OdeSystem;
+use super::ode::OdeSystem;
 use crate::error::Error;
 
 /// Error scale of one component, `sc = atol + rtol·max(|y0|, |y1|)` (Hairer I, eq. II.4.10).

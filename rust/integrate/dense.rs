@@ -11,7 +11,7 @@
 //! For `θ > 1/2` the linear part is evaluated as `y1 − θ1 Δ`, so `t1` reproduces `y1` exactly.
 
 use super::tableau::{dop853, dopri5};
-use super::DenseOutput;
+use super::ode::DenseOutput;
 
 /// Dense output of one step in Hairer's nested form; storage is allocated once by [`new`]
 /// and refilled for every accepted step.

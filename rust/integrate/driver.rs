@@ -3,11 +3,12 @@
 //! step budget; retrying failed trial steps; redoing a step so that it ends on a switching
 //! point; accepting a step (statistics, the system's memory, the outputs inside it). A method is
 //! a [`Stepper`]: one trial step with its error test and dense output (`explicit_rk.rs`: RK4,
-//! DOPRI5, DOP853 from their tableaus; `stiff.rs`: RODAS4; `radau.rs`: RADAU5). Adding a method
+//! DOPRI5, DOP853 from their tableaus; `rodas4.rs`: RODAS4; `radau.rs`: RADAU5). Adding a method
 //! means writing a stepper (and, for a Runge–Kutta method, a tableau); the loop is [`drive`].
 
 use super::controller::initial_step;
-use super::{DenseOutput, OdeSystem, Settings, Span, Stats};
+use super::method::{Settings, Span, Stats};
+use super::ode::{DenseOutput, OdeSystem};
 use crate::error::Error;
 
 /// Delivers the outputs at the times `t_out[*next..]` that are `≤ t1` from `dense`.

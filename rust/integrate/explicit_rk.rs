@@ -1,15 +1,16 @@
 //! Explicit Runge–Kutta steppers for the driver loop ([`drive`](super::driver::drive)): RK4 with
 //! a fixed step, DOPRI5 and DOP853 with PI step control (Hairer I, §II.4–II.6; the steps of
 //! Hairer's codes DOPRI5 and DOP853). A method is its tableau (`tableau.rs`) plus how its error
-//! and dense output are formed here.
+//! is formed here; its dense output is `dense.rs`'s, filled here after an accepted step.
 //!
 //! All work vectors are allocated once per run; a step allocates nothing.
 
 use super::controller::{dop853_error, rms_error, Controller, Decision};
 use super::dense::{combine, ContinuousExtension};
 use super::driver::{all_finite, fresh_rhs, non_finite, Stepper, Trial};
+use super::method::{Settings, Stats};
+use super::ode::{DenseOutput, OdeSystem};
 use super::tableau::{dop853, dopri5, rk4};
-use super::{DenseOutput, OdeSystem, Settings, Stats};
 use crate::error::Error;
 
 /// Stage time `t + c h`, exactly `t1` for `c = 1`.
@@ -226,8 +227,8 @@ impl<S: OdeSystem> Stepper<S> for Rk4 {
 }
 
 #[cfg(test)]
-#[allow(clippy::excessive_precision)] // literature values of the test problems
 mod tests {
+    #![allow(clippy::excessive_precision)] // literature values of the test problems
     use super::super::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
     use crate::error::Error;
 
