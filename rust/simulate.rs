@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use crate::assembly::assemble;
-use crate::clearance::{ClearanceJoint, ImpactMemory, JointKinematics};
+use crate::clearance::{grazing, ClearanceJoint, ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::error::{Error, Result};
 use crate::energy::{EnergyBook, Powers};
@@ -158,6 +158,9 @@ pub struct MechanismSystem<'a> {
     /// Last accepted state (for the diagnosis of a failure).
     pub last_t: f64,
     pub last_y: Vec<f64>,
+    /// Penetration \[m\] within which a contact onset or end is grazing and not located as a
+    /// switching point ([`crate::clearance::grazing`]): the run's `atol` (0 outside a run).
+    pub gap_resolution: f64,
 }
 
 impl<'a> MechanismSystem<'a> {
@@ -193,6 +196,7 @@ impl<'a> MechanismSystem<'a> {
             g_probe: vec![0.0; 3 * model.n_bodies()],
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
+            gap_resolution: 0.0,
         }
     }
 
@@ -507,6 +511,9 @@ impl<'a> MechanismSystem<'a> {
     ) -> Option<f64> {
         let (ka, kb) = (&a.1, &b.1);
         if (ka.delta > 0.0) != (kb.delta > 0.0) {
+            if grazing(ka, kb, self.gap_resolution, self.model.clearance[j].contact.impact_speed_floor) {
+                return None;
+            }
             return Some(self.locate_contact_change(j, a, b, dense).0);
         }
         let fr = self.model.clearance[j].friction;
@@ -864,6 +871,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let t_out: Vec<f64> = rs.t_out.iter().copied().filter(|t| *t >= rs.t0 && *t <= rs.t_end).collect();
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
+    sys.gap_resolution = rs.ode.atol;
     for spec in &rs.monitors {
         if spec.quantity.of_joint() {
             if spec.coordinate >= model.clearance.len() {

@@ -39,6 +39,19 @@ pub fn centre_weight(model: FilmModel, eps: f64) -> f64 {
     }
 }
 
+/// Whether a contact onset or end (δ changing sign) between two samples `a`, `b` of a step is
+/// grazing (docs/physics.md §3, "Grazing contacts"): at both samples the penetration (or gap)
+/// is within `±gap_resolution` \[m\] (the run's position tolerance) and the approach speed
+/// |δ̇| is at most the law's impact speed floor (below which the contact law treats a contact
+/// as resting: δ̇⁽⁻⁾ is floored there). Such a crossing is not located as a switching point:
+/// the force that a step straddling it misses is at most K·gap_resolutionⁿ·(1 + D), and near
+/// a wall that the journal slides along (δ̇ ≈ 0) δ changes sign on round-off alone, where
+/// locating it would redo steps without end.
+#[inline]
+pub fn grazing(a: &JointKinematics, b: &JointKinematics, gap_resolution: f64, speed_floor: f64) -> bool {
+    a.delta.abs() <= gap_resolution && b.delta.abs() <= gap_resolution && a.delta_dot.abs() <= speed_floor && b.delta_dot.abs() <= speed_floor
+}
+
 /// Parameters of the film part of a lubricated joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Film {
