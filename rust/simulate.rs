@@ -12,6 +12,7 @@ use crate::wear::{WearBook, WearRate};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
 use crate::model::Model;
 use crate::monitor::{Monitor, MonitorResult, MonitorSpec, Quantity};
+use crate::rank;
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 
@@ -531,6 +532,28 @@ impl<'a> MechanismSystem<'a> {
         first
     }
 
+    /// For a run that stopped for want of step size (or a singular KKT matrix, a non-finite
+    /// state): a [`Error::LockUp`] naming the joints and drivers when the constraint Jacobian at
+    /// the last accepted state has lost rank ([`rank::analyse`]: a dead centre), else `None`.
+    /// Only on this failure path: one dense SVD of Φq.
+    pub fn lock_up(&mut self, e: &Error) -> Option<Error> {
+        let how = match e {
+            Error::StepSizeUnderflow { h, .. } => format!("the steps shrank to h = {h:.1e} s"),
+            Error::NewtonFailure { h, .. } => format!("the Newton iteration failed down to h = {h:.1e} s"),
+            Error::SingularJacobian { .. } => "the KKT matrix became singular".into(),
+            Error::NonFinite { .. } => "the state stopped being finite".into(),
+            _ => return None,
+        };
+        if self.model.rows == 0 {
+            return None;
+        }
+        let n = 3 * self.model.n_bodies();
+        let (q, qd) = self.last_y.split_at(n);
+        self.ws.eval_constraints(self.model, self.last_t, q, qd);
+        let report = rank::analyse(self.model, &self.ws.jac, &self.ws.kin);
+        report.deficient().then(|| Error::LockUp { t: self.last_t, reason: format!("{} ({how})", report.lock_up(self.model, self.last_t)) })
+    }
+
     /// Where a failed run stood, for the error message.
     pub fn diagnosis(&self) -> String {
         let mut out = String::new();
@@ -896,6 +919,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
         Ok(s) => (s, None, None),
         Err((e, s)) => {
+            let e = sys.lock_up(&e).unwrap_or(e);
             let detail = sys.diagnosis();
             let joint = sys.worst_joint().map(|(j, k)| (model.clearance[j].name.clone(), k.eps));
             (s, Some(e.with_detail(&detail)), joint)

@@ -68,6 +68,14 @@ class InterruptedRun(SimulationError):
     a warning instead of raising this."""
 
 
+class PlausibilityWarning(UserWarning):
+    """A value that is valid but looks like a mistake: a size in millimetres where clearsim takes
+    metres, a viscosity in centipoise where it takes Pa·s, a joint whose two points do not meet at
+    the given pose. The run goes on; the message names the element, the field, the value and the
+    unit clearsim expected. Silence it with ``warnings.filterwarnings("ignore",
+    category=clearsim.PlausibilityWarning)`` when the value is meant."""
+
+
 def check_finite(field: str, value: Any) -> float:
     """``float(value)``, or :class:`InputError` naming ``field`` if it is not a finite number."""
     try:
