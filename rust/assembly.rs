@@ -36,8 +36,10 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         Err(Failure::Singular(e)) => {
             let at = singular_constraint(&ideal, &e);
             let report = analysed(&ideal, &mut ws, 0.0, &q);
-            let reason = if report.deficient() {
-                format!("the constraint Jacobian is singular at the pose given (at {at}): {}", report.over_constraint(&ideal))
+            let reason = if redundant(&ideal, &mut ws, &q) {
+                format!("the constraint Jacobian is singular (at {at}): {}", report.over_constraint(&ideal))
+            } else if report.deficient() {
+                format!("the constraint Jacobian is singular during assembly (at {at}): {}", report.lock_up(&ideal, 0.0))
             } else {
                 format!("the constraint Jacobian became singular during assembly at {at}: it is redundant with other joints, the pose is a toggle position, or the loop cannot close with these link lengths")
             };
@@ -69,7 +71,9 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
     }
     if let Err(e) = ws.solve_kkt(t0) {
         let report = analysed(&ideal, &mut ws, t0, &q);
-        let reason = if report.deficient() {
+        let reason = if redundant(&ideal, &mut ws, &q) {
+            format!("the constraint Jacobian is singular at the assembled pose: {}", analysed(&ideal, &mut ws, t0, &q).over_constraint(&ideal))
+        } else if report.deficient() {
             format!("the constraint Jacobian is singular at the assembled pose: {}", report.lock_up(&ideal, t0))
         } else {
             format!("the constraint Jacobian is singular at the assembled pose, at {}: it is redundant with other joints, or the pose is a toggle position", singular_constraint(&ideal, &e))
@@ -228,6 +232,16 @@ fn analysed(ideal: &Model, ws: &mut Workspace, t: f64, q: &[f64]) -> rank::RankR
     let zeros = vec![0.0; q.len()];
     ws.eval_constraints(ideal, t, q, &zeros);
     rank::analyse(ideal, &ws.jac, &ws.kin)
+}
+
+/// Whether Φq's rows are dependent at every pose near `q` (redundant joints or drivers), not
+/// only at this one (a dead centre): the rank test repeated at a pose moved by ~1e-3 (rad, or
+/// that fraction of the mechanism's size) in every coordinate, a fixed pseudo-random pattern.
+fn redundant(ideal: &Model, ws: &mut Workspace, q: &[f64]) -> bool {
+    let size = 1.0 + q.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let moved: Vec<f64> = q.iter().enumerate().map(|(i, v)| v + 1e-3 * (if i % 3 == 2 { 1.0 } else { size }) * ((i as f64 * 0.618_034).fract() - 0.5)).collect();
+    let report = analysed(ideal, ws, 0.0, &moved);
+    report.rows > report.coordinates || report.ratio <= 1e-9
 }
 
 /// The error of a mechanism with more constraint equations than coordinates.

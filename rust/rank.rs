@@ -56,7 +56,7 @@ impl RankReport {
         let (count, ratio) = if self.rows > self.coordinates {
             (format!("{} constraint equations for {} coordinates: ", self.rows, self.coordinates), String::new())
         } else {
-            (String::new(), format!(" (σ_min/σ_max = {:.1e})", self.ratio))
+            (String::new(), format!(", σ_min/σ_max = {:.1e}", self.ratio))
         };
         let drivers = self.drivers(model);
         let what = if drivers.len() > 1 {
@@ -64,7 +64,7 @@ impl RankReport {
         } else {
             "a joint or driver repeats what the others already fix: remove it, or free a joint (e.g. a clearance joint)".into()
         };
-        format!("{count}the mechanism is over-constrained: {} have dependent rows{ratio}; {what}", self.names(model))
+        format!("{count}the mechanism is over-constrained: {} are redundant (their rows are dependent{ratio}); {what}", self.names(model))
     }
 
     /// What a loss of rank at time `t` of a motion that follows the drivers means: a dead centre.
