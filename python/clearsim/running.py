@@ -64,8 +64,9 @@ POSE_TURN_WARNING = math.radians(2.0)
 
 class _Gap(NamedTuple):
     """A joint at the poses given: its name, its two bodies, how far its two points lie apart
-    [m] (a prismatic joint: the slider's point off the guide line; a clearance joint: beyond
-    its initial eccentricity) and each point as given (body frame) and where it lies (global)."""
+    [m] (a prismatic joint: the slider's point off the guide line; a clearance joint: from its
+    bearing's centre or its initial eccentricity, whichever is nearer) and each point as given
+    (body frame) and where it lies (global)."""
 
     joint: str
     bodies: Tuple[Optional[int], Optional[int]]
@@ -103,7 +104,9 @@ def _joint_gaps(desc: Dict[str, Any]) -> List[_Gap]:
         out.append(_Gap(j["name"], (j["body_a"], j["body_b"]), gap, (j["point_a"], j["point_b"]), (a, b)))
     for j in desc["clearance_joints"]:
         a, b = at(j["bearing_body"], j["bearing_point"]), at(j["journal_body"], j["journal_point"])
-        gap = float(np.hypot(*(b - a - np.asarray(j.get("initial_eccentricity", (0.0, 0.0)), dtype=float))))
+        # The journal may be given centred or at its initial eccentricity e0 (the assembly puts it there).
+        e0 = np.asarray(j.get("initial_eccentricity", (0.0, 0.0)), dtype=float)
+        gap = min(float(np.hypot(*(b - a))), float(np.hypot(*(b - a - e0))))
         out.append(_Gap(j["name"], (j["bearing_body"], j["journal_body"]), gap, (j["bearing_point"], j["journal_point"]), (a, b)))
     return out
 
@@ -111,7 +114,7 @@ def _joint_gaps(desc: Dict[str, Any]) -> List[_Gap]:
 def _points_text(g: _Gap, names: Sequence[str]) -> str:
     """Both points of a joint, as given (body frame) and where they lie (global) [m]."""
 
-    def fmt(v: Sequence[float]) -> str:
+    def fmt(v: Any) -> str:
         return f"({float(v[0]):.4g}, {float(v[1]):.4g})"
 
     def body(i: Optional[int]) -> str:
@@ -169,7 +172,10 @@ class Running:
         return draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
-        """Consistent initial state y0 = (q0, q̇0) from the kinematic assembly at ``t0``."""
+        """Consistent state y0 = (q0, q̇0) at ``t0`` [s]: the pose given (the pose at t = 0, the
+        drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
+        branch (docs/physics.md §1); :class:`clearsim.AssemblyError` names a dead centre on the
+        way."""
         return self.compile().initial_state(float(t0))
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -273,7 +279,9 @@ class Running:
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
-        """Integrate from t0 (default 0) to ``t_end`` [s].
+        """Integrate from t0 (default 0) to ``t_end`` [s]. The pose given is the pose at t = 0;
+        a run from t0 ≠ 0 starts where the drivers have taken it by then (so it continues the
+        run from 0; docs/physics.md §1).
 
         Keyword arguments
         -----------------
