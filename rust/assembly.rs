@@ -1,16 +1,92 @@
-//! Initial conditions (docs/physics.md §1): Newton assembly of the ideal mechanism at t0 from the user's
-//! approximate poses (clearance journals placed at their initial eccentricity), then the
-//! consistent velocities Φq q̇ = −Φt. Both corrections are minimum-norm (unit weights).
+//! Initial conditions (docs/physics.md §1): the pose given is the mechanism's pose at t = 0, the
+//! drivers' reference time. Newton assembly of the ideal mechanism at t = 0 from it (clearance
+//! journals placed at their initial eccentricity), then, for a start t0 ≠ 0, the drivers followed
+//! from 0 to t0 by continuation on the branch of that pose, and the consistent velocities
+//! Φq q̇ = −Φt at t0. Corrections are minimum-norm (unit weights). A Jacobian that loses rank on
+//! the way is named (joints, drivers, time) by [`crate::rank`].
 
+use crate::constraints::Constraint;
 use crate::error::{Error, Result};
 use crate::model::Model;
+use crate::rank;
 use crate::system::Workspace;
 
 const MAX_ITERATIONS: usize = 60;
+/// Newton iterations a continuation step may take before it is retried shorter.
+const STEP_ITERATIONS: usize = 8;
+/// Largest turn of any body \[rad\] (or move, over the mechanism's size) per continuation step.
+const STEP_TURN: f64 = 0.05;
+/// A continuation step's Newton correction may be at most this fraction of the step's motion:
+/// a larger one could land on another branch.
+const STEP_CORRECTION: f64 = 0.05;
 
-/// The positions and velocities (q0, q̇0) of a consistent initial state.
+/// The positions and velocities (q0, q̇0) of a consistent initial state at `t0`.
 pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
-    // Revolute clearance joints are held at their initial eccentricity, prismatic ones centred.
+    let ideal = held(model);
+    let n = 3 * model.n_bodies();
+    let mut ws = Workspace::with_weights(&ideal, vec![1.0; n]);
+    let mut q = model.q_guess.clone();
+    if ideal.rows > n {
+        return Err(over_constrained(&ideal, &mut ws, &q));
+    }
+    let tol = 1e-13 * (1.0 + q.iter().fold(0.0f64, |m, v| m.max(v.abs())));
+    // The pose given, at t = 0.
+    match newton(&ideal, &mut ws, 0.0, &mut q, tol, MAX_ITERATIONS) {
+        Ok(_) => {}
+        Err(Failure::Singular(e)) => {
+            let at = singular_constraint(&ideal, &e);
+            let report = analysed(&ideal, &mut ws, 0.0, &q);
+            let reason = if redundant(&ideal, &mut ws, &q) {
+                format!("the constraint Jacobian is singular (at {at}): {}", report.over_constraint(&ideal))
+            } else if report.deficient() {
+                format!("the constraint Jacobian is singular during assembly (at {at}): {}", report.lock_up(&ideal, 0.0))
+            } else {
+                format!("the constraint Jacobian became singular during assembly at {at}: it is redundant with other joints, the pose is a toggle position, or the loop cannot close with these link lengths")
+            };
+            return Err(Error::Assembly { t: 0.0, residual: residual(&ws), reason });
+        }
+        Err(Failure::NotConverged(residual)) => {
+            // The equation that is furthest from closing names the joint to look at.
+            let worst = ws.phi.iter().enumerate().fold((0, -1.0f64), |w, (r, v)| if !(v.abs() <= w.1) { (r, v.abs()) } else { w }).0;
+            return Err(Error::Assembly {
+                t: 0.0,
+                residual,
+                reason: format!(
+                    "Newton did not converge in {MAX_ITERATIONS} iterations; {} is furthest from closing (|Φ| = {:.3e}): check its points (body frame) and give body positions and angles closer to an assembled pose",
+                    ideal.constraint_of_row(worst),
+                    ws.phi[worst].abs()
+                ),
+            });
+        }
+    }
+    if t0 != 0.0 && ideal.constraints.iter().any(|c| matches!(c, Constraint::Driver { .. })) {
+        follow_drivers(&ideal, &mut ws, &mut q, t0, tol)?;
+    }
+    // Velocities: project the guess onto Φq q̇ = −Φt.
+    let zeros = vec![0.0; n];
+    ws.eval_constraints(&ideal, t0, &q, &zeros);
+    ws.force.copy_from_slice(&model.qd_guess);
+    for r in 0..ideal.rows {
+        ws.c[r] = -ws.phi_t[r];
+    }
+    if let Err(e) = ws.solve_kkt(t0) {
+        let report = analysed(&ideal, &mut ws, t0, &q);
+        let reason = if redundant(&ideal, &mut ws, &q) {
+            format!("the constraint Jacobian is singular at the assembled pose: {}", analysed(&ideal, &mut ws, t0, &q).over_constraint(&ideal))
+        } else if report.deficient() {
+            format!("the constraint Jacobian is singular at the assembled pose: {}", report.lock_up(&ideal, t0))
+        } else {
+            format!("the constraint Jacobian is singular at the assembled pose, at {}: it is redundant with other joints, or the pose is a toggle position", singular_constraint(&ideal, &e))
+        };
+        return Err(Error::Assembly { t: t0, residual: residual(&ws), reason });
+    }
+    let qd = ws.qdd.clone();
+    Ok((q, qd))
+}
+
+/// The ideal mechanism of the assembly: revolute clearance joints held at their initial
+/// eccentricity, prismatic ones centred and aligned.
+fn held(model: &Model) -> Model {
     let mut ideal = model.clone();
     for (name, c) in &model.assembly {
         ideal.constraint_names.push(name.clone());
@@ -18,76 +94,160 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
         ideal.constraints.push(c.clone());
     }
     ideal.clearance.clear();
-    let n = 3 * model.n_bodies();
-    if ideal.rows > n {
-        return Err(Error::Assembly {
-            t: t0,
-            residual: f64::NAN,
-            reason: format!("{} constraint equations for {} coordinates: the mechanism is over-constrained", ideal.rows, n),
-        });
-    }
-    let mut ws = Workspace::with_weights(&ideal, vec![1.0; n]);
-    let mut q = model.q_guess.clone();
-    let zeros = vec![0.0; n];
-    let mut dq = vec![0.0; n];
-    let scale = 1.0 + q.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let tol = 1e-13 * scale;
-    let mut residual = f64::INFINITY;
-    for _ in 0..MAX_ITERATIONS {
-        ws.eval_constraints(&ideal, t0, &q, &zeros);
-        residual = ws.phi.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if !residual.is_finite() {
-            break;
+    ideal
+}
+
+/// Why a Newton iteration stopped short.
+enum Failure {
+    /// A singular pivot of the KKT solve.
+    Singular(Error),
+    /// The residual ‖Φ‖∞ left after the iterations (NaN if it stopped being finite).
+    NotConverged(f64),
+}
+
+fn residual(ws: &Workspace) -> f64 {
+    ws.phi.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// Minimum-norm Newton iteration Δq = −Φqᵀ (Φq Φqᵀ)⁻¹ Φ on Φ(q, t) = 0 from `q`, until
+/// ‖Φ‖∞ ≤ `tol`. Returns the iterations taken.
+fn newton(ideal: &Model, ws: &mut Workspace, t: f64, q: &mut [f64], tol: f64, max_iterations: usize) -> std::result::Result<usize, Failure> {
+    let zeros = vec![0.0; q.len()];
+    for k in 0..=max_iterations {
+        ws.eval_constraints(ideal, t, q, &zeros);
+        let r = residual(ws);
+        if !r.is_finite() {
+            return Err(Failure::NotConverged(f64::NAN));
         }
-        if residual <= tol {
-            break;
+        if r <= tol {
+            return Ok(k);
         }
-        // Minimum-norm Newton step: Δq = −Φqᵀ (Φq Φqᵀ)⁻¹ Φ.
+        if k == max_iterations {
+            return Err(Failure::NotConverged(r));
+        }
         ws.force.iter_mut().for_each(|f| *f = 0.0);
         ws.c.copy_from_slice(&ws.phi);
-        ws.solve_kkt(t0).map_err(|e| Error::Assembly {
-            t: t0,
-            residual,
-            reason: format!(
-                "the constraint Jacobian became singular during assembly at {}: it is redundant with other joints, the pose is a toggle position, or the loop cannot close with these link lengths",
-                singular_constraint(&ideal, &e)
-            ),
-        })?;
+        ws.solve_kkt(t).map_err(Failure::Singular)?;
         // With zero force and c = Φ the solver returns q̈ = Φqᵀ (Φq Φqᵀ)⁻¹ Φ = −Δq.
-        for i in 0..n {
-            dq[i] = -ws.qdd[i];
-            q[i] += dq[i];
+        for (qi, d) in q.iter_mut().zip(&ws.qdd) {
+            *qi -= d;
         }
     }
-    if !(residual <= tol) {
-        // The equation that is furthest from closing names the joint to look at.
-        let worst = ws.phi.iter().enumerate().fold((0, -1.0f64), |w, (r, v)| if !(v.abs() <= w.1) { (r, v.abs()) } else { w }).0;
-        return Err(Error::Assembly {
-            t: t0,
-            residual,
-            reason: format!(
-                "Newton did not converge in {MAX_ITERATIONS} iterations; {} is furthest from closing (|Φ| = {:.3e}): check its points (body frame) and give body positions and angles closer to an assembled pose",
-                ideal.constraint_of_row(worst),
-                ws.phi[worst].abs()
-            ),
-        });
-    }
-    // Velocities: project the guess onto Φq q̇ = −Φt.
-    ws.eval_constraints(&ideal, t0, &q, &zeros);
-    ws.force.copy_from_slice(&model.qd_guess);
+    unreachable!("the loop returns")
+}
+
+/// The minimum-norm rates at the assembled pose (t, q): q̇ solving Φq q̇ = −Φt into `v`, and q̈
+/// solving Φq q̈ = γ(q, q̇) into `a`.
+fn rates(ideal: &Model, ws: &mut Workspace, t: f64, q: &[f64], v: &mut [f64], a: &mut [f64]) -> Result<()> {
+    let zeros = vec![0.0; q.len()];
+    ws.eval_constraints(ideal, t, q, &zeros);
+    ws.force.iter_mut().for_each(|f| *f = 0.0);
     for r in 0..ideal.rows {
         ws.c[r] = -ws.phi_t[r];
     }
-    ws.solve_kkt(t0).map_err(|e| Error::Assembly {
-        t: t0,
-        residual,
-        reason: format!(
-            "the constraint Jacobian is singular at the assembled pose, at {}: it is redundant with other joints, or the pose is a toggle position",
-            singular_constraint(&ideal, &e)
-        ),
-    })?;
-    let qd = ws.qdd.clone();
-    Ok((q, qd))
+    ws.solve_kkt(t)?;
+    v.copy_from_slice(&ws.qdd);
+    ws.eval_constraints(ideal, t, q, v);
+    ws.force.iter_mut().for_each(|f| *f = 0.0);
+    ws.c.copy_from_slice(&ws.gamma);
+    ws.solve_kkt(t)?;
+    a.copy_from_slice(&ws.qdd);
+    Ok(())
+}
+
+/// Follow the drivers from the pose assembled at t = 0 (in `q`) to `t0` by continuation: steps
+/// in time, each a Newton correction of q + Δt q̇ + Δt²/2 q̈, short enough that no body turns by
+/// more than [`STEP_TURN`] and the correction stays small against the motion (so it cannot jump
+/// to another branch). A step that fails is retried shorter; a pose the drivers cannot be
+/// followed past (a dead centre) is an `Assembly` error naming the dependent joints and drivers.
+fn follow_drivers(ideal: &Model, ws: &mut Workspace, q: &mut Vec<f64>, t0: f64, tol: f64) -> Result<()> {
+    let n = q.len();
+    let size = {
+        let xs = q.iter().step_by(3);
+        let ys = q.iter().skip(1).step_by(3);
+        let ext = |it: &mut dyn Iterator<Item = &f64>| it.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(*v), hi.max(*v)));
+        let ((x0, x1), (y0, y1)) = (ext(&mut xs.clone()), ext(&mut ys.clone()));
+        ((x1 - x0) + (y1 - y0)).max(1e-3)
+    };
+    let (mut v, mut a, mut trial) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let direction = t0.signum();
+    let mut t = 0.0f64;
+    let mut dt = f64::INFINITY;
+    let floor = 1e-13 * t0.abs().max(1e-3);
+    while t != t0 {
+        if let Err(e) = rates(ideal, ws, t, q, &mut v, &mut a) {
+            return Err(stuck(ideal, ws, t, q, t0, Some(e)));
+        }
+        // The fastest body sets the step: STEP_TURN rad, or that fraction of the size in m.
+        let speed = (0..n).map(|i| if i % 3 == 2 { v[i].abs() } else { v[i].abs() / size }).fold(0.0f64, f64::max);
+        let cap = if speed > 0.0 { STEP_TURN / speed } else { (t0 - t).abs() };
+        dt = dt.min(cap).min((t0 - t).abs());
+        loop {
+            if dt < floor {
+                return Err(stuck(ideal, ws, t, q, t0, None));
+            }
+            let h = direction * dt;
+            let t1 = if (t0 - t).abs() <= dt { t0 } else { t + h };
+            for i in 0..n {
+                trial[i] = q[i] + h * v[i] + 0.5 * h * h * a[i];
+            }
+            let predicted = trial.clone();
+            let motion = (0..n).map(|i| scaled(i, trial[i] - q[i], size)).fold(0.0f64, f64::max);
+            if let Ok(iterations) = newton(ideal, ws, t1, &mut trial, tol, STEP_ITERATIONS) {
+                let correction = (0..n).map(|i| scaled(i, trial[i] - predicted[i], size)).fold(0.0f64, f64::max);
+                if correction <= STEP_CORRECTION * motion + 1e3 * tol {
+                    q.copy_from_slice(&trial);
+                    t = t1;
+                    if iterations <= 3 {
+                        dt *= 2.0;
+                    }
+                    break;
+                }
+            }
+            dt *= 0.25;
+        }
+    }
+    Ok(())
+}
+
+/// A coordinate change as a turn: angles as they are, positions over the mechanism's size.
+fn scaled(i: usize, d: f64, size: f64) -> f64 {
+    if i % 3 == 2 { d.abs() } else { d.abs() / size }
+}
+
+/// The error of a continuation that cannot go on at (t, q) towards t0.
+fn stuck(ideal: &Model, ws: &mut Workspace, t: f64, q: &[f64], t0: f64, solve: Option<Error>) -> Error {
+    let report = analysed(ideal, ws, t, q);
+    let reason = if report.deficient() {
+        format!("following the drivers from the pose given (t = 0) to t0 = {t0} s: {}", report.lock_up(ideal, t))
+    } else {
+        let what = solve.map_or_else(|| "the steps shrank to nothing".to_string(), |e| e.to_string());
+        format!("following the drivers from the pose given (t = 0) to t0 = {t0} s stopped at t = {t:.9} s: {what}")
+    };
+    Error::Assembly { t, residual: residual(ws), reason }
+}
+
+/// [`rank::analyse`] of Φq at (t, q).
+fn analysed(ideal: &Model, ws: &mut Workspace, t: f64, q: &[f64]) -> rank::RankReport {
+    let zeros = vec![0.0; q.len()];
+    ws.eval_constraints(ideal, t, q, &zeros);
+    rank::analyse(ideal, &ws.jac, &ws.kin)
+}
+
+/// Whether Φq's rows are dependent at every pose near `q` (redundant joints or drivers), not
+/// only at this one (a dead centre): the rank test repeated at a pose moved by ~1e-3 (rad, or
+/// that fraction of the mechanism's size) in every coordinate, a fixed pseudo-random pattern.
+fn redundant(ideal: &Model, ws: &mut Workspace, q: &[f64]) -> bool {
+    let size = 1.0 + q.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let moved: Vec<f64> = q.iter().enumerate().map(|(i, v)| v + 1e-3 * (if i % 3 == 2 { 1.0 } else { size }) * ((i as f64 * 0.618_034).fract() - 0.5)).collect();
+    let report = analysed(ideal, ws, 0.0, &moved);
+    report.rows > report.coordinates || report.ratio <= 1e-9
+}
+
+/// The error of a mechanism with more constraint equations than coordinates.
+fn over_constrained(ideal: &Model, ws: &mut Workspace, q: &[f64]) -> Error {
+    let report = analysed(ideal, ws, 0.0, q);
+    Error::Assembly { t: 0.0, residual: residual(ws), reason: report.over_constraint(ideal) }
 }
 
 /// The constraint named by a singular-pivot error of the KKT solve.

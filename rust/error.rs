@@ -24,6 +24,10 @@ pub enum Error {
     /// The KKT (Schur complement) matrix is singular: redundant constraints or a singular pose.
     #[error("singular constraint Jacobian at t = {t} s (constraint {index}): redundant constraints or a singular configuration")]
     SingularJacobian { t: f64, index: usize },
+    /// The constraint Jacobian lost rank during a run (a dead centre the drivers push into):
+    /// `reason` names the joints and drivers whose rows became dependent ([`crate::rank`]).
+    #[error("{reason}")]
+    LockUp { t: f64, reason: String },
     /// The adaptive step size fell below its floor.
     #[error("step size underflow at t = {t} s: h = {h:.3e} s{detail}")]
     StepSizeUnderflow { t: f64, h: f64, detail: String },
@@ -60,6 +64,7 @@ impl Error {
         match self {
             Error::Assembly { t, .. }
             | Error::SingularJacobian { t, .. }
+            | Error::LockUp { t, .. }
             | Error::StepSizeUnderflow { t, .. }
             | Error::NonFinite { t, .. }
             | Error::TooManySteps { t, .. }
@@ -78,7 +83,7 @@ impl Error {
             return Error::StepSizeUnderflow { t, h, detail: format!("; the Newton iteration does not converge{extra}") };
         }
         match &mut self {
-            Error::StepSizeUnderflow { detail, .. } | Error::NonFinite { detail, .. } => detail.push_str(extra),
+            Error::StepSizeUnderflow { detail, .. } | Error::NonFinite { detail, .. } | Error::LockUp { reason: detail, .. } => detail.push_str(extra),
             _ => {}
         }
         self

@@ -18,6 +18,7 @@ pub mod kkt;
 pub mod laws;
 pub mod model;
 pub mod monitor;
+pub mod rank;
 pub mod record;
 #[cfg(feature = "serde")]
 pub mod settings;

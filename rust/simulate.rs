@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use crate::assembly::assemble;
-use crate::clearance::{ClearanceJoint, ImpactMemory, JointKinematics};
+use crate::clearance::{grazing, ClearanceJoint, ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::error::{Error, Result};
 use crate::energy::{EnergyBook, Powers};
@@ -12,6 +12,7 @@ use crate::wear::{WearBook, WearRate};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
 use crate::model::Model;
 use crate::monitor::{Monitor, MonitorResult, MonitorSpec, Quantity};
+use crate::rank;
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 
@@ -158,6 +159,9 @@ pub struct MechanismSystem<'a> {
     /// Last accepted state (for the diagnosis of a failure).
     pub last_t: f64,
     pub last_y: Vec<f64>,
+    /// Penetration \[m\] within which a contact onset or end is grazing and not located as a
+    /// switching point ([`crate::clearance::grazing`]): the run's `atol` (0 outside a run).
+    pub gap_resolution: f64,
 }
 
 impl<'a> MechanismSystem<'a> {
@@ -193,6 +197,7 @@ impl<'a> MechanismSystem<'a> {
             g_probe: vec![0.0; 3 * model.n_bodies()],
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
+            gap_resolution: 0.0,
         }
     }
 
@@ -507,6 +512,9 @@ impl<'a> MechanismSystem<'a> {
     ) -> Option<f64> {
         let (ka, kb) = (&a.1, &b.1);
         if (ka.delta > 0.0) != (kb.delta > 0.0) {
+            if grazing(ka, kb, self.gap_resolution, self.model.clearance[j].contact.impact_speed_floor) {
+                return None;
+            }
             return Some(self.locate_contact_change(j, a, b, dense).0);
         }
         let fr = self.model.clearance[j].friction;
@@ -522,6 +530,28 @@ impl<'a> MechanismSystem<'a> {
             }
         }
         first
+    }
+
+    /// For a run that stopped for want of step size (or a singular KKT matrix, a non-finite
+    /// state): a [`Error::LockUp`] naming the joints and drivers when the constraint Jacobian at
+    /// the last accepted state has lost rank ([`rank::analyse`]: a dead centre), else `None`.
+    /// Only on this failure path: one dense SVD of Φq.
+    pub fn lock_up(&mut self, e: &Error) -> Option<Error> {
+        let how = match e {
+            Error::StepSizeUnderflow { h, .. } => format!("the steps shrank to h = {h:.1e} s"),
+            Error::NewtonFailure { h, .. } => format!("the Newton iteration failed down to h = {h:.1e} s"),
+            Error::SingularJacobian { .. } => "the KKT matrix became singular".into(),
+            Error::NonFinite { .. } => "the state stopped being finite".into(),
+            _ => return None,
+        };
+        if self.model.rows == 0 {
+            return None;
+        }
+        let n = 3 * self.model.n_bodies();
+        let (q, qd) = self.last_y.split_at(n);
+        self.ws.eval_constraints(self.model, self.last_t, q, qd);
+        let report = rank::analyse(self.model, &self.ws.jac, &self.ws.kin);
+        report.deficient().then(|| Error::LockUp { t: self.last_t, reason: format!("{} ({how})", report.lock_up(self.model, self.last_t)) })
     }
 
     /// Where a failed run stood, for the error message.
@@ -864,6 +894,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let t_out: Vec<f64> = rs.t_out.iter().copied().filter(|t| *t >= rs.t0 && *t <= rs.t_end).collect();
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
+    sys.gap_resolution = rs.ode.atol;
     for spec in &rs.monitors {
         if spec.quantity.of_joint() {
             if spec.coordinate >= model.clearance.len() {
@@ -888,6 +919,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
         Ok(s) => (s, None, None),
         Err((e, s)) => {
+            let e = sys.lock_up(&e).unwrap_or(e);
             let detail = sys.diagnosis();
             let joint = sys.worst_joint().map(|(j, k)| (model.clearance[j].name.clone(), k.eps));
             (s, Some(e.with_detail(&detail)), joint)

@@ -60,7 +60,9 @@ class SimulationError(ClearsimError, RuntimeError):
 
 
 class AssemblyError(SimulationError):
-    """Newton's method could not assemble the mechanism from the given poses at t0."""
+    """The mechanism could not be assembled: Newton's method did not close it from the pose
+    given (the pose at t = 0), its constraints are redundant, or following the drivers to the
+    start t0 met a dead centre (the message names the joints and drivers, and ``t``)."""
 
 
 class InterruptedRun(SimulationError):

@@ -9,12 +9,12 @@ from __future__ import annotations
 import json
 import math
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, TypedDict
+from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, TypedDict
 
 import numpy as np
 
 from . import _core
-from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, SimulationError, check_choice, check_finite, check_positive
+from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
 from .joints import MICROMETRE_FILM_RATIO
 from .result import Result
 
@@ -55,29 +55,72 @@ def _positive_int(field: str, value: Any) -> int:
 
 #: Largest rotation [rad] of a body by the assembly before the pose given counts as wrong.
 ASSEMBLY_TURN = 0.5
+#: Above these the pose given draws a :class:`clearsim.errors.PlausibilityWarning`: a joint whose
+#: two points lie further apart than this fraction of the mechanism's span, or a body that the
+#: assembly turns by more than this angle [rad] (docs/physics.md §1).
+POSE_GAP_WARNING = 0.01
+POSE_TURN_WARNING = math.radians(2.0)
 
 
-def _joint_gaps(desc: Dict[str, Any]) -> List[Tuple[str, Tuple[Optional[int], Optional[int]], float]]:
-    """Per two-point joint (revolute and clearance joints), its name, its two bodies and the
-    distance [m] between its two points at the poses given (before assembly)."""
+class _Gap(NamedTuple):
+    """A joint at the poses given: its name, its two bodies, how far its two points lie apart
+    [m] (a prismatic joint: the slider's point off the guide line; a clearance joint: from its
+    bearing's centre or its initial eccentricity, whichever is nearer) and each point as given
+    (body frame) and where it lies (global)."""
+
+    joint: str
+    bodies: Tuple[Optional[int], Optional[int]]
+    gap: float
+    local: Tuple[Sequence[float], Sequence[float]]
+    world: Tuple[np.ndarray, np.ndarray]
+
+
+def _joint_gaps(desc: Dict[str, Any]) -> List[_Gap]:
+    """The two-point joints (revolute, prismatic and clearance joints) at the poses given
+    (before assembly), with the distance between their points."""
     bodies = desc["bodies"]
 
-    def at(body: Optional[int], point: Sequence[float]) -> np.ndarray:
+    def frame(body: Optional[int]) -> Tuple[np.ndarray, np.ndarray]:
         if body is None:
-            return np.asarray(point, dtype=float)
+            return np.zeros(2), np.eye(2)
         b = bodies[body]
         c, s = math.cos(b.get("angle", 0.0)), math.sin(b.get("angle", 0.0))
-        return np.array([b["position"][0] + c * point[0] - s * point[1], b["position"][1] + s * point[0] + c * point[1]])
+        return np.asarray(b["position"], dtype=float), np.array([[c, -s], [s, c]])
+
+    def at(body: Optional[int], point: Sequence[float]) -> np.ndarray:
+        r, rot = frame(body)
+        return r + rot @ np.asarray(point, dtype=float)
 
     out = []
     for j in desc["joints"]:
+        a, b = at(j["body_a"], j["point_a"]), at(j["body_b"], j["point_b"])
         if j["kind"] == "revolute":
-            gap = float(np.hypot(*(at(j["body_a"], j["point_a"]) - at(j["body_b"], j["point_b"]))))
-            out.append((j["name"], (j["body_a"], j["body_b"]), gap))
+            gap = float(np.hypot(*(a - b)))
+        elif j["kind"] == "prismatic":
+            u = frame(j["body_a"])[1] @ np.asarray(j["axis"], dtype=float)
+            gap = abs(float(u[0] * (b - a)[1] - u[1] * (b - a)[0])) / max(float(np.hypot(*u)), 1e-300)
+        else:
+            continue
+        out.append(_Gap(j["name"], (j["body_a"], j["body_b"]), gap, (j["point_a"], j["point_b"]), (a, b)))
     for j in desc["clearance_joints"]:
-        gap = float(np.hypot(*(at(j["bearing_body"], j["bearing_point"]) - at(j["journal_body"], j["journal_point"]))))
-        out.append((j["name"], (j["bearing_body"], j["journal_body"]), gap))
+        a, b = at(j["bearing_body"], j["bearing_point"]), at(j["journal_body"], j["journal_point"])
+        # The journal may be given centred or at its initial eccentricity e0 (the assembly puts it there).
+        e0 = np.asarray(j.get("initial_eccentricity", (0.0, 0.0)), dtype=float)
+        gap = min(float(np.hypot(*(b - a))), float(np.hypot(*(b - a - e0))))
+        out.append(_Gap(j["name"], (j["bearing_body"], j["journal_body"]), gap, (j["bearing_point"], j["journal_point"]), (a, b)))
     return out
+
+
+def _points_text(g: _Gap, names: Sequence[str]) -> str:
+    """Both points of a joint, as given (body frame) and where they lie (global) [m]."""
+
+    def fmt(v: Any) -> str:
+        return f"({float(v[0]):.4g}, {float(v[1]):.4g})"
+
+    def body(i: Optional[int]) -> str:
+        return "the ground" if i is None else f"body '{names[i]}'"
+
+    return "; ".join(f"point {fmt(g.local[k])} on {body(g.bodies[k])} lies at {fmt(g.world[k])} (global)" for k in (0, 1))
 
 
 class Running:
@@ -129,7 +172,10 @@ class Running:
         return draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
-        """Consistent initial state y0 = (q0, q̇0) from the kinematic assembly at ``t0``."""
+        """Consistent state y0 = (q0, q̇0) at ``t0`` [s]: the pose given (the pose at t = 0, the
+        drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
+        branch (docs/physics.md §1); :class:`clearsim.AssemblyError` names a dead centre on the
+        way."""
         return self.compile().initial_state(float(t0))
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -233,7 +279,9 @@ class Running:
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
-        """Integrate from t0 (default 0) to ``t_end`` [s].
+        """Integrate from t0 (default 0) to ``t_end`` [s]. The pose given is the pose at t = 0;
+        a run from t0 ≠ 0 starts where the drivers have taken it by then (so it continues the
+        run from 0; docs/physics.md §1).
 
         Keyword arguments
         -----------------
@@ -325,19 +373,25 @@ class Running:
     #: Largest distance the assembly may move a body from the pose given, as a fraction of the
     #: mechanism's span (the extent of the bodies' positions); a larger move (or a turn of more
     #: than 0.5 rad) is an :class:`AssemblyError` before the run. ``None`` accepts any pose.
+    #: Smaller mismatches (a joint's points more than 1 % of the span apart, a body turned by more
+    #: than 2°) draw a :class:`clearsim.errors.PlausibilityWarning`.
     assembly_tolerance: Optional[float] = 0.2
 
     def check_assembly(self, t0: float = 0.0) -> np.ndarray:
-        """Assemble at ``t0`` [s] and check that no body moved far from the pose given (see
-        :attr:`assembly_tolerance`): a joint point given in the global instead of the body frame,
-        or a wrong length, is the usual cause. Returns q0; raises :class:`AssemblyError` naming
-        the body, how far it moved and the joint whose points lie furthest apart at the poses
-        given. Called by :meth:`simulate` before it runs."""
-        q0 = np.asarray(self.compile().initial_state(float(t0)), dtype=float)[: 3 * len(self._bodies)]
-        self._check_shift(q0, float(t0))
-        return q0
+        """Assemble at ``t0`` [s] and return q0 there, after checking the pose given (the pose
+        at t = 0, the drivers' reference time; a start ``t0`` ≠ 0 follows the drivers from it):
+        a body that its assembly at t = 0 moves far (see :attr:`assembly_tolerance`) is an
+        :class:`AssemblyError` naming the body, how far it moved and the joint whose points lie
+        furthest apart at the poses given; a joint whose two points lie more than 1 % of the
+        mechanism's span apart, or a body turned by more than 2°, a
+        :class:`clearsim.errors.PlausibilityWarning` naming the joint and both points (body
+        frame and global). A joint point given in the global instead of the body frame, or a
+        wrong length, is the usual cause. Called by :meth:`simulate` before it runs."""
+        self._check_shift(np.asarray(self.compile().initial_state(0.0), dtype=float)[: 3 * len(self._bodies)], stacklevel=3)
+        return np.asarray(self.compile().initial_state(float(t0)), dtype=float)[: 3 * len(self._bodies)]
 
-    def _check_shift(self, q0: np.ndarray, t0: float) -> None:
+    def _check_shift(self, q0: np.ndarray, stacklevel: int = 4) -> None:
+        """Compare the pose given with ``q0``, its assembly at t = 0."""
         tol = self.assembly_tolerance
         if tol is None or not np.all(np.isfinite(q0)):
             return
@@ -347,34 +401,64 @@ class Running:
         moved = np.hypot(q0[0::3] - guess[:, 0], q0[1::3] - guess[:, 1])
         turned = np.abs((q0[2::3] - guess[:, 2] + math.pi) % (2 * math.pi) - math.pi)
         k = int(np.argmax(moved / span + turned / ASSEMBLY_TURN))
+        gaps = _joint_gaps(self.description())
         if moved[k] <= tol * span and turned[k] <= ASSEMBLY_TURN:
+            self._warn_pose(gaps, turned, span, stacklevel + 1)
             return
         name = self._bodies[k]["name"]
-        gaps = _joint_gaps(self.description())
-        own = [g for g in gaps if k in g[1]]
-        culprit = max(own or gaps, key=lambda g: g[2], default=None)
+        own = [g for g in gaps if k in g.bodies]
+        culprit = max(own or gaps, key=lambda g: g.gap, default=None)
         joint = None
         because = ""
-        if culprit is not None and culprit[2] > 0.05 * span:
-            joint = culprit[0]
-            because = f"; joint '{joint}' has its two points {culprit[2]:.3g} m apart at the poses given"
+        if culprit is not None and culprit.gap > 0.05 * span:
+            joint = culprit.joint
+            because = f"; joint '{joint}' has its two points {culprit.gap:.3g} m apart at the poses given ({_points_text(culprit, self.body_names)})"
         raise AssemblyError(
-            f"the assembly at t0 = {float(t0):g} s moves body '{name}' by {moved[k]:.3g} m and {math.degrees(turned[k]):.3g}° "
-            f"from the pose given (tolerance: {tol:g} × the mechanism's span {span:.3g} m, or {math.degrees(ASSEMBLY_TURN):.3g}°)"
+            f"the assembly of the pose given (the pose at t = 0) moves body '{name}' by {moved[k]:.3g} m and {math.degrees(turned[k]):.3g}° "
+            f"(tolerance: {tol:g} × the mechanism's span {span:.3g} m, or {math.degrees(ASSEMBLY_TURN):.3g}°)"
             f"{because}: check the joint points (body frame, not global) and the lengths, or give poses nearer the "
             "assembled ones (m.assembly_tolerance = None accepts any)",
-            t=float(t0), joint=joint, body=name, moved=float(moved[k]), turned=float(turned[k]), result=None,
-            field=f"joint '{joint}'" if joint else f"body '{name}'.position", value=culprit[2] if joint and culprit else float(moved[k]),
+            t=0.0, joint=joint, body=name, moved=float(moved[k]), turned=float(turned[k]), result=None,
+            field=f"joint '{joint}'" if joint else f"body '{name}'.position", value=culprit.gap if joint and culprit else float(moved[k]),
         )  # fmt: skip
 
-    def _checked_assembly(self, t0: float) -> None:
-        """:meth:`check_assembly` before a run; an assembly that fails altogether is left to the
-        run, whose error carries the diagnosis and an empty partial result."""
+    def _warn_pose(self, gaps: List[_Gap], turned: np.ndarray, span: float, stacklevel: int) -> None:
+        """A :class:`PlausibilityWarning` for a pose given that assembles but looks wrong: the
+        joint whose points lie furthest apart beyond POSE_GAP_WARNING × span, or else the joint of
+        a body the assembly turns by more than POSE_TURN_WARNING."""
+        names = self.body_names
+        far = [g for g in gaps if g.gap > POSE_GAP_WARNING * span]
+        k = int(np.argmax(turned)) if len(turned) else 0
+        if far:
+            g = max(far, key=lambda g: g.gap)
+            what = f"joint '{g.joint}' has its two points {g.gap:.3g} m apart ({100 * g.gap / span:.3g} % of the mechanism's span {span:.3g} m)"
+        elif len(turned) and turned[k] > POSE_TURN_WARNING:
+            own = [g for g in gaps if k in g.bodies]
+            if not own:
+                return
+            g = max(own, key=lambda g: g.gap)
+            what = f"the assembly turns body '{names[k]}' by {math.degrees(turned[k]):.3g}° (its joint '{g.joint}' has its points {g.gap:.3g} m apart)"
+        else:
+            return
+        others = [f"'{o.joint}' {o.gap:.3g} m" for o in far if o is not g]
+        also = f"; also apart: {', '.join(others)}" if others else ""
+        warnings.warn(
+            f"clearsim: the pose given looks wrong: {what}: {_points_text(g, names)}{also}. Joint points are given in each "
+            "body's own frame (a point given in global coordinates, or a wrong length, is the usual cause); the run goes on "
+            "from the assembled pose (m.assembly_tolerance = None silences this)",
+            PlausibilityWarning,
+            stacklevel=stacklevel,
+        )
+
+    def _checked_assembly(self, t0: float = 0.0) -> None:
+        """:meth:`check_assembly` before a run from ``t0``: the pose given is checked at t = 0,
+        whatever ``t0``; an assembly that fails altogether is left to the run, whose error carries
+        the diagnosis and an empty partial result."""
         try:
-            q0 = np.asarray(self.compile().initial_state(float(t0)), dtype=float)[: 3 * len(self._bodies)]
+            q0 = np.asarray(self.compile().initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
         except ClearsimError:
             return
-        self._check_shift(q0, float(t0))
+        self._check_shift(q0)
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)

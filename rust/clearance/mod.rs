@@ -39,6 +39,19 @@ pub fn centre_weight(model: FilmModel, eps: f64) -> f64 {
     }
 }
 
+/// Whether a contact onset or end (δ changing sign) between two samples `a`, `b` of a step is
+/// grazing (docs/physics.md §3, "Grazing contacts"): at both samples the penetration (or gap)
+/// is within `±gap_resolution` \[m\] (the run's position tolerance) and the approach speed
+/// |δ̇| is at most the law's impact speed floor (below which the contact law treats a contact
+/// as resting: δ̇⁽⁻⁾ is floored there). Such a crossing is not located as a switching point:
+/// the force that a step straddling it misses is at most K·gap_resolutionⁿ·(1 + D), and near
+/// a wall that the journal slides along (δ̇ ≈ 0) δ changes sign on round-off alone, where
+/// locating it would redo steps without end.
+#[inline]
+pub fn grazing(a: &JointKinematics, b: &JointKinematics, gap_resolution: f64, speed_floor: f64) -> bool {
+    a.delta.abs() <= gap_resolution && b.delta.abs() <= gap_resolution && a.delta_dot.abs() <= speed_floor && b.delta_dot.abs() <= speed_floor
+}
+
 /// Parameters of the film part of a lubricated joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Film {
@@ -395,5 +408,29 @@ mod friction_moments {
         assert!((g[5] - r_j * f.tangential).abs() < 1e-12 * f.normal, "journal moment {}", g[5]);
         assert!((g[2] + (r_j + c) * f.tangential).abs() < 1e-12 * f.normal, "bearing moment {}", g[2]);
         assert!((g[0] + g[3]).abs() < 1e-12 * f.normal && (g[1] + g[4]).abs() < 1e-12 * f.normal);
+    }
+}
+
+#[cfg(test)]
+mod grazing_crossings {
+    use super::*;
+
+    /// A journal in a 0.5 mm clearance at `e` [m] along x moving at `ė` [m/s].
+    fn at(e: f64, e_dot: V2) -> JointKinematics {
+        JointKinematics::relative(V2::new(e, 0.0), e_dot, 0.0, 0.0, 0.01, 0.0105, 0.5e-3)
+    }
+
+    #[test]
+    fn a_crossing_within_the_position_tolerance_at_resting_speed_is_grazing() {
+        let c = 0.5e-3;
+        let (atol, floor) = (1e-9, 1e-3);
+        // Sliding along the wall: δ changes sign by 1e-19 m, δ̇ ≈ 0.
+        assert!(grazing(&at(c, V2::new(0.0, 0.1)), &at(c + 1e-19, V2::new(1e-13, 0.1)), atol, floor));
+        // The same δ at an approach speed of 0.1 m/s is an impact: located.
+        assert!(!grazing(&at(c - 1e-10, V2::new(0.1, 0.0)), &at(c + 1e-10, V2::new(0.1, 0.0)), atol, floor));
+        // Resting speed but a gap beyond the tolerance at one sample: located.
+        assert!(!grazing(&at(c - 1e-8, V2::new(1e-4, 0.0)), &at(c + 1e-10, V2::new(1e-4, 0.0)), atol, floor));
+        // Outside a run (gap resolution 0) nothing is grazing but an exact touch.
+        assert!(!grazing(&at(c - 1e-19, V2::new(0.0, 0.0)), &at(c + 1e-19, V2::new(0.0, 0.0)), 0.0, floor));
     }
 }

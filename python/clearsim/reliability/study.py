@@ -280,9 +280,10 @@ class Study(Model):
 
     def _check_first_assembly(self, m: Any, t0: float) -> None:
         """The pose check of ``Mechanism.simulate`` (a joint point in the wrong frame is an
-        AssemblyError), on the first mechanism the study builds."""
+        AssemblyError) and the assembly at the window's start ``t0`` (a dead centre before it is
+        an AssemblyError naming it), on the first mechanism the study builds."""
         if not self._assembly_checked:
-            m._checked_assembly(t0)
+            m.check_assembly(t0)
             self._assembly_checked = True
 
     def _references(self, jobs: Dict[str, Tuple[Any, Any]]) -> None:
