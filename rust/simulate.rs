@@ -174,7 +174,7 @@ impl<'a> MechanismSystem<'a> {
             monitor_values: Vec::new(),
             scratch2: Vec::new(),
             energy: channels.energy.then(|| EnergyBook::new(model)),
-            wear: model.clearance.iter().map(|c| c.wear.map(|law| WearBook::new(law, c))).collect(),
+            wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -281,10 +281,12 @@ impl<'a> MechanismSystem<'a> {
         self.memory[j].wear_offset = book.depth_at(k.n.y.atan2(k.n.x), th(joint.bearing), th(joint.journal));
     }
 
-    /// Start the wear books at the initial state.
+    /// Start the wear books at the initial state (a run that starts worn feeds its depth back
+    /// from the first step).
     pub fn wear_start(&mut self, y: &[f64]) {
         for j in 0..self.wear.len() {
             if self.wear[j].is_some() {
+                self.update_wear_offset(j, y);
                 let r = self.wear_rate(j, y);
                 if let Some(w) = self.wear[j].as_mut() {
                     w.start(r);

@@ -4,7 +4,8 @@
 //! dh = dV / (L R Δφ) in bins of Δφ = 2π/[`WEAR_BINS`] (L the bearing length, R the radius of
 //! the worn surface). Integrated along every accepted step (Simpson's rule, with the step's
 //! midpoint from the dense output), so the depth does not depend on the output grid.
-//! Wear is reported, not fed back into the contact geometry.
+//! A run may start from depths worn before it (`initial_bearing`, `initial_journal` of the
+//! description); with `feedback` the contact law sees the worn surfaces.
 
 use crate::clearance::{ClearanceJoint, JointForce, JointKinematics};
 
@@ -52,7 +53,7 @@ pub struct WearBook {
     pub radius_journal: f64,
     pub bearing: Vec<f64>,
     pub journal: Vec<f64>,
-    /// Total worn volume \[m³\].
+    /// Volume worn during this run \[m³\] (not counting the depths it started from).
     pub volume: f64,
     last: WearRate,
 }
@@ -80,13 +81,16 @@ fn spread(bins: &mut [f64], a: f64, b: f64, amount: f64) {
 }
 
 impl WearBook {
-    pub fn new(law: Archard, joint: &ClearanceJoint) -> Self {
+    /// The book of `joint`, starting from the depths `worn` \[m\] (bearing, journal; an empty
+    /// vector is unworn). `volume` counts only what this run wears.
+    pub fn new(law: Archard, joint: &ClearanceJoint, worn: &(Vec<f64>, Vec<f64>)) -> Self {
+        let start = |d: &Vec<f64>| if d.len() == WEAR_BINS { d.clone() } else { vec![0.0; WEAR_BINS] };
         WearBook {
             law,
             radius_bearing: joint.bearing_radius,
             radius_journal: joint.journal_radius,
-            bearing: vec![0.0; WEAR_BINS],
-            journal: vec![0.0; WEAR_BINS],
+            bearing: start(&worn.0),
+            journal: start(&worn.1),
             volume: 0.0,
             last: WearRate::default(),
         }

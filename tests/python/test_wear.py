@@ -86,3 +86,30 @@ def test_fed_back_wear_lets_the_pin_sink_by_the_worn_depth():
     assert sink == pytest.approx(expected, rel=0.02)
     # The same volume is worn either way (the load and the slip do not change).
     assert worn.wear_volume("J") == pytest.approx(plain.wear_volume("J"), rel=1e-6)
+
+
+def test_a_run_continues_from_the_worn_state_of_an_earlier_one():
+    """Two runs of T/2, the second started from the first's worn depths, wear the pin resting
+    on its bearing's bottom as deep as one run of T (the load and the slip are steady), and the
+    second sinks as deep as the single run at its end: the depth it starts from is fed back."""
+
+    def run(t_end, worn=None):
+        m = clearsim.Mechanism(gravity=(0, -9.81))
+        m.add_body("pin", mass=M, inertia=1e-3, position=(0, 0))
+        m.driver("pin", omega=OMEGA)
+        law = Archard(K, H, L, feedback=True, **({} if worn is None else {"initial_bearing": worn[0], "initial_journal": worn[1]}))
+        m.clearance_joint("J", "ground", (0, 0), "pin", (0, 0), journal_radius=R_J, clearance=C, model=clearsim.Dry(friction=0.0, restitution=0.5, wear=law))
+        return m.simulate(t_end, dt_out=t_end / 20, rtol=1e-8, atol=1e-11, progress=False)
+
+    whole = run(T)
+    first = run(T / 2)
+    second = run(T / 2, (first.wear("J")[1], first.wear("J", "journal")[1]))
+    assert second.wear("J")[1].max() == pytest.approx(whole.wear("J")[1].max(), rel=0.02)
+    assert second.wear_volume("J") == pytest.approx(first.wear_volume("J"), rel=1e-3)  # only its own
+    assert second.position("pin")[-1, 1] == pytest.approx(whole.position("pin")[-1, 1], abs=0.02 * whole.wear("J")[1].max())
+    with pytest.raises(InputError, match="360") as err:
+        Archard(K, H, L, initial_bearing=[0.0] * 10)
+    assert err.value.field == "wear.initial_bearing"
+    with pytest.raises(InputError) as err:
+        Archard(K, H, L, initial_journal=[0.0] * 359 + [-1e-9])
+    assert err.value.field == "wear.initial_journal[359]"
