@@ -48,11 +48,13 @@ MAX_GROWTH = 0.02
 
 @dataclass
 class BlockOutcome:
-    """What one block of N samples gives: the peak [output unit] over the analysed turns, the
-    worn state (N × m) at the start of those turns and at the block's end, and the runs that
-    failed ``(sample, reason)`` (their peak and state are ignored)."""
+    """What one block of N samples gives: the limit-state value ``g`` (failure when g ≤ 0) of
+    the analysed turns, the ``values`` reported with it (N × k: each output's peak or minimum),
+    the worn state (N × m) at the start of the analysed turns and at the block's end, and the
+    runs that failed ``(sample, reason)`` (their other entries are ignored)."""
 
-    peaks: np.ndarray
+    g: np.ndarray
+    values: np.ndarray
     at_window: np.ndarray
     at_end: np.ndarray
     failures: List[Tuple[int, str]] = field(default_factory=list)
@@ -77,19 +79,21 @@ class BlockRunner(Protocol):
 class LifeResult:
     """p_f against operating cycles.
 
-    ``cycles`` the requested cycle counts; ``pf`` at each (the probability that the output has
-    exceeded its limit in some block up to that count: failure is not undone by later blocks)
-    with its Wilson ``interval`` (lower and upper arrays); ``peaks`` (samples × cycles) the peak
-    output at each count (NaN once a run failed); ``depth`` (samples × cycles × worn surfaces)
-    the largest worn depth [m] of each bearing and journal, named in ``surfaces``;
-    ``failure_cycles`` each sample's first-passage cycle count, interpolated between blocks
-    (inf: none up to the last count); ``blocks`` the blocks each sample ran; ``n_runs``
-    simulations; ``failures`` ``(sample, cycle, reason)`` of failed runs (counted as
-    exceedances from that block on); ``worn`` each sample's worn state at the last count."""
+    ``cycles`` the requested cycle counts; ``pf`` at each (the probability that the limit state
+    has been passed in some block up to that count: failure is not undone by later blocks) with
+    its Wilson ``interval`` (lower and upper arrays); ``g`` (samples × cycles) the limit-state
+    value at each count and ``peaks`` (samples × cycles × outputs) each output's peak (its
+    minimum for a lower limit), NaN once a run failed; ``depth`` (samples × cycles × worn
+    surfaces) the largest worn depth [m] of each bearing and journal, named in ``surfaces``;
+    ``failure_cycles`` each sample's first-passage cycle count, interpolated linearly in g
+    between blocks (inf: none up to the last count); ``blocks`` the blocks each sample ran;
+    ``n_runs`` simulations; ``failures`` ``(sample, cycle, reason)`` of failed runs (counted as
+    failures from that block on); ``worn`` each sample's worn state at the last count."""
 
     cycles: np.ndarray
     pf: np.ndarray
     interval: Tuple[np.ndarray, np.ndarray]
+    g: np.ndarray
     peaks: np.ndarray
     depth: np.ndarray
     surfaces: List[str]
@@ -97,9 +101,9 @@ class LifeResult:
     blocks: np.ndarray
     n_runs: int
     wall_time: float
-    limit: float
     failures: List[Tuple[int, float, str]] = field(default_factory=list)
     worn: Optional[np.ndarray] = None
+    outputs: List[str] = field(default_factory=list)
 
     @property
     def reliability(self) -> np.ndarray:
@@ -138,7 +142,6 @@ def life(
     runner: BlockRunner,
     u: np.ndarray,
     cycles: Sequence[float],
-    limit: float,
     *,
     max_growth: Optional[float] = MAX_GROWTH,
     max_jump: Optional[float] = None,
@@ -147,7 +150,7 @@ def life(
     on_failure: str = "fail",
 ) -> LifeResult:
     """Simulate the life of the samples at standard normal points ``u`` (N × d) in blocks (see
-    the module's docstring) and estimate p_f at each of ``cycles`` against ``limit``.
+    the module's docstring) and estimate p_f at each of ``cycles``.
     ``max_growth``: the deepest bin's growth per jump as a fraction of ``runner.depth_scale``
     (``None``: no limit); ``max_jump``: most cycles per jump (``None``: no limit);
     ``surfaces``: names of the worn surfaces, each :data:`WEAR_BINS` entries of the state."""
@@ -171,18 +174,22 @@ def life(
     blocks = np.zeros(n, dtype=int)
     active = np.ones(n, dtype=bool)
     failures: List[Tuple[int, float, str]] = []
-    peaks_req = np.full((n, req.size), np.nan)
+    g_req = np.full((n, req.size), np.nan)
+    values_req: Optional[np.ndarray] = None
     depth_req = np.full((n, req.size, len(names)), np.nan)
     worn = np.zeros((n, m))
     first = np.full(n, math.inf)
     prev_n = np.full(n, np.nan)
-    prev_peak = np.full(n, np.nan)
+    prev_g = np.full(n, np.nan)
     n_runs = 0
     while active.any():
         idx = np.flatnonzero(active)
         out = runner(u[idx], wear[idx])
         n_runs += idx.size
         blocks[idx] += 1
+        values = np.asarray(out.values, dtype=float).reshape(idx.size, -1)
+        if values_req is None:
+            values_req = np.full((n, req.size, values.shape[1]), np.nan)
         if out.failures and on_failure == "raise":
             i, reason = out.failures[0]
             raise SimulationError(f"life: sample {idx[i]} failed at {at_n[idx[i]]:g} cycles: {reason}", reason=reason)
@@ -195,19 +202,20 @@ def life(
             first[s] = min(first[s], float(at_n[s]))
             worn[s] = wear[s]
         sel, i_ok = idx[ok], np.flatnonzero(ok)
-        peak = np.asarray(out.peaks, dtype=float)[i_ok]
-        # First passage, interpolated linearly in the peak between this block and the last.
-        newly = (peak > limit) & ~np.isfinite(first[sel])
-        a, pa = prev_n[sel], prev_peak[sel]
-        crossed = newly & np.isfinite(pa) & (pa < limit)
+        g = np.asarray(out.g, dtype=float)[i_ok]
+        # First passage, interpolated linearly in g between this block and the last.
+        newly = (g <= 0.0) & ~np.isfinite(first[sel])
+        a, ga = prev_n[sel], prev_g[sel]
+        crossed = newly & np.isfinite(ga) & (ga > 0.0)
         with np.errstate(invalid="ignore", divide="ignore"):
-            interp = a + (at_n[sel] - a) * (limit - pa) / (peak - pa)
+            interp = a + (at_n[sel] - a) * ga / (ga - g)
         first[sel] = np.where(crossed, interp, np.where(newly, at_n[sel], first[sel]))
-        prev_n[sel], prev_peak[sel] = at_n[sel], peak
+        prev_n[sel], prev_g[sel] = at_n[sel], g
         # Record the requested counts reached.
         here = at_n[sel] == req[nxt[sel]]
-        for s, p in zip(sel[here], peak[here]):
-            peaks_req[s, nxt[s]] = p
+        for s, i in zip(sel[here], i_ok[here]):
+            g_req[s, nxt[s]] = out.g[i]
+            values_req[s, nxt[s]] = values[i]
             depth_req[s, nxt[s]] = _surface_depths(wear[s : s + 1], len(names))[0]
             nxt[s] += 1
         done = nxt[sel] == req.size
@@ -221,8 +229,8 @@ def life(
         fastest = rate.max(axis=1) if m else np.zeros(go.size)
         with np.errstate(divide="ignore"):
             h_growth = np.where(fastest > 0, growth / fastest, math.inf)
-        target = req[nxt[go]]
         # The allowed jump, shortened so that equal jumps land on the next requested count.
+        target = req[nxt[go]]
         remaining = target - at_n[go]
         allowed = np.minimum(cap, np.maximum(h_growth, window))
         h = remaining / np.maximum(1.0, np.ceil(remaining / allowed - 1e-9))
@@ -232,13 +240,12 @@ def life(
         inc[start] = (frac * (at_end - wear[go]) + np.maximum(0.0, h - n_block)[:, None] * rate)[start]
         wear[go] += np.maximum(inc, 0.0)
         at_n[go] = np.where(h == remaining, target, at_n[go] + h)
-    failed_by = first[:, None] <= req[None, :]
-    kk = failed_by.sum(axis=0)
+    kk = (first[:, None] <= req[None, :]).sum(axis=0)
     lo, hi = wilson_interval(kk, np.full(req.size, n), confidence)
     return LifeResult(
-        cycles=req, pf=kk / n, interval=(np.atleast_1d(lo), np.atleast_1d(hi)), peaks=peaks_req, depth=depth_req, surfaces=list(names),
-        failure_cycles=first, blocks=blocks, n_runs=n_runs, wall_time=time.perf_counter() - t_start, limit=float(limit),
-        failures=failures, worn=worn,
+        cycles=req, pf=kk / n, interval=(np.atleast_1d(lo), np.atleast_1d(hi)), g=g_req,
+        peaks=values_req if values_req is not None else np.full((n, req.size, 0), np.nan), depth=depth_req, surfaces=list(names),
+        failure_cycles=first, blocks=blocks, n_runs=n_runs, wall_time=time.perf_counter() - t_start, failures=failures, worn=worn,
     )  # fmt: skip
 
 
@@ -279,10 +286,6 @@ class StudyBlocks:
         self.study.skip_cycles = self.settle_cycles
         self.window_cycles = float(study.cycles)
         m = study.build(**study.nominal())
-        # The pose check at t = 0, where the runs start (Study checks it at the window's start,
-        # where an assembly from the t = 0 poses can land on the other branch).
-        m._checked_assembly(0.0)
-        self.study._assembly_checked = True
         entries = _wear_entries(m.description())
         if not entries:
             raise InputError(
@@ -302,42 +305,36 @@ class StudyBlocks:
         self.state_size = len(self.surfaces) * WEAR_BINS
 
     def __call__(self, u: np.ndarray, wear: np.ndarray) -> BlockOutcome:
-        from ..montecarlo import _run_all
-
         st = self.study
         n = u.shape[0]
-        points = st.values(u)
-        peaks = np.full(n, np.nan)
         at_window = np.zeros((n, self.state_size))
         at_end = np.zeros((n, self.state_size))
-        descriptions, settings, errors, mechs = st._jobs(points, 0, n, 0)
-        for (k, _, s), d in zip(mechs, descriptions):
-            entries = _wear_entries(d)
+        mismatch: Dict[int, str] = {}
+
+        def on_job(k: int, description: Dict[str, Any], settings: Dict[str, Any]) -> None:
+            entries = _wear_entries(description)
             if [name for name, _ in entries] != self.joints:
-                errors[k] = f"the worn joints {[e[0] for e in entries]} differ from the nominal mechanism's {self.joints}"
-                continue
-            for j, (_, law) in enumerate(entries):
+                mismatch[k] = f"the worn joints {[e[0] for e in entries]} differ from the nominal mechanism's {self.joints}"
+            for j, (_, law) in enumerate(entries[: len(self.joints)]):
                 base = 2 * j * WEAR_BINS
                 law["initial_bearing"] = wear[k, base : base + WEAR_BINS].tolist()
                 law["initial_journal"] = wear[k, base + WEAR_BINS : base + 2 * WEAR_BINS].tolist()
-            s["wear_mark"] = float(s["monitors"][0]["t_start"]) if s.get("monitors") else float(s.get("t0", 0.0))
-        keep = [i for i, (k, _, _) in enumerate(mechs) if k not in errors]
-        raws = _run_all([descriptions[i] for i in keep], [settings[i] for i in keep], st.executor, st.chunk_size, False, "life blocks") if keep else []
-        st.n_runs += n
-        for i, raw in zip(keep, raws):
-            k = mechs[i][0]
-            if isinstance(raw, BaseException) or raw.get("error") is not None:
-                errors[k] = str(raw if isinstance(raw, BaseException) else raw["error"])
-                continue
-            peaks[k] = raw["monitors"][0]["peak"]
+            settings["wear_mark"] = float(settings["monitors"][0]["t_start"])
+
+        def on_raw(k: int, raw: Dict[str, Any]) -> None:
             books = [b for b in raw.get("wear") or [] if b is not None]
-            for j, b in enumerate(books):
+            for j, b in enumerate(books[: len(self.joints)]):
                 base = 2 * j * WEAR_BINS
                 at_end[k, base : base + WEAR_BINS] = b["bearing"]
                 at_end[k, base + WEAR_BINS : base + 2 * WEAR_BINS] = b["journal"]
                 at_window[k, base : base + WEAR_BINS] = b["bearing_at_mark"]
                 at_window[k, base + WEAR_BINS : base + 2 * WEAR_BINS] = b["journal_at_mark"]
-        return BlockOutcome(peaks, at_window, at_end, sorted(errors.items()))
+
+        ev, _ = st.run_samples(st.values(u), what="life blocks", show=False, on_job=on_job, on_raw=on_raw)
+        g = np.min(np.column_stack([lim.g(ev.values[:, i]) for i, lim in enumerate(st.limits)]), axis=1)
+        failures = dict(ev.failures)
+        failures.update(mismatch)
+        return BlockOutcome(g, ev.values, at_window, at_end, sorted(failures.items()))
 
 
 def study_life(
@@ -358,4 +355,6 @@ def study_life(
         raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
     runner = StudyBlocks(study, settle)
     u = np.column_stack([input_stream(seed, name).standard_normal(int(n)) for name in study.random_names]) if study.random_names else np.zeros((int(n), 0))
-    return life(runner, u, cycles, study.limit, max_growth=max_growth, max_jump=max_jump, surfaces=runner.surfaces, confidence=confidence, on_failure=on_failure)
+    res = life(runner, u, cycles, max_growth=max_growth, max_jump=max_jump, surfaces=runner.surfaces, confidence=confidence, on_failure=on_failure)
+    res.outputs = list(study.mode_names)
+    return res
