@@ -35,7 +35,7 @@ from scipy import stats
 from ..errors import InputError, SimulationError, check_positive
 from .distributions import input_stream
 from .estimates import wilson_interval
-from .model import check_on_failure
+from .bridge import check_on_failure
 
 __all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "StudyBlocks", "life", "study_life", "MAX_GROWTH", "WEAR_BINS"]
 
