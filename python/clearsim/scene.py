@@ -60,6 +60,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     [clearance_joint.dry]            # optional: fields of clearsim.Dry
     restitution = 0.9
     friction = 0.1
+    # wear = { coefficient = 1e-4, hardness = 2e9, length = 0.02, feedback = true }
+    #                                # Archard wear (docs/physics.md §12), needed by [study.life]
     # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
 

@@ -125,6 +125,13 @@ def test_a_short_real_life_runs_and_wears():
     assert np.all(np.diff(res.pf) >= 0) and res.pf[-1] > res.pf[0]
     assert res.n_runs == res.blocks.sum() and np.all(res.blocks >= 3)
     assert np.all(np.nanmean(res.peaks[:, 2, 0]) > np.nanmean(res.peaks[:, 0, 0]))
+    # The same lives as a model of u (for AK-MCS, FORM, ...): g ≤ 0 exactly for the samples failed by 40 cycles.
+    from clearsim.reliability.distributions import input_stream
+
+    u = input_stream(3, "clearance").standard_normal(4)[:, None]
+    g = study.life_model(40).limit_state(u)
+    only40 = study.life([40], n=4, seed=3)  # the same blocks as the model's lives
+    assert np.array_equal(g, only40.g_min[:, 0]) and np.array_equal(g <= 0, only40.failure_cycles <= 40)
 
 
 def test_life_needs_wear_fed_back():
@@ -139,3 +146,52 @@ def test_life_needs_wear_fed_back():
     with pytest.raises(InputError, match="feedback") as err:
         study.life([10], n=2)
     assert err.value.field == "clearance joint 'rod-slider'.wear.feedback"
+
+
+def test_cli_writes_life_and_ak_results(tmp_path):
+    """``clearsim reliability`` on a scene with a worn pin (``[clearance_joint.dry] wear = {...}``),
+    ``[study.life]`` and the AK-MCS method: life.csv (p_f against cycles, never falling), life.png,
+    the AK-MCS row of reliability.csv and their parts of report.md."""
+    import csv
+    from pathlib import Path
+
+    pytest.importorskip("openturns")
+    from clearsim.cli import main
+
+    base = (Path(__file__).resolve().parents[2] / "scenes" / "slider_crank.toml").read_text()
+    base = base.replace('v1 = 1e-2                             # m/s', 'v1 = 1e-2\nwear = { coefficient = 1e-2, hardness = 2e9, length = 0.02, feedback = true }', 1)
+    assert "wear = {" in base
+    study = """
+[study]
+body = "slider"
+component = "x"
+quantity = "displacement"
+limit = 0.59e-3
+skip_cycles = 1.0
+methods = ["ak_mcs"]
+max_runs = 12
+samples = 4
+
+[[study.input]]
+path = "rod-slider.clearance"
+distribution = "normal"
+mean = 0.5e-3
+std = 0.02e-3
+
+[study.life]
+cycles = [0, 20, 40]
+reliability = 0.5
+"""
+    scene = tmp_path / "worn.toml"
+    scene.write_text(base + study)
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q"]) == 0
+    rows = list(csv.DictReader((out / "life.csv").open()))
+    assert [float(r["cycles"]) for r in rows] == [0.0, 20.0, 40.0]
+    pf = [float(r["pf"]) for r in rows]
+    assert pf == sorted(pf) and float(rows[-1]["max_depth_m"]) > float(rows[1]["max_depth_m"]) > 0
+    assert (out / "life.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    methods = [r["method"] for r in csv.DictReader((out / "reliability.csv").open())]
+    assert methods == ["ak_mcs"]
+    report = (out / "report.md").read_text()
+    assert "Reliability over life" in report and "| 40 |" in report

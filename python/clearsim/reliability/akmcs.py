@@ -22,7 +22,10 @@ Then, if the estimate's coefficient of variation exceeds ``cov``, the population
 A series system (several failure modes) gets one Kriging model per mode and the system's learning
 function of AK-SYS (Fauriat & Gayton 2014): at each candidate the mode with the smallest mean
 decides, U = |μ_i*|/σ_i*. A noisy limit state (dry impacts) is fitted with its measured noise
-σ_g as observation noise (the U function uses the latent function's σ).
+σ_g as observation noise (the U function uses the latent function's σ). As σ stays above
+σ_g/√k at its k-fold evaluated neighbourhood, the candidates next to g = 0 never reach U = 2
+there: learning on a noisy limit state also stops when the surrogate's bounds (p_f with every
+candidate within 2σ of g = 0 counted safe, and failed) differ by no more than ``cov`` × p̂_f.
 
 The bulk predictions on the candidates are computed here (numpy, in chunks) from the fitted
 covariance model, trend and training points; they agree with OpenTURNS' own predictions
@@ -168,6 +171,11 @@ class _Recorder:
     def __exit__(self, *exc: Any) -> None:
         del self.model.limit_states  # the class's method again
 
+    @property
+    def count(self) -> int:
+        """Points evaluated so far (model evaluations: runs for a Study, lives for a life model)."""
+        return sum(u.shape[0] for u in self.u)
+
 
 @dataclass
 class _Population:
@@ -239,13 +247,14 @@ def _thin(u: np.ndarray, g: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
 
 
 def _learn(
-    model: Any, pop: _Population, doe_u: np.ndarray, doe_g: np.ndarray, *, runs_left: int, cov: float, covariance: str, noise: float,
+    model: Any, pop: _Population, doe_u: np.ndarray, doe_g: np.ndarray, *, rec: _Recorder, max_runs: int, cov: float, covariance: str, noise: float,
     max_population: int, rng: np.random.Generator, on_failure: str,
 ) -> Tuple[float, float, dict]:  # fmt: skip
     """The learning loop (module docstring) on ``pop`` from the design (doe_u, doe_g)."""
     modes = doe_g.shape[1]
     fits: List[Kriging] = []
     iterations, min_u, converged = 0, 0.0, False
+    noisy = noise > 1e-9 * max(1e-300, float(np.nanstd(doe_g)))
     while True:
         fits = [Kriging(doe_u, doe_g[:, i], covariance, noise, fits[i] if fits else None) for i in range(modes)]
         mu = np.column_stack([k.mean(pop.u) for k in fits])
@@ -254,7 +263,14 @@ def _learn(
         amp = np.array([k.amplitude for k in fits])[decide] + noise
         best, min_u = _smallest_u(fits, pop.u, mu_sys, decide, amp)
         pf, c = pop.estimate(mu_sys <= 0.0)
-        if min_u >= STOP_U:
+        settled = min_u >= STOP_U
+        if noisy and not settled and pf > 0:
+            # A noisy limit state keeps σ ≥ σ_g/√k at its design points, so candidates next to
+            # g = 0 never reach U = 2: learning stops once the candidates within 2σ of the limit
+            # state move p_f by no more than the Monte Carlo target, (p⁺ − p⁻) ≤ cov · p̂.
+            bounds = _bounds(fits, pop, mu_sys, decide, amp)
+            settled = bounds[1] - bounds[0] <= cov * pf
+        if settled:
             if pf == 0.0:
                 raise ReliabilityError(
                     f"AK: the surrogate classifies none of the {pop.u.shape[0]} candidates as failed after {doe_u.shape[0]} design points "
@@ -267,31 +283,34 @@ def _learn(
             grow = int(min(max_population - pop.u.shape[0], max(pop.u.shape[0], math.ceil(pop.u.shape[0] * ((c if math.isfinite(c) else 2.0) / cov) ** 2 - pop.u.shape[0]))))
             pop.grow(grow, rng)
             continue
-        if runs_left < 1:
+        if rec.count >= max_runs:
             break
         x = pop.u[best : best + 1]
         g = np.asarray(model.limit_states(x, on_failure), dtype=float).reshape(1, -1)
-        runs_left -= 1
         iterations += 1
         doe_u, doe_g = np.vstack([doe_u, x]), np.vstack([doe_g, g])
-    # The estimate if every candidate within 2σ of the limit state were safe / failed (σ only
-    # where |μ| < 2 × the prior standard deviation: elsewhere U ≥ 2 whatever σ is).
-    sigma = np.zeros(mu_sys.size)
-    near = np.flatnonzero(np.abs(mu_sys) < STOP_U * amp)
-    for i in range(modes):
-        sel = near[decide[near] == i]
-        if sel.size:
-            sigma[sel] = np.sqrt(fits[i].variance(pop.u[sel]))
-    bounds = (pop.estimate(mu_sys + STOP_U * sigma <= 0.0)[0], pop.estimate(mu_sys - STOP_U * sigma <= 0.0)[0])
+    bounds = _bounds(fits, pop, mu_sys, decide, amp)
     info = {
         "design_u": doe_u, "design_g": doe_g, "population": int(pop.u.shape[0]), "iterations": iterations, "min_u": min_u,
         "converged": converged, "noise": noise, "surrogate": fits, "surrogate_bounds": bounds, "candidates": pop.u, "weights": pop.weight,
         "classified_failed": mu_sys <= 0.0,
     }  # fmt: skip
     if not converged:
-        why = f"min U = {min_u:.3g} < {STOP_U:g}" if min_u < STOP_U else f"the population's CoV {c:.3g} above cov = {cov:g} at max_population = {max_population}"
+        why = f"min U = {min_u:.3g} < {STOP_U:g}, surrogate bounds [{bounds[0]:.3g}, {bounds[1]:.3g}]" if min_u < STOP_U else f"the population's CoV {c:.3g} above cov = {cov:g} at max_population = {max_population}"
         warnings.warn(f"{'AK-IS' if np.any(pop.centres) else 'AK-MCS'}: the run budget ended before learning converged ({why}); p_f = {pf:.4g} may be off by more than its interval", ReliabilityWarning, stacklevel=3)
     return pf, c, info
+
+
+def _bounds(fits: List[Kriging], pop: "_Population", mu: np.ndarray, decide: np.ndarray, amp: np.ndarray) -> Tuple[float, float]:
+    """The estimate if every candidate within 2σ of the limit state were safe, and if it were
+    failed (σ only where |μ| < 2 × the prior standard deviation: elsewhere U ≥ 2 whatever σ is)."""
+    sigma = np.zeros(mu.size)
+    near = np.flatnonzero(np.abs(mu) < STOP_U * amp)
+    for i, k in enumerate(fits):
+        sel = near[decide[near] == i]
+        if sel.size:
+            sigma[sel] = np.sqrt(k.variance(pop.u[sel]))
+    return pop.estimate(mu + STOP_U * sigma <= 0.0)[0], pop.estimate(mu - STOP_U * sigma <= 0.0)[0]
 
 
 def _smallest_u(fits: List[Kriging], u: np.ndarray, mu: np.ndarray, decide: np.ndarray, amp: np.ndarray) -> Tuple[int, float]:
@@ -335,8 +354,9 @@ def ak_mcs(
     model: Any, *, max_runs: int = 150, seed: Optional[int] = 0, cov: float = 0.05, population: int = 10_000, max_population: int = 1_000_000,
     covariance: str = "matern52", noise: Union[float, str] = "auto", initial: int = INITIAL_POINTS, on_failure: str = "fail",
 ) -> SamplingResult:  # fmt: skip
-    """AK-MCS (module docstring): at most ``max_runs`` model runs (the noise probe's 9 included
-    with ``noise="auto"``), a first population of ``population`` standard normal candidates
+    """AK-MCS (module docstring): at most ``max_runs`` model evaluations (the noise probe's 9
+    included with ``noise="auto"``; an evaluation is one run of a Study, one life of a life
+    model: ``extra["evaluations"]``, while ``n_runs`` counts simulations), a first population of ``population`` standard normal candidates
     grown up to ``max_population`` until the estimate's CoV is ``cov``. ``initial`` first design
     points spread over the population (nearest the origin, then farthest-first). The interval is the population's 95 % Monte Carlo
     interval; ``extra`` holds the design, the population size, the learning iterations and the
@@ -346,12 +366,14 @@ def ak_mcs(
     rng = np.random.default_rng(seed)
     d = model.dimension
     pop = _Population(*_draw(np.zeros((1, d)), np.ones(1), int(population), rng), centres=np.zeros((1, d)), mixture=np.ones(1))
-    sigma_g = _noise(model, noise, np.zeros(d), on_failure)
-    first = max(2, min(int(initial), int(max_runs) - (model.n_runs - runs0) - 1))
-    doe_u = pop.u[_spread(pop.u, first)]
-    doe_g = np.asarray(model.limit_states(doe_u, on_failure), dtype=float).reshape(first, -1)
-    pf, c, info = _learn(model, pop, doe_u, doe_g, runs_left=int(max_runs) - (model.n_runs - runs0), cov=cov, covariance=covariance, noise=sigma_g,
-                         max_population=int(max_population), rng=rng, on_failure=on_failure)  # fmt: skip
+    with _Recorder(model) as rec:
+        sigma_g = _noise(model, noise, np.zeros(d), on_failure)
+        first = max(2, min(int(initial), int(max_runs) - rec.count - 1))
+        doe_u = pop.u[_spread(pop.u, first)]
+        doe_g = np.asarray(model.limit_states(doe_u, on_failure), dtype=float).reshape(first, -1)
+        pf, c, info = _learn(model, pop, doe_u, doe_g, rec=rec, max_runs=int(max_runs), cov=cov, covariance=covariance, noise=sigma_g,
+                             max_population=int(max_population), rng=rng, on_failure=on_failure)  # fmt: skip
+    info["evaluations"] = rec.count
     return SamplingResult(pf, c, normal_interval(pf, c), model.n_runs - runs0, time.perf_counter() - t0, "AK-MCS", extra=info)
 
 
@@ -368,26 +390,26 @@ def ak_is(
     _check(model, max_runs, cov, covariance, on_failure)
     rng = np.random.default_rng(seed)
     d = model.dimension
-    rec = _Recorder(model)
-    if design_point is None:
-        with rec:
+    with _Recorder(model) as rec:
+        if design_point is None:
             design_point = system_form(model, step=step, on_failure=on_failure) if len(model.mode_names) > 1 else form(model, step=step, on_failure=on_failure)
-    centres, weights = _centres(design_point, d)
-    if rec.u:
-        doe_u, doe_g = np.vstack(rec.u), np.vstack(rec.g)
-    else:
-        star = (np.atleast_2d(centres[int(np.argmax(weights))]))
-        doe_u = np.vstack([star, star + 0.5 * np.eye(d), star - 0.5 * np.eye(d)])
-        doe_g = np.asarray(model.limit_states(doe_u, on_failure), dtype=float).reshape(doe_u.shape[0], -1)
-    ok = np.all(np.isfinite(doe_g), axis=1)
-    doe_u, doe_g = _thin(doe_u[ok], doe_g[ok])
-    modes = getattr(design_point, "modes", None)
-    sigma_g = float(max([getattr(m, "noise", 0.0) for m in modes])) if modes else float(getattr(design_point, "noise", 0.0) or 0.0)
-    mixture = np.asarray(weights, dtype=float) / float(np.sum(weights))
-    pop = _Population(*_draw(centres, mixture, int(population), rng), centres=centres, mixture=mixture)
-    pf, c, info = _learn(model, pop, doe_u, doe_g, runs_left=int(max_runs) - (model.n_runs - runs0), cov=cov, covariance=covariance, noise=sigma_g,
-                         max_population=int(max_population), rng=rng, on_failure=on_failure)  # fmt: skip
+        centres, weights = _centres(design_point, d)
+        if rec.u:
+            doe_u, doe_g = np.vstack(rec.u), np.vstack(rec.g)
+        else:
+            star = np.atleast_2d(centres[int(np.argmax(weights))])
+            doe_u = np.vstack([star, star + 0.5 * np.eye(d), star - 0.5 * np.eye(d)])
+            doe_g = np.asarray(model.limit_states(doe_u, on_failure), dtype=float).reshape(doe_u.shape[0], -1)
+        ok = np.all(np.isfinite(doe_g), axis=1)
+        doe_u, doe_g = _thin(doe_u[ok], doe_g[ok])
+        modes = getattr(design_point, "modes", None)
+        sigma_g = float(max([getattr(m, "noise", 0.0) for m in modes])) if modes else float(getattr(design_point, "noise", 0.0) or 0.0)
+        mixture = np.asarray(weights, dtype=float) / float(np.sum(weights))
+        pop = _Population(*_draw(centres, mixture, int(population), rng), centres=centres, mixture=mixture)
+        pf, c, info = _learn(model, pop, doe_u, doe_g, rec=rec, max_runs=int(max_runs), cov=cov, covariance=covariance, noise=sigma_g,
+                             max_population=int(max_population), rng=rng, on_failure=on_failure)  # fmt: skip
     info["form"] = design_point if hasattr(design_point, "beta") else None
+    info["evaluations"] = rec.count
     return SamplingResult(pf, c, normal_interval(pf, c), model.n_runs - runs0, time.perf_counter() - t0, "AK-IS", centres[int(np.argmax(mixture))], extra=info)
 
 

@@ -36,8 +36,9 @@ from ..errors import InputError, SimulationError, check_positive
 from .distributions import input_stream
 from .estimates import wilson_interval
 from .bridge import check_on_failure
+from .model import Model
 
-__all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "StudyBlocks", "life", "study_life", "MAX_GROWTH", "WEAR_BINS"]
+__all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "LifeModel", "StudyBlocks", "life", "study_life", "MAX_GROWTH", "WEAR_BINS"]
 
 #: Bins around each worn surface (rust/wear.rs WEAR_BINS).
 WEAR_BINS = 360
@@ -96,6 +97,9 @@ class LifeResult:
     g: np.ndarray
     peaks: np.ndarray
     depth: np.ndarray
+    #: (samples × cycles) the smallest g over the blocks up to each count (−1 after a failed
+    #: run): failure by then when ≤ 0.
+    g_min: np.ndarray
     surfaces: List[str]
     failure_cycles: np.ndarray
     blocks: np.ndarray
@@ -175,6 +179,8 @@ def life(
     active = np.ones(n, dtype=bool)
     failures: List[Tuple[int, float, str]] = []
     g_req = np.full((n, req.size), np.nan)
+    gmin_req = np.full((n, req.size), np.nan)
+    g_run = np.full(n, math.inf)
     values_req: Optional[np.ndarray] = None
     depth_req = np.full((n, req.size, len(names)), np.nan)
     worn = np.zeros((n, m))
@@ -201,8 +207,10 @@ def life(
             failures.append((s, float(at_n[s]), reason))
             first[s] = min(first[s], float(at_n[s]))
             worn[s] = wear[s]
+            gmin_req[s, nxt[s] :] = -1.0
         sel, i_ok = idx[ok], np.flatnonzero(ok)
         g = np.asarray(out.g, dtype=float)[i_ok]
+        g_run[sel] = np.minimum(g_run[sel], g)
         # First passage, interpolated linearly in g between this block and the last.
         newly = (g <= 0.0) & ~np.isfinite(first[sel])
         a, ga = prev_n[sel], prev_g[sel]
@@ -215,6 +223,7 @@ def life(
         here = at_n[sel] == req[nxt[sel]]
         for s, i in zip(sel[here], i_ok[here]):
             g_req[s, nxt[s]] = out.g[i]
+            gmin_req[s, nxt[s]] = g_run[s]
             values_req[s, nxt[s]] = values[i]
             depth_req[s, nxt[s]] = _surface_depths(wear[s : s + 1], len(names))[0]
             nxt[s] += 1
@@ -243,7 +252,7 @@ def life(
     kk = (first[:, None] <= req[None, :]).sum(axis=0)
     lo, hi = wilson_interval(kk, np.full(req.size, n), confidence)
     return LifeResult(
-        cycles=req, pf=kk / n, interval=(np.atleast_1d(lo), np.atleast_1d(hi)), g=g_req,
+        cycles=req, pf=kk / n, interval=(np.atleast_1d(lo), np.atleast_1d(hi)), g=g_req, g_min=gmin_req,
         peaks=values_req if values_req is not None else np.full((n, req.size, 0), np.nan), depth=depth_req, surfaces=list(names),
         failure_cycles=first, blocks=blocks, n_runs=n_runs, wall_time=time.perf_counter() - t_start, failures=failures, worn=worn,
     )  # fmt: skip
@@ -358,3 +367,34 @@ def study_life(
     res = life(runner, u, cycles, max_growth=max_growth, max_jump=max_jump, surfaces=runner.surfaces, confidence=confidence, on_failure=on_failure)
     res.outputs = list(study.mode_names)
     return res
+
+
+class LifeModel(Model):
+    """The limit state of a whole life as a reliability model: ``g(u)`` is the smallest g over
+    the blocks of the life of the sample at u up to ``cycles`` operating cycles (failure by then
+    when ≤ 0; a failed run gives −1), so AK-MCS, FORM or importance sampling answer
+    "p_f after N cycles" with each evaluation one life (``Study.life_model``). One mode (the
+    study's modes combined, min g)."""
+
+    def __init__(self, study: Any, cycles: float, *, max_growth: Optional[float] = MAX_GROWTH, max_jump: Optional[float] = None, settle: Optional[float] = None) -> None:
+        n = float(cycles)
+        if not (math.isfinite(n) and n >= 0):
+            raise InputError(f"invalid cycles = {cycles!r}: a cycle count ≥ 0", field="cycles", value=cycles)
+        self.cycles = n
+        self.runner = StudyBlocks(study, settle)
+        self.options: Dict[str, Any] = {"max_growth": max_growth, "max_jump": max_jump}
+        self.inputs = study.inputs
+        self.random_names = study.random_names
+        self._counter = study._counter
+
+    @property
+    def mode_names(self) -> List[str]:
+        return [f"failure by {self.cycles:g} cycles"]
+
+    def limit_states(self, u: Any, on_failure: str = "fail") -> np.ndarray:
+        pts = np.atleast_2d(np.asarray(u, dtype=float))
+        res = life(self.runner, pts, [self.cycles], on_failure=on_failure, **self.options)
+        return np.asarray(res.g_min[:, -1:], dtype=float)
+
+    def limit_state(self, u: Any, on_failure: str = "fail") -> np.ndarray:
+        return np.asarray(self.limit_states(u, on_failure)[:, 0])

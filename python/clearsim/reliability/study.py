@@ -529,6 +529,15 @@ class Study(Model):
 
         return study_life(self, cycles, n, seed, max_growth=max_growth, max_jump=max_jump, settle=settle, on_failure=on_failure, confidence=confidence)
 
+    def life_model(self, cycles: float, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None, settle: Optional[float] = None) -> Any:
+        """The limit state "failure by ``cycles`` operating cycles" as a model of its own, each
+        evaluation one life in blocks (:class:`~clearsim.reliability.life.LifeModel`): its
+        ``ak_mcs``, ``form`` or ``importance_sampling`` answer p_f at that life in fewer lives
+        than :meth:`life`'s Monte Carlo."""
+        from .life import LifeModel
+
+        return LifeModel(self, cycles, max_growth=max_growth, max_jump=max_jump, settle=settle)
+
 
 def _check_failures(ev: Evaluation, on_failure: str) -> None:
     check_on_failure(on_failure)
