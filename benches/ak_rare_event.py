@@ -59,6 +59,9 @@ def main() -> None:
         t = time.perf_counter()
         mcs = study().ak_mcs(max_runs=150, seed=0, cov=0.1, max_population=1_000_000)
         show("AK-MCS", mcs, time.perf_counter() - t, is_)
+        x = mcs.extra
+        print(f"        {x['iterations']} learning runs, population {x['population']}, min U {x['min_u']:.2f}, surrogate bounds "
+              f"[{x['surrogate_bounds'][0]:.3e}, {x['surrogate_bounds'][1]:.3e}], noise σ_g {x['noise']:.2g}, converged {x['converged']}")
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""Cycle jumping against simulating every cycle (issue 31, item 4; docs/reliability_life.md).
+"""Cycle jumping against simulating every cycle (issue 31, item 4; docs/reliability.md, "Reliability over life").
 
 The dry slider-crank (c = 0.5 mm, 5000 rpm) with Archard wear fed back at its rod–slider pin,
 the wear coefficient raised to k = 1e-2 so that 200 cycles wear ~0.1 mm (a real life's depth
@@ -56,18 +56,20 @@ def measures(peaks: np.ndarray, worn: np.ndarray) -> dict:
 
 
 def every_cycle(k: float) -> dict:
-    from clearsim import _core
-
     st = study(k, settle=LIFE + 1.0)
-    d, s, _, _ = st._jobs(st.values(np.arange(ENSEMBLE, dtype=float)[:, None]), 0, ENSEMBLE, 0)
-    for x in s:
-        x["wear_mark"] = LIFE * 60.0 / RPM
+    worn = np.zeros((ENSEMBLE, 2 * WEAR_BINS))
+
+    def mark(_k, _description, settings):
+        settings["wear_mark"] = LIFE * 60.0 / RPM
+
+    def keep(i, raw):
+        book = raw["wear"][0]
+        worn[i] = np.concatenate([book["bearing_at_mark"], book["journal_at_mark"]])
+
     t = time.perf_counter()
-    raws = _core.run_batch(d, s)
-    wall = time.perf_counter() - t
-    worn = np.array([np.concatenate([r["wear"][0]["bearing_at_mark"], r["wear"][0]["journal_at_mark"]]) for r in raws])
-    print(f"every cycle: {ENSEMBLE} runs of {LIFE + 2} turns, {wall:.1f} s")
-    return measures(np.array([r["monitors"][0]["peak"] for r in raws]), worn)
+    ev, _ = st.run_samples(st.values(np.arange(ENSEMBLE, dtype=float)[:, None]), on_job=mark, on_raw=keep, show=False)
+    print(f"every cycle: {ENSEMBLE} runs of {LIFE + 2} turns, {time.perf_counter() - t:.1f} s")
+    return measures(ev.values[:, 0], worn)
 
 
 def main() -> None:
@@ -78,9 +80,9 @@ def main() -> None:
     for growth in (0.005, 0.01, 0.02, 0.04):
         runner = StudyBlocks(study(k))
         t = time.perf_counter()
-        res = life(runner, np.arange(ENSEMBLE, dtype=float)[:, None], [LIFE], 1.0, max_growth=growth, surfaces=runner.surfaces)
+        res = life(runner, np.arange(ENSEMBLE, dtype=float)[:, None], [LIFE], max_growth=growth, surfaces=runner.surfaces)
         wall = time.perf_counter() - t
-        got = measures(res.peaks[:, -1], res.worn)
+        got = measures(res.peaks[:, -1, 0], res.worn)
         cells = []
         for name, v in got.items():
             se = math.sqrt(v.var(ddof=1) / v.size + ref[name].var(ddof=1) / v.size) / ref[name].mean()

@@ -339,6 +339,14 @@ def _smallest_u(fits: List[Kriging], u: np.ndarray, mu: np.ndarray, decide: np.n
     return best, best_u
 
 
+def _interval(pf: float, cov: float, bounds: Tuple[float, float]) -> Tuple[float, float]:
+    """95 % interval: the population's Monte Carlo interval, widened to the surrogate's bounds
+    (each with its own Monte Carlo half-width) where they reach beyond it."""
+    lo, hi = normal_interval(pf, cov)
+    half = 1.959963984540054 * (cov if math.isfinite(cov) else 0.0)
+    return min(lo, max(0.0, bounds[0] * (1.0 - half))), max(hi, min(1.0, bounds[1] * (1.0 + half)))
+
+
 def _noise(model: Any, noise: Union[float, str], u0: np.ndarray, on_failure: str) -> float:
     if isinstance(noise, str):
         if noise != "auto":
@@ -358,9 +366,11 @@ def ak_mcs(
     included with ``noise="auto"``; an evaluation is one run of a Study, one life of a life
     model: ``extra["evaluations"]``, while ``n_runs`` counts simulations), a first population of ``population`` standard normal candidates
     grown up to ``max_population`` until the estimate's CoV is ``cov``. ``initial`` first design
-    points spread over the population (nearest the origin, then farthest-first). The interval is the population's 95 % Monte Carlo
-    interval; ``extra`` holds the design, the population size, the learning iterations and the
-    last min U."""
+    points spread over the population (nearest the origin, then farthest-first). The interval is
+    the population's 95 % Monte Carlo interval, widened to the surrogate's bounds (``extra``:
+    ``surrogate_bounds``, p_f with the candidates within 2σ of g = 0 counted safe / failed);
+    ``extra`` also holds the design, the population size, the learning iterations and the last
+    min U."""
     t0, runs0 = time.perf_counter(), model.n_runs
     _check(model, max_runs, cov, covariance, on_failure)
     rng = np.random.default_rng(seed)
@@ -374,7 +384,7 @@ def ak_mcs(
         pf, c, info = _learn(model, pop, doe_u, doe_g, rec=rec, max_runs=int(max_runs), cov=cov, covariance=covariance, noise=sigma_g,
                              max_population=int(max_population), rng=rng, on_failure=on_failure)  # fmt: skip
     info["evaluations"] = rec.count
-    return SamplingResult(pf, c, normal_interval(pf, c), model.n_runs - runs0, time.perf_counter() - t0, "AK-MCS", extra=info)
+    return SamplingResult(pf, c, _interval(pf, c, info["surrogate_bounds"]), model.n_runs - runs0, time.perf_counter() - t0, "AK-MCS", extra=info)
 
 
 def ak_is(
@@ -410,7 +420,7 @@ def ak_is(
                              max_population=int(max_population), rng=rng, on_failure=on_failure)  # fmt: skip
     info["form"] = design_point if hasattr(design_point, "beta") else None
     info["evaluations"] = rec.count
-    return SamplingResult(pf, c, normal_interval(pf, c), model.n_runs - runs0, time.perf_counter() - t0, "AK-IS", centres[int(np.argmax(mixture))], extra=info)
+    return SamplingResult(pf, c, _interval(pf, c, info["surrogate_bounds"]), model.n_runs - runs0, time.perf_counter() - t0, "AK-IS", centres[int(np.argmax(mixture))], extra=info)
 
 
 def _centres(design_point: Any, d: int) -> Tuple[np.ndarray, List[float]]:

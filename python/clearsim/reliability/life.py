@@ -1,5 +1,5 @@
 """Reliability over operating life: p_f against the number of operating cycles, each sample's
-Archard wear fed back and accumulated by cycle jumping (docs/reliability_life.md).
+Archard wear fed back and accumulated by cycle jumping (docs/reliability.md, "Reliability over life").
 
 A life is simulated in **blocks**: at cycle N_k a sample runs ``settle + cycles`` crank turns
 from its worn state W_k (the depths around every worn bearing and journal); the peak of the
@@ -43,7 +43,7 @@ __all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "LifeModel", "StudyBlock
 #: Bins around each worn surface (rust/wear.rs WEAR_BINS).
 WEAR_BINS = 360
 #: Default growth of the deepest-wearing bin per jump, as a fraction of the clearance: on the
-#: 200-cycle check of docs/reliability_life.md, 2 % keeps the peak and the groove depth within 1 %.
+#: 200-cycle check (docs/reliability.md, "Reliability over life") 2 % keeps the peak and the worn volume within 3 %.
 MAX_GROWTH = 0.02
 
 

@@ -524,7 +524,7 @@ class Study(Model):
         ``settle`` + ``cycles`` turns, the worn depths extrapolated between blocks (cycle
         jumping, at most ``max_growth`` × the clearance of growth and ``max_jump`` cycles a
         jump). Returns a :class:`~clearsim.reliability.life.LifeResult` (its ``life_at(R)``: the
-        cycles at which the reliability falls to R). See docs/reliability_life.md."""
+        cycles at which the reliability falls to R). See docs/reliability.md, "Reliability over life"."""
         from .life import study_life
 
         return study_life(self, cycles, n, seed, max_growth=max_growth, max_jump=max_jump, settle=settle, on_failure=on_failure, confidence=confidence)
