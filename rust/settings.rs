@@ -60,6 +60,9 @@ pub struct RunSettingsDesc {
     pub max_seconds: Option<f64>,
     #[serde(default)]
     pub monitors: Vec<MonitorSpec>,
+    /// A time \[s\] at which the wear books are also read (the output's `*_at_mark`).
+    #[serde(default)]
+    pub wear_mark: Option<f64>,
 }
 
 impl RunSettingsDesc {
@@ -90,6 +93,7 @@ impl RunSettingsDesc {
             channels: self.outputs.unwrap_or_default(),
             max_wall_time: self.max_seconds,
             monitors: self.monitors,
+            wear_mark: self.wear_mark,
         };
         rs.validate()?;
         Ok(rs)

@@ -46,6 +46,9 @@ pub struct RunSettings {
     pub max_wall_time: Option<f64>,
     /// Outputs tracked between the output samples ([`crate::monitor`]).
     pub monitors: Vec<MonitorSpec>,
+    /// A time \[s\] in [t0, t_end] at which the wear books are also read
+    /// ([`crate::wear::WearBook::at_mark`]): what wears after it is the difference.
+    pub wear_mark: Option<f64>,
 }
 
 impl RunSettings {
@@ -71,6 +74,11 @@ impl RunSettings {
         if let Some(b) = self.max_wall_time {
             if !(b > 0.0) {
                 return Err(Error::invalid("max_seconds", b, "must be a positive number of seconds"));
+            }
+        }
+        if let Some(m) = self.wear_mark {
+            if !(m >= self.t0 && m <= self.t_end) {
+                return Err(Error::invalid("wear_mark", m, format!("must lie in [t0, t_end] = [{}, {}]", self.t0, self.t_end)));
             }
         }
         if self.ode.max_steps == 0 {
@@ -141,6 +149,8 @@ pub struct MechanismSystem<'a> {
     energy: Option<EnergyBook>,
     /// Wear of each clearance joint that models it.
     pub wear: Vec<Option<WearBook>>,
+    /// [`RunSettings::wear_mark`].
+    pub wear_mark: Option<f64>,
     accepted: usize,
     scratch: Vec<f64>,
     /// Each clearance joint's kinematics at the last and the next sample of a step
@@ -178,7 +188,8 @@ impl<'a> MechanismSystem<'a> {
             monitor_values: Vec::new(),
             scratch2: Vec::new(),
             energy: channels.energy.then(|| EnergyBook::new(model)),
-            wear: model.clearance.iter().map(|c| c.wear.map(|law| WearBook::new(law, c))).collect(),
+            wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
+            wear_mark: None,
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -286,13 +297,19 @@ impl<'a> MechanismSystem<'a> {
         self.memory[j].wear_offset = book.depth_at(k.n.y.atan2(k.n.x), th(joint.bearing), th(joint.journal));
     }
 
-    /// Start the wear books at the initial state.
-    pub fn wear_start(&mut self, y: &[f64]) {
+    /// Start the wear books at the initial state (a run that starts worn feeds its depth back
+    /// from the first step).
+    pub fn wear_start(&mut self, t: f64, y: &[f64]) {
         for j in 0..self.wear.len() {
             if self.wear[j].is_some() {
+                self.update_wear_offset(j, y);
                 let r = self.wear_rate(j, y);
+                let mark = self.wear_mark.is_some_and(|m| m <= t);
                 if let Some(w) = self.wear[j].as_mut() {
                     w.start(r);
+                    if mark {
+                        w.at_mark = Some(w.snapshot());
+                    }
                 }
             }
         }
@@ -632,8 +649,14 @@ impl OdeSystem for MechanismSystem<'_> {
             for j in 0..self.wear.len() {
                 if self.wear[j].is_some() {
                     let (mid, end) = (self.wear_rate(j, &s), self.wear_rate(j, y1));
+                    let mark = self.wear_mark.filter(|m| *m > t0 && *m <= t1);
                     if let Some(w) = self.wear[j].as_mut() {
+                        let before = mark.map(|_| w.snapshot());
                         w.step(t1 - t0, mid, end);
+                        if let (Some(m), Some(b)) = (mark, before) {
+                            // The books at the mark: linear in time within the step.
+                            w.mark_between(b, (m - t0) / (t1 - t0));
+                        }
                     }
                     self.update_wear_offset(j, y1);
                 }
@@ -913,7 +936,8 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         sys.observe_start(rs.t0, &y0)?;
     }
     sys.energy_start(rs.t0, &y0)?;
-    sys.wear_start(&y0);
+    sys.wear_mark = rs.wear_mark;
+    sys.wear_start(rs.t0, &y0);
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {

@@ -4,7 +4,8 @@
 //! dh = dV / (L R Δφ) in bins of Δφ = 2π/[`WEAR_BINS`] (L the bearing length, R the radius of
 //! the worn surface). Integrated along every accepted step (Simpson's rule, with the step's
 //! midpoint from the dense output), so the depth does not depend on the output grid.
-//! Wear is reported, not fed back into the contact geometry.
+//! A run may start from depths worn before it (`initial_bearing`, `initial_journal` of the
+//! description); with `feedback` the contact law sees the worn surfaces.
 
 use crate::clearance::{ClearanceJoint, JointForce, JointKinematics};
 
@@ -52,9 +53,19 @@ pub struct WearBook {
     pub radius_journal: f64,
     pub bearing: Vec<f64>,
     pub journal: Vec<f64>,
-    /// Total worn volume \[m³\].
+    /// Volume worn during this run \[m³\] (not counting the depths it started from).
     pub volume: f64,
+    /// The book at the run's wear mark, if it has one and reached it.
+    pub at_mark: Option<WearSnapshot>,
     last: WearRate,
+}
+
+/// Depths \[m\] around the bearing and the journal and the volume worn \[m³\] at one instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WearSnapshot {
+    pub bearing: Vec<f64>,
+    pub journal: Vec<f64>,
+    pub volume: f64,
 }
 
 /// Add `amount` (in bin units) uniformly over the arc from angle `a` to `b` [rad], the short
@@ -80,16 +91,35 @@ fn spread(bins: &mut [f64], a: f64, b: f64, amount: f64) {
 }
 
 impl WearBook {
-    pub fn new(law: Archard, joint: &ClearanceJoint) -> Self {
+    /// The book of `joint`, starting from the depths `worn` \[m\] (bearing, journal; an empty
+    /// vector is unworn). `volume` counts only what this run wears.
+    pub fn new(law: Archard, joint: &ClearanceJoint, worn: &(Vec<f64>, Vec<f64>)) -> Self {
+        let start = |d: &Vec<f64>| if d.len() == WEAR_BINS { d.clone() } else { vec![0.0; WEAR_BINS] };
         WearBook {
             law,
             radius_bearing: joint.bearing_radius,
             radius_journal: joint.journal_radius,
-            bearing: vec![0.0; WEAR_BINS],
-            journal: vec![0.0; WEAR_BINS],
+            bearing: start(&worn.0),
+            journal: start(&worn.1),
             volume: 0.0,
+            at_mark: None,
             last: WearRate::default(),
         }
+    }
+
+    /// The depths and volume now.
+    pub fn snapshot(&self) -> WearSnapshot {
+        WearSnapshot { bearing: self.bearing.clone(), journal: self.journal.clone(), volume: self.volume }
+    }
+
+    /// Record the mark a `fraction` of the way through the step that began at `before`.
+    pub fn mark_between(&mut self, before: WearSnapshot, fraction: f64) {
+        let lerp = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x + fraction * (y - x)).collect();
+        self.at_mark = Some(WearSnapshot {
+            bearing: lerp(&before.bearing, &self.bearing),
+            journal: lerp(&before.journal, &self.journal),
+            volume: before.volume + fraction * (self.volume - before.volume),
+        });
     }
 
     /// The worn depth \[m\] at the contact direction `direction` [rad, global], bearing turned by
@@ -141,7 +171,7 @@ mod tests {
     fn depth_integrates_to_the_volume_and_lands_in_the_contact_bin() {
         let law = Archard { k_over_h: 1e-12, length: 0.02, feedback: false };
         let joint_radii = (0.0105, 0.01);
-        let mut w = WearBook { law, radius_bearing: joint_radii.0, radius_journal: joint_radii.1, bearing: vec![0.0; WEAR_BINS], journal: vec![0.0; WEAR_BINS], volume: 0.0, last: WearRate::default() };
+        let mut w = WearBook { law, radius_bearing: joint_radii.0, radius_journal: joint_radii.1, bearing: vec![0.0; WEAR_BINS], journal: vec![0.0; WEAR_BINS], volume: 0.0, at_mark: None, last: WearRate::default() };
         let r = WearRate { volume_rate: 2e-9, angle_bearing: -std::f64::consts::FRAC_PI_2, angle_journal: 0.3 };
         w.start(r);
         for _ in 0..100 {

@@ -59,6 +59,9 @@ class RunSettings(TypedDict):
     outputs: NotRequired[Outputs]
     max_seconds: NotRequired[float]
     monitors: NotRequired[List[Monitor]]
+    # A time [s] in [t0, t_end] at which the wear books are also read: each result's "wear"
+    # entry then has bearing_at_mark, journal_at_mark [m] and volume_at_mark [m³].
+    wear_mark: NotRequired[float]
 
 __version__: str
 JOINT_COLUMNS: List[str]

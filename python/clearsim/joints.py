@@ -5,8 +5,9 @@ All quantities in SI units.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Tuple
 
 from .errors import InputError, check_choice, check_finite, check_positive
 
@@ -54,12 +55,20 @@ class Archard:
         accepted step), so the clearance grows where it wears. Default ``False``: wear is only
         booked. Contact onsets are still located at the unworn surface; with wear depths far
         below the clearance this shifts an impact by less than depth / approach speed.
+    initial_bearing, initial_journal:
+        Depths [m] already worn when the run starts, in the :data:`WEAR_BINS` 1° bins of
+        :meth:`Result.wear` around the bearing and the journal (each in its body's frame);
+        ``None`` (default): unworn. A run can so continue from an earlier one's worn state
+        (``Result.wear(joint)[1]``), as reliability over life does; :meth:`Result.wear` then
+        includes them, ``Result.wear_volume`` counts only what the run wears.
     """
 
     coefficient: float
     hardness: float
     length: float
     feedback: bool = False
+    initial_bearing: Optional[Tuple[float, ...]] = field(default=None, repr=False)
+    initial_journal: Optional[Tuple[float, ...]] = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         check_positive("wear.coefficient", self.coefficient)
@@ -67,9 +76,35 @@ class Archard:
         check_positive("wear.length", self.length)
         if not isinstance(self.feedback, bool):
             raise InputError(f"invalid wear.feedback = {self.feedback!r}: must be True or False", field="wear.feedback", value=self.feedback)
+        for name in ("initial_bearing", "initial_journal"):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, _depths(f"wear.{name}", value))
 
     def _as_dict(self) -> Dict[str, Any]:
-        return {"coefficient": float(self.coefficient), "hardness": float(self.hardness), "length": float(self.length), "feedback": bool(self.feedback)}
+        out: Dict[str, Any] = {"coefficient": float(self.coefficient), "hardness": float(self.hardness), "length": float(self.length), "feedback": bool(self.feedback)}
+        for name in ("initial_bearing", "initial_journal"):
+            if getattr(self, name) is not None:
+                out[name] = list(getattr(self, name))
+        return out
+
+
+#: Bins around each worn surface (1° each, docs/physics.md §12).
+WEAR_BINS = 360
+
+
+def _depths(field: str, value: Any) -> Tuple[float, ...]:
+    """A worn-depth profile: :data:`WEAR_BINS` finite depths ≥ 0 [m]."""
+    try:
+        depths = tuple(float(v) for v in value)
+    except (TypeError, ValueError):
+        raise InputError(f"invalid {field} = {value!r}: must be {WEAR_BINS} depths [m]", field=field, value=value) from None
+    if len(depths) != WEAR_BINS:
+        raise InputError(f"invalid {field}: {len(depths)} depths, must be {WEAR_BINS} (1° bins)", field=field, value=len(depths))
+    for k, d in enumerate(depths):
+        if not (math.isfinite(d) and d >= 0.0):
+            raise InputError(f"invalid {field}[{k}] = {d!r}: a depth must be finite and not negative [m]", field=f"{field}[{k}]", value=d)
+    return depths
 
 
 @dataclass(frozen=True)

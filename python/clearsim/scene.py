@@ -60,6 +60,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     [clearance_joint.dry]            # optional: fields of clearsim.Dry
     restitution = 0.9
     friction = 0.1
+    # wear = { coefficient = 1e-4, hardness = 2e9, length = 0.02, feedback = true }
+    #                                # Archard wear (docs/physics.md §12), needed by [study.life]
     # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
 
@@ -135,7 +137,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     skip_cycles = 1.0                # ... after this many start-up turns (default 0)
     # omega = 523.6                  # rad/s (default: the first constant-speed driver)
     methods = ["form", "importance_sampling"]   # of monte_carlo, form, importance_sampling,
-                                     #   subset, sobol, fosm
+                                     #   subset, sobol, fosm, ak_mcs, ak_is (max_runs = 150:
+                                     #   their budget); [study.life]: p_f against cycles
     samples = 1000                   # Monte Carlo samples; Sobol base size
     cov = 0.1                        # importance sampling's target coefficient of variation
     seed = 0

@@ -9,7 +9,7 @@ import re
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from .errors import InputError
-from .joints import Dry, Lubricated
+from .joints import Archard, Dry, Lubricated
 from .mechanism import Mechanism
 from .toml_reader import REQUIRED, Source, Table, dotted_key
 
@@ -51,6 +51,13 @@ def _read_model(table: Table, cls: type) -> Any:
             sub = table.table("dry", _model_fields(Dry))
             assert sub is not None
             kwargs["dry"] = _read_model(sub, Dry)
+        elif f.name == "wear":
+            sub = table.table("wear", ("coefficient", "hardness", "length", "feedback"))
+            assert sub is not None
+            try:
+                kwargs["wear"] = Archard(sub.number("coefficient"), sub.number("hardness"), sub.number("length"), sub.boolean("feedback", False))
+            except InputError as err:
+                raise sub.error((err.field or "").split(".")[-1] or None, err.reason, err.value) from None
         elif isinstance(f.default, str):
             kwargs[f.name] = table.string(f.name)
         else:

@@ -94,7 +94,7 @@ pub struct DryDesc {
 
 /// Archard's wear law: worn volume = coefficient × normal force × sliding distance / hardness.
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct WearDesc {
     /// Dimensionless wear coefficient k.
     pub coefficient: f64,
@@ -105,6 +105,13 @@ pub struct WearDesc {
     /// Feed the worn depth back into the contact geometry (default false).
     #[cfg_attr(feature = "serde", serde(default))]
     pub feedback: bool,
+    /// Depth \[m\] already worn at the start of the run, in the 1° bins of
+    /// [`crate::wear::WEAR_BINS`] around the bearing and around the journal (each body's frame);
+    /// empty: unworn. Lets a run start from the worn state of an earlier one (reliability over life).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub initial_bearing: Vec<f64>,
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub initial_journal: Vec<f64>,
 }
 
 /// Parameters of a lubricated clearance joint (docs/physics.md §4).

@@ -43,6 +43,9 @@ pub struct Model {
     /// What holds each clearance joint during the kinematic assembly: a revolute joint with
     /// the initial eccentricity as offset, or a prismatic joint (slider centred and aligned).
     pub assembly: Vec<(String, Constraint)>,
+    /// Per clearance joint: the depths \[m\] worn before the run around the bearing and the
+    /// journal (empty: unworn; docs/physics.md §12).
+    pub initial_wear: Vec<(Vec<f64>, Vec<f64>)>,
 }
 
 impl Model {
@@ -115,6 +118,7 @@ impl Model {
             q_guess,
             qd_guess,
             assembly: Vec::new(),
+            initial_wear: desc.clearance_joints.iter().map(initial_wear).collect(),
         };
         for c in &desc.clearance_joints {
             model.assembly.push((
@@ -124,6 +128,7 @@ impl Model {
         }
         for p in &desc.prismatic_clearance_joints {
             let (guide, ends) = compile_prismatic_clearance(p, desc)?;
+            model.initial_wear.extend(ends.iter().map(|_| (Vec::new(), Vec::new())));
             model.clearance.extend(ends);
             model.assembly.push((format!("clearance joint '{}' (held centred in its guide)", p.name), guide));
         }
@@ -194,6 +199,15 @@ fn contact_law(c: &ClearanceJointDesc, dry: &DryDesc) -> ContactLaw {
     }
 }
 
+/// The depths worn before the run of a clearance joint with wear (empty when none).
+fn initial_wear(c: &ClearanceJointDesc) -> (Vec<f64>, Vec<f64>) {
+    let dry = match &c.model {
+        ClearanceModelDesc::Dry(d) => d,
+        ClearanceModelDesc::Lubricated(l) => &l.dry,
+    };
+    dry.wear.as_ref().map_or((Vec::new(), Vec::new()), |w| (w.initial_bearing.clone(), w.initial_journal.clone()))
+}
+
 fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
     let (dry, film) = match &c.model {
         ClearanceModelDesc::Dry(d) => (d, None),
@@ -233,7 +247,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
         film,
         guide_normal: None,
         penetration_limit: crate::simulate::max_penetration(c.clearance, c.journal_radius),
-        wear: dry.wear.map(|w| crate::wear::Archard { k_over_h: w.coefficient / w.hardness, length: w.length, feedback: w.feedback }),
+        wear: dry.wear.as_ref().map(|w| crate::wear::Archard { k_over_h: w.coefficient / w.hardness, length: w.length, feedback: w.feedback }),
     })
 }
 

@@ -225,6 +225,11 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
                     wd.set_item("bearing", PyArray1::from_slice(py, &w.bearing))?;
                     wd.set_item("journal", PyArray1::from_slice(py, &w.journal))?;
                     wd.set_item("volume", w.volume)?;
+                    if let Some(m) = &w.at_mark {
+                        wd.set_item("bearing_at_mark", PyArray1::from_slice(py, &m.bearing))?;
+                        wd.set_item("journal_at_mark", PyArray1::from_slice(py, &m.journal))?;
+                        wd.set_item("volume_at_mark", m.volume)?;
+                    }
                     wear.append(wd)?;
                 }
             }

@@ -36,6 +36,7 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
         channels: clearsim::record::Channels::default(),
         max_wall_time: None,
         monitors: Vec::new(),
+        wear_mark: None,
     }
 }
 

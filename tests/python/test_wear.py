@@ -86,3 +86,55 @@ def test_fed_back_wear_lets_the_pin_sink_by_the_worn_depth():
     assert sink == pytest.approx(expected, rel=0.02)
     # The same volume is worn either way (the load and the slip do not change).
     assert worn.wear_volume("J") == pytest.approx(plain.wear_volume("J"), rel=1e-6)
+
+
+def test_a_run_continues_from_the_worn_state_of_an_earlier_one():
+    """Two runs of T/2, the second started from the first's worn depths, wear the pin resting
+    on its bearing's bottom as deep as one run of T (the load and the slip are steady), and the
+    second sinks as deep as the single run at its end: the depth it starts from is fed back."""
+
+    def run(t_end, worn=None):
+        m = clearsim.Mechanism(gravity=(0, -9.81))
+        m.add_body("pin", mass=M, inertia=1e-3, position=(0, 0))
+        m.driver("pin", omega=OMEGA)
+        law = Archard(K, H, L, feedback=True, **({} if worn is None else {"initial_bearing": worn[0], "initial_journal": worn[1]}))
+        m.clearance_joint("J", "ground", (0, 0), "pin", (0, 0), journal_radius=R_J, clearance=C, model=clearsim.Dry(friction=0.0, restitution=0.5, wear=law))
+        return m.simulate(t_end, dt_out=t_end / 20, rtol=1e-8, atol=1e-11, progress=False)
+
+    whole = run(T)
+    first = run(T / 2)
+    second = run(T / 2, (first.wear("J")[1], first.wear("J", "journal")[1]))
+    assert second.wear("J")[1].max() == pytest.approx(whole.wear("J")[1].max(), rel=0.02)
+    assert second.wear_volume("J") == pytest.approx(first.wear_volume("J"), rel=1e-3)  # only its own
+    assert second.position("pin")[-1, 1] == pytest.approx(whole.position("pin")[-1, 1], abs=0.02 * whole.wear("J")[1].max())
+    with pytest.raises(InputError, match="360") as err:
+        Archard(K, H, L, initial_bearing=[0.0] * 10)
+    assert err.value.field == "wear.initial_bearing"
+    with pytest.raises(InputError) as err:
+        Archard(K, H, L, initial_journal=[0.0] * 359 + [-1e-9])
+    assert err.value.field == "wear.initial_journal[359]"
+
+
+def test_the_wear_mark_reads_the_books_inside_a_run():
+    """``wear_mark`` (run settings) reads the books at a time inside the run: what a run of T
+    had worn at T/2 is what a run stopped at T/2 wore (the same steps up to there, the mark
+    interpolated within its step)."""
+    from clearsim import _core
+
+    def pin():
+        m = clearsim.Mechanism(gravity=(0, -9.81))
+        m.add_body("pin", mass=M, inertia=1e-3, position=(0, 0))
+        m.driver("pin", omega=OMEGA)
+        m.clearance_joint("J", "ground", (0, 0), "pin", (0, 0), journal_radius=R_J, clearance=C, model=clearsim.Dry(friction=0.0, restitution=0.5, wear=Archard(K, H, L)))
+        return m
+
+    m = pin()
+    s = m.run_settings(T, t_out=np.array([0.0, T]), outputs=["states"], rtol=1e-8, atol=1e-11)
+    s["wear_mark"] = T / 2
+    book = _core.run_batch([m.description()], [s], 1)[0]["wear"][0]
+    half = pin().simulate(T / 2, dt_out=T / 2, rtol=1e-8, atol=1e-11, progress=False)
+    assert book["volume_at_mark"] == pytest.approx(half.wear_volume("J"), rel=1e-3)
+    assert np.abs(book["bearing_at_mark"] - half.wear("J")[1]).max() < 1e-3 * half.wear("J")[1].max()
+    s["wear_mark"] = 2 * T
+    with pytest.raises(InputError, match="wear_mark"):
+        _core.run_batch([m.description()], [s], 1)

@@ -8,6 +8,8 @@ The study of one output with random inputs::
                       limit=1e-3, omega=-5 * np.pi, cycles=1.0)
     study.monte_carlo(n)   study.form()   study.importance_sampling(cov=0.1)   study.subset()
     study.sobol(n)         study.tolerance("clearance", reliability=0.999)      study.fosm()
+    study.ak_mcs(max_runs=150)   study.ak_is(max_runs=150)      (few runs: Kriging surrogates)
+    res = study.life(cycles=[0, 1e5, 2e5], n=200); res.life_at(0.999)  (Archard wear fed back)
 
 Several failure modes (a series system)::
 
@@ -21,10 +23,11 @@ FOSM from monitor bins), :mod:`.estimates` (Monte Carlo statistics), :mod:`.outp
 (:class:`Output`, :class:`Limit`), :mod:`.runs` (batches of runs and their monitors),
 :mod:`.bridge` (OpenTURNS' view of a model), :mod:`.form` (FORM on noisy limit states, series
 systems), :mod:`.sampling` (importance sampling, subset simulation), :mod:`.sobol` (Sobol
-indices by sampling or polynomial chaos), :mod:`.tolerance` (tolerance design), :mod:`.uq` (all
-of these in one import), :mod:`.model` (what the methods need of a model and every method on it;
+indices by sampling or polynomial chaos), :mod:`.tolerance` (tolerance design), :mod:`.akmcs` (AK-MCS,
+AK-IS), :mod:`.uq` (all of these in one import), :mod:`.model` (what the methods need of a model and every method on it;
 :class:`LimitState` for any function), :mod:`.study` (:class:`Study`, the simulation model and
-the one Monte Carlo sample loop), :mod:`.scene` and :mod:`.report` (``clearsim reliability``).
+the one Monte Carlo sample loop), :mod:`.life` and :mod:`.life_plot` (reliability over life by
+cycle jumping), :mod:`.scene` and :mod:`.report` (``clearsim reliability``).
 Methods on OpenTURNS need ``pip install clearsim[uq]``; docs/reliability.md says which to use.
 """
 
@@ -32,6 +35,7 @@ from .distributions import Distribution, Fixed, LogNormal, Normal, Scipy, Shifte
 from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, first_passage_probability, mc_bin_reliability, wilson_interval
 from .fosm import PAPER_ALLOWABLE, FosmResult, allowable_statistics, fosm, normal_cdf, normal_ppf, reliability_index
 from .form import FormResult, SystemFormResult
+from .life import LifeModel, LifeResult
 from .model import LimitState, Model
 from .outputs import Limit, Output
 from .sampling import SamplingResult
@@ -48,6 +52,8 @@ __all__ = [
     "Fixed",
     "FormResult",
     "FosmResult",
+    "LifeModel",
+    "LifeResult",
     "Limit",
     "LimitState",
     "LogNormal",

@@ -15,6 +15,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import InputError
+from .akmcs import ak_is, ak_mcs
 from .bridge import ON_FAILURE, check_on_failure
 from .distributions import Distribution, as_distribution
 from .form import FormResult, SystemFormResult, form, system_form
@@ -124,6 +125,20 @@ class Model:
         """The largest mean of input ``name`` (its spread kept) for which the reliability is
         still ``reliability``. See :func:`clearsim.reliability.tolerance.tolerance`."""
         return tolerance(self, name, reliability, bracket=bracket, cov=cov, max_runs=max_runs, seed=seed, step=step)
+
+    def ak_mcs(self, max_runs: int = 150, seed: Optional[int] = 0, *, cov: float = 0.05, population: int = 10_000, max_population: int = 1_000_000,
+               covariance: str = "matern52", noise: Union[float, str] = "auto", on_failure: str = "fail") -> SamplingResult:  # fmt: skip
+        """AK-MCS (Echard et al. 2011): p_f from a Kriging surrogate trained on at most
+        ``max_runs`` runs, on a Monte Carlo population grown until its CoV is ``cov``; one
+        surrogate per mode on a series system. See :func:`clearsim.reliability.akmcs.ak_mcs`."""
+        return ak_mcs(self, max_runs=max_runs, seed=seed, cov=cov, population=population, max_population=max_population, covariance=covariance, noise=noise, on_failure=on_failure)
+
+    def ak_is(self, max_runs: int = 150, seed: Optional[int] = 0, *, cov: float = 0.05, population: int = 10_000, max_population: int = 1_000_000,
+              covariance: str = "matern52", design_point: Any = None, on_failure: str = "fail", step: Union[float, str] = "auto") -> SamplingResult:  # fmt: skip
+        """AK-IS (Echard et al. 2013): AK-MCS on an importance-sampling population around the
+        FORM design point, for rare events; FORM's runs count and start the surrogate. See
+        :func:`clearsim.reliability.akmcs.ak_is`."""
+        return ak_is(self, max_runs=max_runs, seed=seed, cov=cov, population=population, max_population=max_population, covariance=covariance, design_point=design_point, on_failure=on_failure, step=step)
 
     def with_input(self, name: str, value: Any) -> "Model":
         """A copy with input ``name`` replaced (caches shared, run count kept)."""

@@ -88,10 +88,36 @@ def _fosm(r: Run) -> None:
     r.echo(f"{'fosm':20s} min R = {res.min_reliability:.6f} at {res.min_angle:g}°")
 
 
+def _ak(r: Run, method: str) -> None:
+    res = r.found[method] = getattr(r.study, method)(max_runs=r.settings.max_runs, seed=r.settings.seed)
+    r.row(method, res)
+    r.echo(f"{'':20s}   {res.extra['iterations']} learning runs, {res.extra['population']} candidates, min U = {res.extra['min_u']:.2f}")
+
+
+def _life(r: Run, out_dir: Path, plots: bool) -> List[Path]:
+    """``[study.life]``: p_f against cycles into life.csv, life.png and the report."""
+    from .life_plot import LIFE_HEADER, life_rows, plot_life
+
+    ls = r.settings.life
+    res = r.found["life"] = r.study.life(ls.cycles, ls.samples, seed=r.settings.seed, max_growth=ls.max_growth, max_jump=ls.max_jump, settle=ls.settle)
+    r.echo(f"{'life':20s} p_f at {res.cycles[-1]:g} cycles = {res.pf[-1]:.4g}  runs = {res.n_runs}  ({res.wall_time:.1f} s)")
+    if ls.reliability is not None:
+        try:
+            r.found["life_at"] = res.life_at(ls.reliability)
+        except Exception as err:  # the samples do not reach R within the cycles: say so
+            r.found["life_at"] = str(err)
+    files = [_write(out_dir / "life.csv", LIFE_HEADER, life_rows(res))]
+    if plots:
+        plot_life(res, limit=r.study.limit, unit=r.study.output.unit, reliability=[ls.reliability] if ls.reliability else None, path=out_dir / "life.png")
+        files.append(out_dir / "life.png")
+    return files
+
+
 #: The methods in the order they run: name → runner (extension point: a method added to
 #: scene.METHODS gets its runner here, and its CSV/plot/report parts below).
 METHOD_RUNNERS: Dict[str, Callable[[Run], None]] = {
     "monte_carlo": _monte_carlo, "form": _form, "importance_sampling": _importance_sampling, "subset": _subset, "sobol": _sobol, "fosm": _fosm,
+    "ak_mcs": lambda r: _ak(r, "ak_mcs"), "ak_is": lambda r: _ak(r, "ak_is"),
 }  # fmt: skip
 
 
@@ -114,7 +140,7 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
         r.found["tolerance"] = tol = study.tolerance(name, rel_target, bracket=bracket, cov=settings.cov, seed=settings.seed, step=settings.step)
         echo(f"{'tolerance':20s} largest mean {name} = {tol.value:.6g} (95 % [{tol.interval[0]:.6g}, {tol.interval[1]:.6g}]) for R = {rel_target}  runs = {tol.n_runs}")
     rows, found = r.rows, r.found
-    files: List[Path] = []
+    files: List[Path] = _life(r, out_dir, plots) if settings.life is not None else []
     if rows:
         files.append(_write(out_dir / "reliability.csv", list(rows[0]), [[row[k] for k in rows[0]] for row in rows]))
     if "sobol" in found:
@@ -156,7 +182,7 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
     FORM importance factors; Sobol indices."""
     from .. import plots
 
-    estimates = [(k, found[k]) for k in ("monte_carlo", "form", "importance_sampling", "subset") if k in found]
+    estimates = [(k, found[k]) for k in ("monte_carlo", "form", "importance_sampling", "subset", "ak_mcs", "ak_is") if k in found]
     panels = ["pf"] * bool(estimates) + ["curve"] * ("monte_carlo" in found) + ["importance"] * ("form" in found) + ["sobol"] * ("sobol" in found)
     if not panels:
         panels = ["pf"]
@@ -253,9 +279,24 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
     if "tolerance" in found:
         t = found["tolerance"]
         lines += ["", f"Tolerance: the largest mean of `{t.name}` with reliability {t.reliability} is {t.value:.6g} (95 % [{t.interval[0]:.6g}, {t.interval[1]:.6g}]; FORM alone {t.form_value:.6g}; {t.n_runs} runs)."]
+    if "life" in found:
+        lf = found["life"]
+        lines += ["", f"Reliability over life ({lf.g.shape[0]} samples, Archard wear fed back, cycle jumping: {lf.blocks.mean():.1f} blocks a sample, {lf.n_runs} runs; "
+                  "docs/reliability.md, \"Reliability over life\"):", "", "| cycles | p_f | 95 % interval |", "|---|---|---|"]  # fmt: skip
+        lines += [f"| {n:g} | {p:.4g} | [{a:.3g}, {b:.3g}] |" for n, p, a, b in zip(lf.cycles, lf.pf, *lf.interval)]
+        at = found.get("life_at")
+        if isinstance(at, tuple):
+            lines += ["", f"Reliability falls to {study_settings_reliability(scene)} at {at[0]:.4g} cycles (95 % [{at[1][0]:.4g}, {at[1][1]:.4g}])."]
+        elif at is not None:
+            lines += ["", f"Life at R = {study_settings_reliability(scene)}: {at}"]
     if "fosm" in found:
         fo = found["fosm"]
         lines += ["", f"FOSM (nominal mechanism, {fo.bin_width:g}° bins): minimum reliability {fo.min_reliability:.6f} (β = {fo.min_beta:.3f}) at {fo.min_angle:g}°."]
     lines += ["", FOSM_NOTE, "", "Files: " + ", ".join(p.name for p in files) + ", report.md", ""]
     path.write_text("\n".join(lines), encoding="utf-8")
     return path
+
+
+def study_settings_reliability(scene: Any) -> Any:
+    """The reliability ``[study.life]`` asks the life for."""
+    return scene.study.life.reliability if scene.study.life is not None else None

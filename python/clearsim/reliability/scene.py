@@ -15,7 +15,9 @@ and the methods to run.
     skip_cycles = 0.0
     # omega = -15.708                  # rad/s (default: the first constant-speed driver)
     methods = ["form", "importance_sampling", "sobol"]
-                                       # of monte_carlo, form, importance_sampling, subset, sobol, fosm
+                                       # of monte_carlo, form, importance_sampling, subset, sobol,
+                                       #   fosm, ak_mcs, ak_is (active-learning Kriging)
+    # max_runs = 150                   # ak_mcs / ak_is: most model runs (AK-IS: FORM's included)
     samples = 1000                     # monte_carlo samples; Sobol base size (× (d + 2) runs)
     cov = 0.1                          # importance sampling target coefficient of variation
     seed = 0
@@ -41,6 +43,13 @@ and the methods to run.
     mean = 0.5e-3                      #   | truncated_normal (mean, std, low, high)
     std = 0.05e-3
 
+    [study.life]                       # optional: p_f against operating cycles, Archard wear fed
+    cycles = [0, 1e5, 2e5, 5e5]        #   back (the worn joints need wear = {..., feedback = true})
+    samples = 100                      # samples run through their life (default: study.samples)
+    reliability = 0.999                # report the cycles at which R falls to this (optional)
+    # max_growth = 0.02                # cycle jumping: deepest bin's growth per jump / clearance
+    # max_jump = 1e4                   # and at most this many cycles a jump
+
     [study.tolerance]                  # optional: the largest mean of one input that still
     input = "B.clearance"              #   meets a reliability
     reliability = 0.9999
@@ -60,13 +69,26 @@ from .study import Study
 
 # Extension point: a method is a name here (and in report.METHOD_RUNNERS); a method with
 # settings of its own reads them from a sub-table [study.<name>] listed in STUDY_KEYS.
-METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fosm")
+METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fosm", "ak_mcs", "ak_is")
 OUTPUT_KEYS = ("body", "component", "joint", "quantity", "limit", "side")
 #: The keys of [study] (scene.py checks them before parse_study reads the table).
-STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step")
+STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step", "max_runs", "life")
 INPUT_KEYS = ("path", "distribution", "mean", "std", "low", "high")
 TOLERANCE_KEYS = ("input", "reliability", "bracket")
+LIFE_KEYS = ("cycles", "samples", "reliability", "max_growth", "max_jump", "settle")
 DISTRIBUTIONS = ("normal", "lognormal", "uniform", "truncated_normal")
+
+
+@dataclass
+class LifeSettings:
+    """The ``[study.life]`` table: the cycle counts, the samples and what to report."""
+
+    cycles: List[float]
+    samples: int
+    reliability: Optional[float] = None
+    max_growth: float = 0.02
+    max_jump: Optional[float] = None
+    settle: Optional[float] = None
 
 
 @dataclass
@@ -88,6 +110,8 @@ class StudySettings:
     tolerance: Optional[Tuple[str, float, Optional[Tuple[float, float]]]] = None
     sobol_method: str = "saltelli"
     step: Union[float, str] = "auto"
+    max_runs: int = 150
+    life: Optional[LifeSettings] = None
 
     @property
     def output(self) -> Output:
@@ -179,6 +203,23 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
             raise tt.error("reliability", f"invalid study.tolerance.reliability = {r!r}: must lie in (0, 1)", r)
         bracket = tt.numbers("bracket", None, length=2)
         tol = (name, r, tuple(bracket) if bracket else None)
+    life = None
+    lt = t.table("life", LIFE_KEYS)
+    if lt is not None:
+        cycles = lt.numbers("cycles")
+        if not cycles or any(not (c >= 0) for c in cycles):
+            raise lt.error("cycles", f"invalid study.life.cycles = {cycles!r}: give one or more cycle counts ≥ 0", cycles)
+        r_life = lt.number("reliability", None)
+        if r_life is not None and not 0 < r_life < 1:
+            raise lt.error("reliability", f"invalid study.life.reliability = {r_life!r}: must lie in (0, 1)", r_life)
+        values = {"samples": lt.integer("samples", samples), "max_growth": lt.number("max_growth", 0.02), "max_jump": lt.number("max_jump", None), "settle": lt.number("settle", None)}
+        for key, v in values.items():
+            if v is not None and not (v >= 0 if key == "settle" else v > 0):
+                raise lt.error(key, f"invalid study.life.{key} = {v!r}: must be {'≥ 0' if key == 'settle' else 'positive'}", v)
+        life = LifeSettings([float(c) for c in cycles], int(values["samples"]), r_life, float(values["max_growth"]), values["max_jump"], values["settle"])
+    max_runs = t.integer("max_runs", 150)
+    if max_runs < 2:
+        raise t.error("max_runs", f"invalid study.max_runs = {max_runs!r}: must be at least 2", max_runs)
     step: Union[float, str] = "auto"
     if "step" in t:
         fixed = float(t.number("step"))
@@ -188,6 +229,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
     return StudySettings(
         outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
         methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", 18.0), tolerance=tol,
+        max_runs=max_runs, life=life,
     )  # fmt: skip
 
 

@@ -310,6 +310,7 @@ class Study(Model):
     def run_samples(
         self, points: Mapping[str, Any], *, keep_traces: int = 0, points_per_cycle: int = 360, trace_outputs: Optional[Sequence[str]] = None,
         raw_traces: bool = False, keep_monitors: bool = False, check_assembly: bool = True, what: str = "runs", show: Optional[bool] = None,
+        on_job: Optional[Callable[[int, Dict[str, Any], Dict[str, Any]], None]] = None, on_raw: Optional[Callable[[int, Dict[str, Any]], None]] = None,
     ) -> Tuple[Evaluation, List[Any]]:  # fmt: skip
         """The sample loop: run the model at ``points`` (``{input name: (N,) array}``; missing
         inputs at their mean) in chunks of :data:`CHUNK`, keeping each run's extremes and
@@ -318,7 +319,9 @@ class Study(Model):
         The first ``keep_traces`` runs also store their outputs on ``points_per_cycle`` points a
         cycle (``trace_outputs``: the run's ``outputs``): as :class:`clearsim.Result` objects, or
         with ``raw_traces`` as ``{"sample": raw run, "ideal": the ideal run on the same grid,
-        "columns": each output's monitored coordinate or joint index}``."""
+        "columns": each output's monitored coordinate or joint index}``. ``on_job(k, description,
+        settings)`` may change sample k's description and run settings before it runs (life.py
+        writes the worn state there); ``on_raw(k, raw)`` sees each completed run's raw result."""
         full = {name: np.atleast_1d(np.asarray(points[name], dtype=float)) if name in points else None for name in self.inputs}
         n = max((v.size for v in full.values() if v is not None), default=1)
         cols = {name: (v if v is not None else np.full(n, self.inputs[name].nominal)) for name, v in full.items()}
@@ -336,12 +339,18 @@ class Study(Model):
             for start in range(0, n, CHUNK):
                 stop = min(n, start + CHUNK)
                 jobs, errors = self._chunk_jobs(cols, start, stop, keep_traces, points_per_cycle, trace_outputs, check_assembly)
-                raws = run_all([j.mechanism.description() for j in jobs], [j.settings for j in jobs], self.executor, self.chunk_size, False, what)
+                descriptions = [j.mechanism.description() for j in jobs]
+                if on_job is not None:
+                    for job, d in zip(jobs, descriptions):
+                        on_job(job.k, d, job.settings)
+                raws = run_all(descriptions, [j.settings for j in jobs], self.executor, self.chunk_size, False, what)
                 for job, raw in zip(jobs, raws):
                     k = job.k
                     if failed(raw):
                         errors[k] = str(error_of(raw))
                         continue
+                    if on_raw is not None:
+                        on_raw(k, raw)
                     mons = raw["monitors"]
                     for i, (o, lim, c) in enumerate(zip(self.outputs, self.limits, job.clearances)):
                         mon = mons[i]
@@ -386,7 +395,7 @@ class Study(Model):
             m = self.build(**params)
             t0, t1, period = self._window(params)
             if check_assembly:
-                self._check_first_assembly(m, t0)
+                self._check_first_assembly(m, 0.0)  # where the run starts (from the t = 0 poses), not the window's start
             tracing = k < keep
             t_ref, refine = reference_grid(t0, t1, period, points_per_cycle if tracing else None)
             grid = output_grid(t0, t1, period, points_per_cycle) if tracing else np.array([t0, t1])
@@ -507,6 +516,28 @@ class Study(Model):
     # ------------------------------------------------------------------ methods of other rooms
     # Reliability over life (life.py) and active-learning surrogates (akmcs.py) add their
     # methods here, each a thin call into its own module (as Model's methods call form.py etc.).
+    def life(
+        self, cycles: Sequence[float], n: int, seed: Optional[int] = 0, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None,
+        settle: Optional[float] = None, on_failure: str = "fail", confidence: float = 0.95,
+    ) -> Any:  # fmt: skip
+        """p_f against operating cycles with Archard wear fed back (each worn joint needs
+        ``Archard(..., feedback=True)``): ``n`` samples each run through its life in blocks of
+        ``settle`` + ``cycles`` turns, the worn depths extrapolated between blocks (cycle
+        jumping, at most ``max_growth`` × the clearance of growth and ``max_jump`` cycles a
+        jump). Returns a :class:`~clearsim.reliability.life.LifeResult` (its ``life_at(R)``: the
+        cycles at which the reliability falls to R). See docs/reliability.md, "Reliability over life"."""
+        from .life import study_life
+
+        return study_life(self, cycles, n, seed, max_growth=max_growth, max_jump=max_jump, settle=settle, on_failure=on_failure, confidence=confidence)
+
+    def life_model(self, cycles: float, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None, settle: Optional[float] = None) -> Any:
+        """The limit state "failure by ``cycles`` operating cycles" as a model of its own, each
+        evaluation one life in blocks (:class:`~clearsim.reliability.life.LifeModel`): its
+        ``ak_mcs``, ``form`` or ``importance_sampling`` answer p_f at that life in fewer lives
+        than :meth:`life`'s Monte Carlo."""
+        from .life import LifeModel
+
+        return LifeModel(self, cycles, max_growth=max_growth, max_jump=max_jump, settle=settle)
 
 
 def _check_failures(ev: Evaluation, on_failure: str) -> None:

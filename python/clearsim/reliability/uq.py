@@ -6,11 +6,12 @@ simulations in parallel — and the methods work in the standard normal space ``
 independent inputs (``x = F⁻¹(Φ(u))``, docs/physics.md §6). Rooms: :mod:`.form` (FORM on noisy
 limit states, series systems), :mod:`.sampling` (importance sampling, subset simulation),
 :mod:`.sobol` (Sobol indices by sampling or polynomial chaos), :mod:`.tolerance` (tolerance
-design), :mod:`.bridge` (OpenTURNS' view of a model).
+design), :mod:`.akmcs` (AK-MCS, AK-IS: few runs), :mod:`.bridge` (OpenTURNS' view of a model).
 """
 
 from __future__ import annotations
 
+from .akmcs import ak_is, ak_mcs
 from .bridge import event as _event
 from .bridge import normal_interval as _interval
 from .bridge import ot as _ot
@@ -23,5 +24,5 @@ from .tolerance import ToleranceResult, tolerance
 __all__ = [
     "FormResult", "SystemFormResult", "SamplingResult", "SobolResult", "ToleranceResult",
     "form", "system_form", "series_probability", "ditlevsen_bounds", "importance_sampling", "subset", "sobol", "tolerance",
-    "_ot", "_seed", "_event", "_interval",
+    "ak_mcs", "ak_is", "_ot", "_seed", "_event", "_interval",
 ]  # fmt: skip
