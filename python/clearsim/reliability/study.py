@@ -395,7 +395,7 @@ class Study(Model):
             m = self.build(**params)
             t0, t1, period = self._window(params)
             if check_assembly:
-                self._check_first_assembly(m, 0.0)  # where the run starts (from the t = 0 poses), not the window's start
+                self._check_first_assembly(m, t0)  # the pose at t = 0, then the drivers followed to the window's start
             tracing = k < keep
             t_ref, refine = reference_grid(t0, t1, period, points_per_cycle if tracing else None)
             grid = output_grid(t0, t1, period, points_per_cycle) if tracing else np.array([t0, t1])
