@@ -81,12 +81,8 @@ def test_compressor_takes_the_gas_work_of_its_table_each_turn():
 
 def test_compressor_reliability_study_from_the_cli(tmp_path, capsys):
     """The scene's [study]: FORM on the two pins' clearance tolerances."""
-    text = (SCENES / "compressor.toml").read_text()
-    # TODO(lead): drop this override once starts after t = 0 work (issue 28 item 1, branch run-core):
-    # the scene skips the start-up turn (skip_cycles = 1.0), which fails on main today.
-    text = text.replace("skip_cycles = 1.0", "skip_cycles = 0.0")
-    scene = tmp_path / "compressor.toml"
-    scene.write_text(text)
+    scene = SCENES / "compressor.toml"
+    assert "skip_cycles = 1.0" in scene.read_text()  # the start-up turn is skipped (a start after t = 0)
     out = tmp_path / "rel"
     assert main(["reliability", str(scene), "-o", str(out), "-q", "--no-plots"]) == 0
     rows = (out / "reliability.csv").read_text().splitlines()
