@@ -43,12 +43,16 @@ def extreme_monitors(
 ) -> List[Dict[str, Any]]:
     """The core monitors (rust/monitor.rs, ``exact``) that track :meth:`Result.extremes` of the
     bodies and clearance joints named in ``which`` (``True``: all of them) over [t0, t_end] [s]."""
+    if not t_end > t0:
+        raise InputError(f"invalid extremes_from = {t0!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=t0)
     names = list(body_names) + list(joint_names) if which is True else ([] if which is False else list(which))
     for name in names:
         if not isinstance(name, str) or (name not in body_names and name not in joint_names):
             known = ", ".join(list(body_names) + list(joint_names))
             raise InputError(f"invalid extremes = {name!r}: no such body or clearance joint (known: {known})", field="extremes", value=name)
-    span = {"t_start": t0, "bin_width": t_end - t0, "exact": True}
+    # Four samples a step screen it for extremes (the step's ends are exact, the searches find
+    # what lies between): the same extremes as eight to round-off, at a third less cost.
+    span = {"t_start": t0, "bin_width": t_end - t0, "exact": True, "samples_per_step": 4}
     out: List[Dict[str, Any]] = []
     for name in dict.fromkeys(names):
         if name in body_names:
@@ -251,7 +255,7 @@ class Result:
         quantity (accelerations from the KKT solve, as stored; docs/performance.md, "Peaks"), so
         they are independent of ``dt_out`` and at least every stored output. The run must ask for
         them: ``simulate(..., extremes=["slider", "pin"])`` (or ``extremes=True`` for every body
-        and joint).
+        and joint), over the whole run or from ``extremes_from`` [s] on (e.g. the last revolution).
         """
         if name in self.body_names:
             check_choice("quantity", quantity, list(BODY_QUANTITIES))

@@ -37,6 +37,7 @@ class RunOptions(TypedDict, total=False):
     max_steps: int
     max_seconds: Optional[float]  # [s] of wall time
     extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
+    extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
 
 #: The components of a body's pose q = (x, y, θ), in the order of the state and of every result
 #: array: x, y [m] and theta [rad] (one word for them throughout: "component").
@@ -172,6 +173,7 @@ class Running:
         max_steps: int = 50_000_000,
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[str]] = False,
+        extremes_from: Optional[float] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`)."""
         t0 = check_finite("t0", t0)
@@ -233,7 +235,8 @@ class Running:
         if max_seconds is not None:
             settings["max_seconds"] = check_positive("max_seconds", max_seconds)
         if extremes is not False:
-            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, t0, t_end)
+            start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
+            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
@@ -265,10 +268,11 @@ class Running:
             Wall-time budget of the run [s] (default none): a run over it stops with a
             :class:`clearsim.SimulationError` ("wall-time budget ... used up at t = ...") and
             keeps its partial result.
-        extremes:
+        extremes, extremes_from:
             Bodies and clearance joints whose peaks to track at every step (``True``: all), for
-            :meth:`Result.extremes`: independent of ``dt_out``, unlike the maximum of the stored
-            outputs (a body costs 10–70 % more run time, docs/performance.md "Peaks").
+            :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on: independent of
+            ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
+            time; docs/performance.md, "Peaks").
 
         progress:
             Show a progress bar (simulated time, with the time left) for runs that take longer
