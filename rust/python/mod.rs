@@ -280,10 +280,17 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
 fn make_stop(py: Python<'_>, progress: Option<Py<PyAny>>) -> impl Fn(f64) -> bool + Sync {
     let start = Instant::now();
     let last = AtomicU64::new(0);
-    let on_main = py
-        .import("threading")
-        .and_then(|th| Ok(th.call_method0("current_thread")?.is(&th.call_method0("main_thread")?)))
-        .unwrap_or(true);
+    let on_main = match py.import("threading").and_then(|th| Ok(th.call_method0("current_thread")?.is(&th.call_method0("main_thread")?))) {
+        Ok(v) => v,
+        Err(e) => {
+            // A Ctrl-C that lands in these calls must not be lost: trip the signal again, for
+            // the first check of the run.
+            if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                unsafe { pyo3::ffi::PyErr_SetInterrupt() };
+            }
+            true
+        }
+    };
     let owner = std::thread::current().id();
     move |t: f64| {
         if progress.is_none() && !(on_main && std::thread::current().id() == owner) {
