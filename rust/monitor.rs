@@ -269,7 +269,7 @@ impl Monitor {
 
     /// Where the current step may hold an extremum beyond its samples: for the maximum
     /// (`sign` = 1) or the minimum (−1), the sample interval(s) around the step's best sample
-    /// when that sample comes within [`SEARCH_SLACK`] of the range of the running extreme.
+    /// when that sample comes within `SEARCH_SLACK` (5 %) of the range of the running extreme.
     /// A best sample at either end of the step is searched only if the parabola through it and
     /// its two neighbours still rises (for the maximum) towards the step's inside: else the
     /// extreme is that end, exact already.
@@ -328,7 +328,7 @@ impl Monitor {
 }
 
 /// The largest value of `f` on `[a, b]` (assumed to have one peak there) and where, by golden
-/// section: the ends are never evaluated (the caller has them), [`GOLDEN_ITERATIONS`] evaluations.
+/// section: the ends are never evaluated (the caller has them), `GOLDEN_ITERATIONS` (40) evaluations.
 pub fn golden_section<E>(a: f64, b: f64, mut f: impl FnMut(f64) -> Result<f64, E>) -> Result<(f64, f64), E> {
     let g = 0.5 * (5f64.sqrt() - 1.0);
     let (mut a, mut b) = (a, b);
