@@ -8,6 +8,12 @@
 //! The error is the monitored coordinate's displacement, velocity or acceleration minus a
 //! reference (the ideal mechanism's response, a cubic Hermite curve through its values and rates
 //! on a fine grid), or the raw value when there is no reference.
+//!
+//! With [`MonitorSpec::exact`] the signed extremes are located on the quantity itself, not only
+//! at the samples: every step whose samples come near the running maximum (or minimum) is
+//! searched by golden section on the exact quantity (the dense output's state; accelerations
+//! from a KKT solve there, as the stored outputs are), so the extremes are at least every value
+//! the run could store at any output time, whatever the output grid (`Result.extremes`).
 
 /// What is monitored: a derivative of a body coordinate, or a quantity of a clearance joint
 /// (then [`MonitorSpec::coordinate`] is the joint's index).
@@ -88,6 +94,9 @@ pub struct MonitorSpec {
     /// Dense-output samples per accepted step (the step's end included; ≥ 1).
     #[cfg_attr(feature = "serde", serde(default = "eight"))]
     pub samples_per_step: usize,
+    /// Locate the signed extremes on the exact quantity between the samples (module doc).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub exact: bool,
 }
 
 #[cfg(feature = "serde")]
@@ -148,7 +157,21 @@ pub struct MonitorResult {
     pub bin_abs: Vec<f64>,
     pub bin_sq: Vec<f64>,
     pub bin_time: Vec<f64>,
+    /// Largest and smallest signed error and their times \[s\] (−∞/+∞ and NaN before any
+    /// sample); located between the samples with [`MonitorSpec::exact`].
+    pub max: f64,
+    pub t_max: f64,
+    pub min: f64,
+    pub t_min: f64,
 }
+
+/// Fraction of the range (max − min) seen so far within which a step's best sample makes the
+/// step worth searching: the interior samples of an acceleration are differences of the dense
+/// velocity, close to the KKT value but not equal to it.
+const SEARCH_SLACK: f64 = 0.05;
+/// Golden-section iterations: the bracket (one sample interval) shrinks to 0.618^40 ≈ 4e-9 of
+/// itself, so the extremum's value is found to round-off (the quantity is flat there).
+const GOLDEN_ITERATIONS: usize = 40;
 
 /// The running state of a monitor during one run.
 #[derive(Debug, Clone)]
@@ -156,6 +179,9 @@ pub struct Monitor {
     pub spec: MonitorSpec,
     pub result: MonitorResult,
     last: Option<(f64, f64)>,
+    /// With [`MonitorSpec::exact`]: (t, signed error) of the current step's samples, the
+    /// previous step's end first.
+    step: Vec<(f64, f64)>,
 }
 
 impl Monitor {
@@ -170,8 +196,12 @@ impl Monitor {
             bin_abs: vec![0.0; b],
             bin_sq: vec![0.0; b],
             bin_time: vec![0.0; b],
+            max: f64::NEG_INFINITY,
+            t_max: f64::NAN,
+            min: f64::INFINITY,
+            t_min: f64::NAN,
         };
-        Monitor { spec, result, last: None }
+        Monitor { spec, result, last: None, step: Vec::new() }
     }
 
     fn bin(&self, t: f64) -> Option<usize> {
@@ -202,6 +232,15 @@ impl Monitor {
         let mid = self.last.and_then(|(t0, _)| if t0 >= self.spec.t_start { self.bin(0.5 * (t0 + t)) } else { None });
         if let Some(k) = self.bin(t) {
             let r = &mut self.result;
+            if self.spec.exact {
+                self.step.push((t, e));
+            }
+            if e > r.max {
+                (r.max, r.t_max) = (e, t);
+            }
+            if e < r.min {
+                (r.min, r.t_min) = (e, t);
+            }
             r.bin_max[k] = r.bin_max[k].max(a);
             r.bin_min[k] = r.bin_min[k].min(a);
             if a > r.peak {
@@ -227,6 +266,93 @@ impl Monitor {
         }
         self.last = Some((t, a));
     }
+
+    /// Where the current step may hold an extremum beyond its samples: for the maximum
+    /// (`sign` = 1) or the minimum (−1), the sample interval(s) around the step's best sample
+    /// when that sample comes within `SEARCH_SLACK` (5 %) of the range of the running extreme.
+    /// A best sample at either end of the step is searched only if the parabola through it and
+    /// its two neighbours still rises (for the maximum) towards the step's inside: else the
+    /// extreme is that end, exact already.
+    pub fn search_bracket(&self, sign: f64) -> Option<(f64, f64)> {
+        let s = &self.step;
+        let n = s.len();
+        if !self.spec.exact || n < 2 {
+            return None;
+        }
+        let r = &self.result;
+        let (best, i) = s.iter().enumerate().map(|(i, &(_, e))| (sign * e, i)).fold((f64::NEG_INFINITY, 0), |a, b| if b.0 > a.0 { b } else { a });
+        let record = if sign > 0.0 { r.max } else { -r.min };
+        if !(best >= record - SEARCH_SLACK * (r.max - r.min)) {
+            return None;
+        }
+        // Slope of the parabola through samples (a, b, c) at b's neighbour `at` ∈ {a, c}.
+        let slope_at_end = |a: (f64, f64), b: (f64, f64), c: (f64, f64), at_start: bool| {
+            let (d1, d2) = ((b.1 - a.1) / (b.0 - a.0), (c.1 - b.1) / (c.0 - b.0));
+            let curv = (d2 - d1) / (c.0 - a.0);
+            sign * if at_start { d1 - curv * (b.0 - a.0) } else { d2 + curv * (c.0 - b.0) }
+        };
+        if i == 0 {
+            if n >= 3 && slope_at_end(s[0], s[1], s[2], true) <= 0.0 {
+                return None;
+            }
+            Some((s[0].0, s[1].0))
+        } else if i == n - 1 {
+            if n >= 3 && slope_at_end(s[n - 3], s[n - 2], s[n - 1], false) >= 0.0 {
+                return None;
+            }
+            Some((s[n - 2].0, s[n - 1].0))
+        } else {
+            Some((s[i - 1].0, s[i + 1].0))
+        }
+    }
+
+    /// A value of the error found between the samples (by [`golden_section`]): kept if it
+    /// beats the running extreme.
+    pub fn record_extreme(&mut self, t: f64, e: f64) {
+        let r = &mut self.result;
+        if e > r.max {
+            (r.max, r.t_max) = (e, t);
+        }
+        if e < r.min {
+            (r.min, r.t_min) = (e, t);
+        }
+    }
+
+    /// Forget the step's samples but its end (the next step's first sample).
+    pub fn end_step(&mut self) {
+        if let Some(&last) = self.step.last() {
+            self.step.clear();
+            self.step.push(last);
+        }
+    }
+}
+
+/// The largest value of `f` on `[a, b]` (assumed to have one peak there) and where, by golden
+/// section: the ends are never evaluated (the caller has them), `GOLDEN_ITERATIONS` (40) evaluations.
+pub fn golden_section<E>(a: f64, b: f64, mut f: impl FnMut(f64) -> Result<f64, E>) -> Result<(f64, f64), E> {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (a, b);
+    let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
+    let (mut f1, mut f2) = (f(x1)?, f(x2)?);
+    let mut best = if f1 >= f2 { (x1, f1) } else { (x2, f2) };
+    for _ in 2..GOLDEN_ITERATIONS {
+        if f1 >= f2 {
+            (b, x2, f2) = (x2, x1, f1);
+            x1 = b - g * (b - a);
+            f1 = f(x1)?;
+            if f1 > best.1 {
+                best = (x1, f1);
+            }
+        } else {
+            (a, x1, f1) = (x1, x2, f2);
+            x2 = a + g * (b - a);
+            f2 = f(x2)?;
+            if f2 > best.1 {
+                best = (x2, f2);
+            }
+        }
+    }
+    Ok(best)
 }
 
 #[cfg(test)]
@@ -243,6 +369,7 @@ mod tests {
             bins: 4,
             limit,
             samples_per_step: 8,
+            exact: false,
         }
     }
 
@@ -265,6 +392,35 @@ mod tests {
             assert!((r.bin_time[k] - 0.25).abs() < 1e-9);
             assert!((r.bin_max[k] - 1.0).abs() < 1e-6 && r.bin_min[k] < 1e-3);
         }
+    }
+
+    /// Golden section finds a smooth peak between samples to round-off in its value; an exact
+    /// monitor fed a coarse sampling of cos(2πt) finds max 1 at t = 1 and min −1 at t = 1/2.
+    #[test]
+    fn exact_extremes_between_coarse_samples() {
+        let (t, v) = golden_section(0.0, 1.0, |t: f64| Ok::<f64, ()>(1.0 - (t - 0.3).powi(2))).unwrap();
+        assert!((t - 0.3).abs() < 1e-7 && (v - 1.0).abs() < 1e-14, "{t} {v}");
+        let mut m = Monitor::new(MonitorSpec { exact: true, bins: 1, bin_width: 1.5, ..spec(None) });
+        let f = |t: f64| (2.0 * std::f64::consts::PI * t).cos();
+        m.observe(0.0, f(0.0));
+        m.end_step();
+        // Steps of 0.3 s sampled at their ends and midpoints: none at t = 1/2 or 1.
+        for step in 0..5 {
+            let t0 = 0.3 * step as f64;
+            for t in [t0 + 0.15, t0 + 0.3] {
+                m.observe(t, f(t));
+            }
+            for sign in [1.0, -1.0] {
+                if let Some((a, b)) = m.search_bracket(sign) {
+                    let (t, v) = golden_section(a, b, |t| Ok::<f64, ()>(sign * f(t))).unwrap();
+                    m.record_extreme(t, sign * v);
+                }
+            }
+            m.end_step();
+        }
+        let r = &m.result;
+        assert!((r.min + 1.0).abs() < 1e-14 && (r.t_min - 0.5).abs() < 1e-7, "{} at {}", r.min, r.t_min);
+        assert!((r.max - 1.0).abs() < 1e-14 && (r.t_max - 1.0).abs() < 1e-7 || r.t_max == 0.0, "{} at {}", r.max, r.t_max);
     }
 
     /// The Hermite reference reproduces a cubic exactly.

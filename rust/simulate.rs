@@ -11,7 +11,7 @@ use crate::energy::{EnergyBook, Powers};
 use crate::wear::{WearBook, WearRate};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
 use crate::model::Model;
-use crate::monitor::{Monitor, MonitorResult, MonitorSpec, Quantity};
+use crate::monitor::{golden_section, Monitor, MonitorResult, MonitorSpec, Quantity};
 use crate::rank;
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
@@ -366,7 +366,7 @@ impl<'a> MechanismSystem<'a> {
         // Refine the largest interior acceleration error of each monitor with a KKT solve.
         let mut result = Ok(());
         for j in 0..nm {
-            if self.monitors[j].spec.quantity != Quantity::Acceleration || k < 2 {
+            if self.monitors[j].spec.quantity != Quantity::Acceleration || self.monitors[j].spec.exact || k < 2 {
                 continue;
             }
             let m = &self.monitors[j];
@@ -410,7 +410,36 @@ impl<'a> MechanismSystem<'a> {
                 self.monitors[j].observe(at(i), v);
             }
         }
+        if self.monitors.iter().any(|m| m.spec.exact) {
+            self.search_extremes(dense)?;
+        }
         Ok(())
+    }
+
+    /// Locate the extremes of the exact monitors between the samples of the step just observed
+    /// (rust/monitor.rs: `Monitor::search_bracket`, `golden_section`).
+    fn search_extremes(&mut self, dense: &dyn DenseOutput) -> Result<()> {
+        let mut s = std::mem::take(&mut self.scratch);
+        let mut result = Ok(());
+        for j in 0..self.monitors.len() {
+            for sign in [1.0, -1.0] {
+                let Some((a, b)) = self.monitors[j].search_bracket(sign) else { continue };
+                let found = golden_section(a, b, |t| {
+                    dense.eval(t, &mut s);
+                    if self.monitors[j].spec.quantity == Quantity::Acceleration {
+                        self.ws.evaluate(self.model, &self.memory, t, &s)?;
+                    }
+                    Ok(sign * self.monitors[j].error(t, self.monitored_value(j, &s)))
+                });
+                match found {
+                    Ok((t, v)) => self.monitors[j].record_extreme(t, sign * v),
+                    Err(e) => result = Err(e),
+                }
+            }
+            self.monitors[j].end_step();
+        }
+        self.scratch = s;
+        result
     }
 
     /// The first switch of a clearance joint in (t0, t1] (see [`OdeSystem::switching_point`]).
@@ -695,12 +724,14 @@ impl OdeSystem for MechanismSystem<'_> {
         self.last_t = t1;
         self.last_y.copy_from_slice(y1);
         self.accepted += 1;
-        if self.accepted % 64 == 0 {
-            if let Some((start, seconds)) = self.budget {
-                if start.elapsed().as_secs_f64() > seconds {
-                    return Err(Error::TimeBudget { t: t1, seconds });
-                }
+        // The wall-time budget every step (reading the clock costs tens of ns, a step µs to ms):
+        // a run whose steps are slow stops within one step of its budget.
+        if let Some((start, seconds)) = self.budget {
+            if start.elapsed().as_secs_f64() > seconds {
+                return Err(Error::TimeBudget { t: t1, seconds });
             }
+        }
+        if self.accepted % 64 == 0 {
             if let Some(stop) = self.stop {
                 if stop(t1) {
                     return Err(Error::Interrupted { t: t1 });

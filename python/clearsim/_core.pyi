@@ -40,6 +40,7 @@ class Monitor(TypedDict):
     limit: NotRequired[Optional[float]]
     reference: NotRequired[Optional[Reference]]
     samples_per_step: NotRequired[int]
+    exact: NotRequired[bool]  # extremes located on the exact quantity between samples
 
 class RunSettings(TypedDict):
     """The settings dict of one run (rust/settings.rs; built by ``Mechanism.run_settings``).

@@ -11,8 +11,9 @@ eccentricity), and the factor written beside it. The links themselves stay at th
 from __future__ import annotations
 
 import math
+from functools import partial
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -135,128 +136,252 @@ def _convex_hull(points: np.ndarray) -> np.ndarray:
     return np.array(lower[:-1] + upper[:-1])
 
 
+def _rotate(th: float, v: Any) -> np.ndarray:
+    c, s = math.cos(th), math.sin(th)
+    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1]])
+
+
+def _place_polygon(patch: Any, body: Optional[int], corners: Sequence[Tuple[float, float]], q: np.ndarray) -> None:
+    patch.set_xy(np.array([_point(q, body, c) for c in corners]))
+
+
+def _place_line(line: Any, points: Callable[[np.ndarray], np.ndarray], q: np.ndarray) -> None:
+    line.set_data(*points(q).T)
+
+
+def _place_label(label: Any, points: Callable[[np.ndarray], np.ndarray], q: np.ndarray) -> None:
+    label.xy = tuple(points(q).mean(axis=0))
+
+
+def _place_circle(circle: Any, centre: Callable[[np.ndarray], np.ndarray], q: np.ndarray) -> None:
+    circle.set_center(tuple(centre(q)))
+
+
+def _place_spring(coil: Any, f: Dict[str, Any], width: float, q: np.ndarray) -> None:
+    coil.set_data(*_zigzag(_point(q, f["body_a"], f["point_a"]), _point(q, f["body_b"], f["point_b"]), width).T)
+
+
+def _ground_point(local: Sequence[float], q: np.ndarray) -> np.ndarray:
+    return _point(q, None, local)
+
+
+class Drawing:
+    """The artists of one drawing of a mechanism and how each follows the body coordinates q:
+    :meth:`update` moves them (``set_data``, ``set_xy``, ``set_center``, ...) without creating
+    any, so an animation redraws only these artists over a fixed background (:func:`animate`).
+    """
+
+    def __init__(self, ax: Any, desc: Dict[str, Any], q: np.ndarray, mag: float, size: float, labels: bool = True) -> None:
+        self.ax = ax
+        self.artists: List[Any] = []
+        self._updates: List[Callable[[np.ndarray], None]] = []
+        self._labels = labels
+        self._bodies(desc, size)
+        self._joints(desc, size)
+        self._clearance(desc, mag, size)
+        self._drives_and_forces(desc, size)
+        self.update(np.asarray(q, dtype=float))
+
+    def update(self, q: np.ndarray) -> None:
+        """Move every artist to the pose ``q``."""
+        for up in self._updates:
+            up(q)
+
+    # ------------------------------------------------------------------ artists
+    def _add(self, artist: Any) -> Any:
+        self.artists.append(artist)
+        return artist
+
+    def _patch(self, patch: Any) -> Any:
+        return self._add(self.ax.add_patch(patch))
+
+    def _line(self, **style: Any) -> Any:
+        return self._add(self.ax.plot([], [], **style)[0])
+
+    def _label(self, text: str, offset: Tuple[float, float], colour: str, **kw: Any) -> Any:
+        if not self._labels:
+            return None
+        return self._add(self.ax.annotate(text, (0.0, 0.0), xytext=offset, textcoords="offset points", fontsize=7, color=colour, zorder=6, **kw))
+
+    def _polygon(self, **style: Any) -> Any:
+        from matplotlib import patches
+
+        return self._patch(patches.Polygon(np.zeros((3, 2)), closed=True, **style))
+
+    def _support(self, where: Callable[[np.ndarray], np.ndarray], r: float) -> None:
+        """A hatched ground support under the point ``where(q)``."""
+        tri = self._polygon(facecolor="none", edgecolor=GROUND_COLOUR, lw=1.0, hatch="////", zorder=1)
+
+        def place(q: np.ndarray) -> None:
+            p = where(q)
+            tri.set_xy(np.array([p, p + [-1.6 * r, -2.4 * r], p + [1.6 * r, -2.4 * r]]))
+
+        self._updates.append(place)
+
+    # ------------------------------------------------------------------ elements
+    def _bodies(self, desc: Dict[str, Any], size: float) -> None:
+        att = _attachments(desc)
+        names = [b["name"] for b in desc["bodies"]]
+        slider = {j["body_b"] for j in desc["joints"] if j["kind"] == "prismatic"} | {p["slider_body"] for p in desc.get("prismatic_clearance_joints", [])}
+        block = 0.06 * size
+        for k in range(len(names)):
+            local = att.get(k, [])
+
+            def pts(q: np.ndarray, k: int = k, local: List[Tuple[float, float]] = local) -> np.ndarray:
+                return np.array([_point(q, k, p) for p in local] or [q[3 * k : 3 * k + 2]])
+
+            if k in slider or len(local) <= 1:
+                corners = np.array([[-block / 2, -block / 3], [block / 2, -block / 3], [block / 2, block / 3], [-block / 2, block / 3]])
+                box = self._polygon(facecolor="#cfe3f3", edgecolor=BODY_COLOUR, lw=1.5, zorder=2)
+                self._updates.append(partial(_place_polygon, box, k, [tuple(c) for c in corners]))
+            if len(local) == 2 or (len(local) > 2 and k in slider):
+                bar = self._line(color=BODY_COLOUR, lw=3.0, solid_capstyle="round", zorder=2)
+                self._updates.append(partial(_place_line, bar, pts))
+            elif len(local) > 2:
+                hull = [tuple(p) for p in _convex_hull(np.array(local))]  # a rigid motion keeps the hull
+                plate = self._polygon(facecolor="#cfe3f3", edgecolor=BODY_COLOUR, lw=2, alpha=0.9, zorder=2)
+                self._updates.append(partial(_place_polygon, plate, k, hull))
+            label = self._label(names[k], (4, 4), BODY_COLOUR)
+            if label is not None:
+                self._updates.append(partial(_place_label, label, pts))
+
+    def _joints(self, desc: Dict[str, Any], size: float) -> None:
+        from matplotlib import patches
+
+        pin = 0.012 * size
+        block = 0.06 * size
+        for j in desc["joints"]:
+            if j["kind"] == "revolute":
+
+                def at(q: np.ndarray, j: Dict[str, Any] = j) -> np.ndarray:
+                    return _point(q, j["body_b"], j["point_b"])
+
+                circle = self._patch(patches.Circle((0.0, 0.0), pin, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
+                self._updates.append(partial(_place_circle, circle, at))
+                if j["body_a"] is None or j["body_b"] is None:
+                    self._support(at, pin)
+                continue
+            # prismatic: the guide along its axis through the ground/guide point, two rails beside the slider
+            rails = [self._line(color=GROUND_COLOUR, lw=1.0, zorder=1) for _ in (-1, 1)]
+            guide = self._line(color=GROUND_COLOUR, lw=0.8, ls="--", zorder=1)
+
+            def prismatic(q: np.ndarray, j: Dict[str, Any] = j, rails: List[Any] = rails, guide: Any = guide) -> None:
+                _, th = _pose(q, j["body_a"])
+                u = _rotate(th, np.asarray(j["axis"], dtype=float))
+                u = u / max(float(np.hypot(*u)), 1e-300)
+                slider = np.array(q[3 * j["body_b"] : 3 * j["body_b"] + 2])
+                base = _point(q, j["body_a"], j["point_a"])
+                along = float(np.dot(slider - base, u))
+                n = np.array([-u[1], u[0]])
+                for rail, side in zip(rails, (-1, 1)):
+                    off = side * block / 3 * 1.15 * n
+                    rail.set_data(*np.array([slider + off - 0.8 * block * u, slider + off + 0.8 * block * u]).T)
+                guide.set_data(*np.array([base + (along - 0.35 * size) * u, base + (along + 0.35 * size) * u]).T)
+
+            self._updates.append(prismatic)
+
+    def _clearance(self, desc: Dict[str, Any], mag: float, size: float) -> None:
+        from matplotlib import patches
+
+        r_draw = BEARING_SIZE * size
+        for c in desc["clearance_joints"]:
+            ring = mag * c["clearance"]
+            rb = max(r_draw, ring / 0.6)  # a large magnification draws a larger bearing
+            bearing = self._patch(patches.Circle((0.0, 0.0), rb, facecolor="white", edgecolor=CLEARANCE_COLOUR, lw=1.5, zorder=4))
+            journal = self._patch(patches.Circle((0.0, 0.0), rb - ring, facecolor="#f6d5bf", edgecolor=CLEARANCE_COLOUR, lw=1.0, zorder=5))
+            label = self._label(f"{c['name']} (c = {c['clearance'] * 1e3:.3g} mm, ×{mag:g})", (6, -10), CLEARANCE_COLOUR)
+
+            def centre(q: np.ndarray, c: Dict[str, Any] = c) -> np.ndarray:
+                return _point(q, c["bearing_body"], c["bearing_point"])
+
+            def magnified(q: np.ndarray, c: Dict[str, Any] = c, bearing: Any = bearing, journal: Any = journal, label: Any = label) -> None:
+                b = centre(q)
+                e = _point(q, c["journal_body"], c["journal_point"]) - b
+                bearing.set_center(tuple(b))
+                journal.set_center(tuple(b + mag * e))
+                if label is not None:
+                    label.xy = tuple(b)
+
+            self._updates.append(magnified)
+            if c["bearing_body"] is None:
+                self._support(centre, r_draw)
+        block = 0.06 * size
+        for p in desc.get("prismatic_clearance_joints", []):
+            walls = [self._line(color=CLEARANCE_COLOUR, lw=1.2, zorder=1) for _ in (-1, 1)]
+            label = self._label("", (0, 6), CLEARANCE_COLOUR)
+
+            def play(q: np.ndarray, p: Dict[str, Any] = p, walls: List[Any] = walls, label: Any = label) -> None:
+                slider = np.array(q[3 * p["slider_body"] : 3 * p["slider_body"] + 2])
+                _, th = _pose(q, p["guide_body"])
+                u = _rotate(th, np.asarray(p["axis"], dtype=float))
+                u = u / max(float(np.hypot(*u)), 1e-300)
+                n = np.array([-u[1], u[0]])
+                base = _point(q, p["guide_body"], p["guide_point"])
+                lateral = float(np.dot(slider - base, n))
+                half = block / 3 + mag * p["clearance"]
+                along = float(np.dot(slider - base, u))
+                for wall, side in zip(walls, (-1, 1)):
+                    wall.set_data(*np.array([base + (along - 0.35 * size) * u + side * half * n, base + (along + 0.35 * size) * u + side * half * n]).T)
+                if label is not None:
+                    label.xy = tuple(base + along * u + half * n)
+                    label.set_text(f"{p['name']} (play {p['clearance'] * 1e3:.3g} mm, offset ×{mag:.0f}: {lateral * 1e6:.0f} µm)")
+
+            self._updates.append(play)
+
+    def _drives_and_forces(self, desc: Dict[str, Any], size: float) -> None:
+        from matplotlib import patches
+
+        pin = 0.012 * size
+        # Drivers and motors: a curved arrow at the driven body's centroid.
+        driven = [(d["body"], d["name"]) for d in desc["drivers"]] + [(f["body"], f["name"]) for f in desc.get("forces", []) if f["kind"] in ("motor", "torque")]
+        for body, name in driven:
+            arrow = self._patch(patches.FancyArrowPatch((0, 0), (1, 1), connectionstyle="arc3,rad=0.5", arrowstyle="-|>", mutation_scale=9, color=DRIVE_COLOUR, lw=1.2, zorder=6))
+            label = self._label(name, (2, 2), DRIVE_COLOUR)
+
+            def drive(q: np.ndarray, body: Optional[int] = body, arrow: Any = arrow, label: Any = label) -> None:
+                r, _ = _pose(q, body)
+                arrow.set_positions(tuple(r + [0.045 * size, 0]), tuple(r + [0, 0.045 * size]))
+                if label is not None:
+                    label.xy = tuple(r + [0.03 * size, 0.03 * size])
+
+            self._updates.append(drive)
+        # Springs and loads.
+        for f in desc.get("forces", []):
+            if f["kind"] == "spring_damper":
+                coil = self._line(color=FORCE_COLOUR, lw=1.2, zorder=3)
+                self._updates.append(partial(_place_spring, coil, f, 0.015 * size))
+                if f["body_a"] is None:
+                    self._support(partial(_ground_point, f["point_a"]), pin)
+            elif f["kind"] == "force":
+                arrow = self._patch(patches.FancyArrowPatch((0, 0), (1, 1), arrowstyle="-|>", mutation_scale=10, color=FORCE_COLOUR, lw=1.5, zorder=6))
+                label = self._label(f["name"], (3, 3), FORCE_COLOUR)
+
+                def load(q: np.ndarray, f: Dict[str, Any] = f, arrow: Any = arrow, label: Any = label) -> None:
+                    p = _point(q, f["body"], f["point"])
+                    u = _load_direction(f)
+                    if f.get("frame") == "body":
+                        u = _rotate(_pose(q, f["body"])[1], u)
+                    tail = p - 0.12 * size * u
+                    arrow.set_positions(tuple(tail), tuple(p))
+                    if label is not None:
+                        label.xy = tuple(tail)
+
+                self._updates.append(load)
+
+
 def draw(ax: Any, desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] = None, size: Optional[float] = None, labels: bool = True, t: Optional[float] = None) -> float:
     """Draw the mechanism ``desc`` (a :meth:`Mechanism.description`) at coordinates ``q`` on
     ``ax``. Returns the clearance magnification used."""
-    from matplotlib import patches
-
     q = np.asarray(q, dtype=float)
     size = size or extent(desc, q)
     mag = float(magnify) if magnify is not None else default_magnify(desc, size)
-    lw = 3.0
-    att = _attachments(desc)
-    names = [b["name"] for b in desc["bodies"]]
-    prismatic_slider = {j["body_b"] for j in desc["joints"] if j["kind"] == "prismatic"} | {p["slider_body"] for p in desc.get("prismatic_clearance_joints", [])}
-    block = 0.06 * size
-    # Bodies.
-    for k in range(len(names)):
-        pts = np.array([_point(q, k, p) for p in att.get(k, [])] or [q[3 * k : 3 * k + 2]])
-        if k in prismatic_slider or len(pts) == 1:
-            r, th = _pose(q, k)
-            corner = r + np.array([math.cos(th) * -block / 2 - math.sin(th) * -block / 3, math.sin(th) * -block / 2 + math.cos(th) * -block / 3])
-            ax.add_patch(patches.Rectangle(tuple(corner), block, 2 * block / 3, angle=math.degrees(th), facecolor="#cfe3f3", edgecolor=BODY_COLOUR, lw=1.5, zorder=2))
-            if len(pts) > 1:
-                ax.plot(pts[:, 0], pts[:, 1], color=BODY_COLOUR, lw=lw, solid_capstyle="round", zorder=2)
-        elif len(pts) == 2:
-            ax.plot(pts[:, 0], pts[:, 1], color=BODY_COLOUR, lw=lw, solid_capstyle="round", zorder=2)
-        else:
-            hull = _convex_hull(pts)
-            ax.add_patch(patches.Polygon(hull, closed=True, facecolor="#cfe3f3", edgecolor=BODY_COLOUR, lw=2, alpha=0.9, zorder=2))
-        if labels:
-            r = pts.mean(axis=0)
-            ax.annotate(names[k], tuple(r), xytext=(4, 4), textcoords="offset points", fontsize=7, color=BODY_COLOUR, zorder=6)
-    # Ideal joints.
-    pin = 0.012 * size
-    for j in desc["joints"]:
-        if j["kind"] == "revolute":
-            p = _point(q, j["body_b"], j["point_b"])
-            ax.add_patch(patches.Circle(tuple(p), pin, facecolor="white", edgecolor="black", lw=1.2, zorder=4))
-            if j["body_a"] is None or j["body_b"] is None:
-                _support(ax, p, pin)
-        else:  # prismatic: the guide line along its axis through the ground/guide point
-            r, th = _pose(q, j["body_a"])
-            a = np.asarray(j["axis"], dtype=float)
-            c, s = math.cos(th), math.sin(th)
-            u = np.array([c * a[0] - s * a[1], s * a[0] + c * a[1]]) / max(np.hypot(*a), 1e-300)
-            slider = np.array(q[3 * j["body_b"] : 3 * j["body_b"] + 2])
-            base = _point(q, j["body_a"], j["point_a"])
-            along = float(np.dot(slider - base, u))
-            n = np.array([-u[1], u[0]])
-            for side in (-1, 1):
-                off = side * block / 3 * 1.15 * n
-                seg = np.array([slider + off - 0.8 * block * u - 0.0 * along, slider + off + 0.8 * block * u])
-                ax.plot(seg[:, 0], seg[:, 1], color=GROUND_COLOUR, lw=1.0, zorder=1)
-            line = np.array([base + (along - 0.35 * size) * u, base + (along + 0.35 * size) * u])
-            ax.plot(line[:, 0], line[:, 1], color=GROUND_COLOUR, lw=0.8, ls="--", zorder=1)
-    # Clearance joints, magnified.
-    r_draw = BEARING_SIZE * size
-    for c in desc["clearance_joints"]:
-        b = _point(q, c["bearing_body"], c["bearing_point"])
-        jn = _point(q, c["journal_body"], c["journal_point"])
-        e = jn - b
-        ring = mag * c["clearance"]
-        rb = max(r_draw, ring / 0.6)  # a large magnification draws a larger bearing
-        ax.add_patch(patches.Circle(tuple(b), rb, facecolor="white", edgecolor=CLEARANCE_COLOUR, lw=1.5, zorder=4))
-        ax.add_patch(patches.Circle(tuple(b + mag * e), rb - ring, facecolor="#f6d5bf", edgecolor=CLEARANCE_COLOUR, lw=1.0, zorder=5))
-        if c["bearing_body"] is None:
-            _support(ax, b, r_draw)
-        if labels:
-            ax.annotate(f"{c['name']} (c = {c['clearance'] * 1e3:.3g} mm, ×{mag:g})", tuple(b), xytext=(6, -10), textcoords="offset points", fontsize=7, color=CLEARANCE_COLOUR, zorder=6)
-    for p in desc.get("prismatic_clearance_joints", []):
-        slider = np.array(q[3 * p["slider_body"] : 3 * p["slider_body"] + 2])
-        r, th = _pose(q, p["guide_body"])
-        a = np.asarray(p["axis"], dtype=float)
-        u = np.array([math.cos(th) * a[0] - math.sin(th) * a[1], math.sin(th) * a[0] + math.cos(th) * a[1]]) / max(np.hypot(*a), 1e-300)
-        n = np.array([-u[1], u[0]])
-        base = _point(q, p["guide_body"], p["guide_point"])
-        lateral = float(np.dot(slider - base, n))
-        half = block / 3 + mag * p["clearance"]
-        along = float(np.dot(slider - base, u))
-        for side in (-1, 1):
-            seg = np.array([base + (along - 0.35 * size) * u + side * (half + 0.0) * n, base + (along + 0.35 * size) * u + side * half * n])
-            ax.plot(seg[:, 0], seg[:, 1], color=CLEARANCE_COLOUR, lw=1.2, zorder=1)
-        if labels:
-            ax.annotate(f"{p['name']} (play {p['clearance'] * 1e3:.3g} mm, offset ×{mag:.0f}: {lateral * 1e6:.0f} µm)", tuple(base + along * u + half * n), xytext=(0, 6),
-                        textcoords="offset points", fontsize=7, color=CLEARANCE_COLOUR, zorder=6)  # fmt: skip
-    # Drivers and motors: a curved arrow at the driven body's centroid.
-    driven = [(d["body"], d["name"]) for d in desc["drivers"]] + [(f["body"], f["name"]) for f in desc.get("forces", []) if f["kind"] in ("motor", "torque")]
-    for body, name in driven:
-        r, _ = _pose(q, body)
-        ax.add_patch(patches.FancyArrowPatch(tuple(r + [0.045 * size, 0]), tuple(r + [0, 0.045 * size]), connectionstyle="arc3,rad=0.5", arrowstyle="-|>", mutation_scale=9, color=DRIVE_COLOUR, lw=1.2, zorder=6))
-        if labels:
-            ax.annotate(name, tuple(r + [0.03 * size, 0.03 * size]), xytext=(2, 2), textcoords="offset points", fontsize=7, color=DRIVE_COLOUR, zorder=6)
-    # Springs and loads.
-    for f in desc.get("forces", []):
-        if f["kind"] == "spring_damper":
-            a, b = _point(q, f["body_a"], f["point_a"]), _point(q, f["body_b"], f["point_b"])
-            z = _zigzag(a, b, 0.015 * size)
-            ax.plot(z[:, 0], z[:, 1], color=FORCE_COLOUR, lw=1.2, zorder=3)
-            if f["body_a"] is None:
-                _support(ax, a, pin)
-        elif f["kind"] == "force":
-            p = _point(q, f["body"], f["point"])
-            u = _load_direction(f)
-            if f.get("frame") == "body":
-                _, th = _pose(q, f["body"])
-                u = np.array([math.cos(th) * u[0] - math.sin(th) * u[1], math.sin(th) * u[0] + math.cos(th) * u[1]])
-            tail = p - 0.12 * size * u
-            ax.add_patch(patches.FancyArrowPatch(tuple(tail), tuple(p), arrowstyle="-|>", mutation_scale=10, color=FORCE_COLOUR, lw=1.5, zorder=6))
-            if labels:
-                ax.annotate(f["name"], tuple(tail), xytext=(3, 3), textcoords="offset points", fontsize=7, color=FORCE_COLOUR)
+    Drawing(ax, desc, q, mag, size, labels)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     if t is not None:
         ax.set_title(f"t = {t:.4f} s", fontsize=9)
     return mag
-
-
-def _support(ax: Any, p: np.ndarray, r: float) -> None:
-    """A hatched ground support under point ``p``."""
-    from matplotlib import patches
-
-    tri = np.array([p, p + [-1.6 * r, -2.4 * r], p + [1.6 * r, -2.4 * r]])
-    ax.add_patch(patches.Polygon(tri, closed=True, facecolor="none", edgecolor=GROUND_COLOUR, lw=1.0, hatch="////", zorder=1))
 
 
 def _limits(desc: Dict[str, Any], qs: np.ndarray) -> Tuple[Tuple[float, float], Tuple[float, float]]:
@@ -352,29 +477,78 @@ def animate(
             j = np.array([_point(q, c["journal_body"], c["journal_point"]) for q in q_all])
             orbit.append((j - b) / c["clearance"])
         upto = np.searchsorted(result.t, times, side="right")
+        # The background (axes, ticks, labels, clearance circles of the insets) is drawn once;
+        # each frame moves the mechanism's artists, the orbits and the time label and redraws
+        # only them over it (blitting).
+        drawing = Drawing(ax, desc, qs[0], mag, size)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+        ax.set_xlim(*xlim)
+        ax.set_ylim(*ylim)
+        clock = ax.set_title(f"t = {times[0]:.4f} s", fontsize=9)
+        moving: List[Any] = drawing.artists + [clock]
+        traces = []
+        for k, (axi, c) in enumerate(zip(insets, joints)):
+            th = np.linspace(0, 2 * math.pi, 120)
+            axi.plot(np.cos(th), np.sin(th), color="0.5", lw=0.8)
+            trace = axi.plot([], [], color=CLEARANCE_COLOUR, lw=0.8)[0]
+            dot = axi.plot([], [], "o", color=CLEARANCE_COLOUR, ms=4)[0]
+            traces.append((trace, dot))
+            moving += [trace, dot]
+            lim = max(1.1, float(np.abs(orbit[k]).max()) * 1.05)
+            axi.set_xlim(-lim, lim)
+            axi.set_ylim(-lim, lim)
+            axi.set_aspect("equal")
+            axi.set_title(f"{c['name']}: e/c", fontsize=8)
+            axi.tick_params(labelsize=6)
 
-        def frame(i: int) -> List[Any]:
-            ax.clear()
-            draw(ax, desc, qs[i], magnify=mag, size=size, t=times[i])
-            ax.set_xlim(*xlim)
-            ax.set_ylim(*ylim)
-            for k, (axi, c) in enumerate(zip(insets, joints)):
-                axi.clear()
-                th = np.linspace(0, 2 * math.pi, 120)
-                axi.plot(np.cos(th), np.sin(th), color="0.5", lw=0.8)
+        def frame(i: int) -> None:
+            drawing.update(qs[i])
+            clock.set_text(f"t = {times[i]:.4f} s")
+            for k, (trace, dot) in enumerate(traces):
                 o = orbit[k][: max(1, upto[i])]
-                axi.plot(o[:, 0], o[:, 1], color=CLEARANCE_COLOUR, lw=0.8)
-                axi.plot(o[-1, 0], o[-1, 1], "o", color=CLEARANCE_COLOUR, ms=4)
-                lim = max(1.1, float(np.abs(orbit[k]).max()) * 1.05)
-                axi.set_xlim(-lim, lim)
-                axi.set_ylim(-lim, lim)
-                axi.set_aspect("equal")
-                axi.set_title(f"{c['name']}: e/c", fontsize=8)
-                axi.tick_params(labelsize=6)
-            return []
+                trace.set_data(o[:, 0], o[:, 1])
+                dot.set_data(o[-1:, 0], o[-1:, 1])
 
-        anim = animation.FuncAnimation(fig, frame, frames=n, blit=False)
-        writer = animation.PillowWriter(fps=fps) if path.suffix.lower() == ".gif" else animation.FFMpegWriter(fps=fps)
         path.parent.mkdir(parents=True, exist_ok=True)
-        anim.save(str(path), writer=writer, dpi=dpi)
+        if path.suffix.lower() == ".gif":
+            _write_gif(fig, moving, frame, n, path, fps, dpi)
+        else:
+            def redraw(i: int) -> List[Any]:
+                frame(i)
+                return []
+
+            anim = animation.FuncAnimation(fig, redraw, frames=n, blit=False)
+            anim.save(str(path), writer=animation.FFMpegWriter(fps=fps), dpi=dpi)
     return path
+
+
+def _write_gif(fig: Any, moving: List[Any], frame: Callable[[int], None], n: int, path: Path, fps: int, dpi: int) -> None:
+    """Render ``n`` frames by blitting: the figure without the ``moving`` artists once, then per
+    frame ``frame(i)`` and only those artists over a copy of it; written with Pillow."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image
+
+    fig.set_dpi(dpi)
+    canvas = FigureCanvasAgg(fig)
+    for a in moving:
+        a.set_animated(True)
+    frame(0)
+    canvas.draw()  # the layout, and the background without the moving artists
+    fig.set_layout_engine("none")  # keep that layout: the frames redraw no axes
+    background = canvas.copy_from_bbox(fig.bbox)
+    images = []
+    palette: Any = None
+    for i in range(n):
+        frame(i)
+        canvas.restore_region(background)
+        for a in moving:
+            fig.draw_artist(a)
+        rgb = Image.frombuffer("RGBA", canvas.get_width_height(), bytes(canvas.buffer_rgba()), "raw", "RGBA", 0, 1).convert("RGB")
+        # One palette for every frame (the first frame's, which shows every colour used): no
+        # flicker between frames, and mapping to it is cheaper than a new palette per frame.
+        if palette is None:
+            palette = rgb.quantize(colors=255, method=Image.Quantize.MEDIANCUT)
+        images.append(rgb.quantize(palette=palette, dither=Image.Dither.NONE))
+    images[0].save(path, save_all=True, append_images=images[1:], duration=round(1000 / fps), loop=0, disposal=1)

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Optional, Tuple
+from dataclasses import dataclass
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -13,6 +14,55 @@ from .errors import InputError, check_choice
 JOINT_COLUMNS: List[str] = list(_core.JOINT_COLUMNS)
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
 CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
+
+#: What :meth:`Result.extremes` reports, per body (each of x, y, theta) and per clearance joint,
+#: with the units (body: x and y | theta).
+BODY_QUANTITIES = {"displacement": ("m", "rad"), "velocity": ("m/s", "rad/s"), "acceleration": ("m/s²", "rad/s²")}
+JOINT_QUANTITIES = {"eccentricity": "1 (e/c)", "force": "N", "contact_force": "N", "film_force": "N"}
+_COMPONENTS = ("x", "y", "theta")
+
+
+@dataclass(frozen=True)
+class Extremes:
+    """The largest and smallest value of one quantity over a run and when they occur
+    (:meth:`Result.extremes`): tracked at every integration step, not read off the stored
+    outputs, so they do not depend on the output grid."""
+
+    max: float
+    t_max: float  # [s]
+    min: float
+    t_min: float  # [s]
+    quantity: str
+    unit: str
+
+    def __str__(self) -> str:
+        return f"{self.quantity}: max {self.max:.6g} {self.unit} at t = {self.t_max:.6g} s, min {self.min:.6g} {self.unit} at t = {self.t_min:.6g} s"
+
+
+def extreme_monitors(
+    which: Union[bool, Sequence[str]], body_names: Sequence[str], joint_names: Sequence[str], t0: float, t_end: float
+) -> List[Dict[str, Any]]:
+    """The core monitors (rust/monitor.rs, ``exact``) that track :meth:`Result.extremes` of the
+    bodies and clearance joints named in ``which`` (``True``: all of them) over [t0, t_end] [s]."""
+    if not t_end > t0:
+        raise InputError(f"invalid extremes_from = {t0!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=t0)
+    names = list(body_names) + list(joint_names) if which is True else ([] if which is False else list(which))
+    for name in names:
+        if not isinstance(name, str) or (name not in body_names and name not in joint_names):
+            known = ", ".join(list(body_names) + list(joint_names))
+            raise InputError(f"invalid extremes = {name!r}: no such body or clearance joint (known: {known})", field="extremes", value=name)
+    # Four samples a step screen it for extremes (the step's ends are exact, the searches find
+    # what lies between): the same extremes as eight to round-off, at a third less cost.
+    span = {"t_start": t0, "bin_width": t_end - t0, "exact": True, "samples_per_step": 4}
+    out: List[Dict[str, Any]] = []
+    for name in dict.fromkeys(names):
+        if name in body_names:
+            b = list(body_names).index(name)
+            out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITIES]
+        else:
+            j = list(joint_names).index(name)
+            out += [{"coordinate": j, "quantity": q, **span} for q in JOINT_QUANTITIES]
+    return out
 
 
 class Result:
@@ -46,6 +96,8 @@ class Result:
         self.qd0: np.ndarray = raw["qd0"]
         #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate.
         self.description: Optional[Dict[str, Any]] = None
+        #: The monitors the run was given (its settings' ``monitors``); set by Mechanism.simulate.
+        self.monitor_specs: List[Dict[str, Any]] = []
 
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"
@@ -204,6 +256,43 @@ class Result:
             raise InputError("invalid ideal: it was not run on the same output grid", field="ideal", value=ideal)
         get = getters[quantity]
         return get(self, body)[:n] - get(ideal, body)[:n]
+
+    # ------------------------------------------------------------------ extremes
+    def extremes(self, name: str, quantity: str, component: Optional[str] = None) -> Extremes:
+        """Largest and smallest value of a body's ``quantity`` (``"displacement"``,
+        ``"velocity"`` or ``"acceleration"`` of ``component`` ``"x"``, ``"y"`` or ``"theta"``)
+        or of a clearance joint's (``"eccentricity"`` ratio e/c, ``"force"`` on the journal,
+        ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]) and their times [s], over the run.
+
+        Tracked at every accepted integration step and located between steps on the exact
+        quantity (accelerations from the KKT solve, as stored; docs/performance.md, "Peaks"), so
+        they are independent of ``dt_out`` and at least every stored output. The run must ask for
+        them: ``simulate(..., extremes=["slider", "pin"])`` (or ``extremes=True`` for every body
+        and joint), over the whole run or from ``extremes_from`` [s] on (e.g. the last revolution).
+        """
+        if name in self.body_names:
+            check_choice("quantity", quantity, list(BODY_QUANTITIES))
+            check_choice("component", component, list(_COMPONENTS), "(a body's quantity has three)")
+            c = _COMPONENTS.index(str(component))
+            coordinate = 3 * self.body_names.index(name) + c
+            unit = BODY_QUANTITIES[quantity][c == 2]
+        elif name in self.joint_names:
+            check_choice("quantity", quantity, list(JOINT_QUANTITIES))
+            if component is not None:
+                raise InputError(f"invalid component = {component!r}: a joint's {quantity} has none (give component=None)", field="component", value=component)
+            coordinate = self.joint_names.index(name)
+            unit = JOINT_QUANTITIES[quantity]
+        else:
+            known = ", ".join(self.body_names + self.joint_names)
+            raise InputError(f"invalid name = {name!r}: no such body or clearance joint (known: {known})", field="name", value=name)
+        results = self._raw.get("monitors") or []
+        for spec, found in zip(self.monitor_specs, results):
+            if spec.get("exact") and spec["coordinate"] == coordinate and spec["quantity"] == quantity and not spec.get("reference"):
+                what = f"{name}.{component} {quantity}" if component else f"{name} {quantity}"
+                return Extremes(float(found["max"]), float(found["t_max"]), float(found["min"]), float(found["t_min"]), what, unit)
+        raise InputError(
+            f"invalid name = {name!r}: this run did not track its extremes (pass extremes=[{name!r}] or extremes=True to simulate)", field="name", value=name
+        )
 
     # ------------------------------------------------------------------ data out
     def plot_mechanism(self, t: float, *, magnify: Optional[float] = None, ax: Any = None) -> Any:

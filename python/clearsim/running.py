@@ -9,14 +9,14 @@ from __future__ import annotations
 import json
 import math
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, TypedDict
+from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
 from .joints import MICROMETRE_FILM_RATIO
-from .result import Result
+from .result import Result, extreme_monitors
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
@@ -36,6 +36,8 @@ class RunOptions(TypedDict, total=False):
     h_min: float  # [s]
     max_steps: int
     max_seconds: Optional[float]  # [s] of wall time
+    extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
+    extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
 
 #: The components of a body's pose q = (x, y, θ), in the order of the state and of every result
 #: array: x, y [m] and theta [rad] (one word for them throughout: "component").
@@ -216,6 +218,8 @@ class Running:
         h_min: float = 1e-14,
         max_steps: int = 50_000_000,
         max_seconds: Optional[float] = None,
+        extremes: Union[bool, Sequence[str]] = False,
+        extremes_from: Optional[float] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`)."""
         t0 = check_finite("t0", t0)
@@ -276,6 +280,9 @@ class Running:
             settings["h_max"] = check_positive("h_max", h_max)
         if max_seconds is not None:
             settings["max_seconds"] = check_positive("max_seconds", max_seconds)
+        if extremes is not False:
+            start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
+            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
@@ -310,6 +317,11 @@ class Running:
             Wall-time budget of the run [s] (default none): a run over it stops with a
             :class:`clearsim.SimulationError` ("wall-time budget ... used up at t = ...") and
             keeps its partial result.
+        extremes, extremes_from:
+            Bodies and clearance joints whose peaks to track at every step (``True``: all), for
+            :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on: independent of
+            ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
+            time; docs/performance.md, "Peaks").
 
         progress:
             Show a progress bar (simulated time, with the time left) for runs that take longer
@@ -360,8 +372,11 @@ class Running:
         settings = self.run_settings(t_end, **kwargs)
         self._checked_assembly(settings["t0"])
         ideal = self.idealized()
-        # ``integrator="auto"`` resolves per mechanism: the ideal one has no film.
-        ideal_settings = ideal.run_settings(t_end, **kwargs)
+        # ``integrator="auto"`` resolves per mechanism: the ideal one has no film (nor joints).
+        ideal_kwargs: Dict[str, Any] = dict(kwargs)
+        if ideal_kwargs.get("extremes") not in (None, True, False):
+            ideal_kwargs["extremes"] = [n for n in ideal_kwargs["extremes"] if n in ideal.body_names]
+        ideal_settings = ideal.run_settings(t_end, **ideal_kwargs)
         raws = _core.run_batch([self.description(), ideal.description()], [settings, ideal_settings], 0)
         actual, twin = raws
         if isinstance(actual, BaseException):
@@ -463,6 +478,7 @@ class Running:
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)
         res.description = self.description()
+        res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []
         if settings is not None:
             res.stats["integrator"] = settings["integrator"]
         err = raw.get("error")

@@ -210,6 +210,10 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
         md.set_item("bin_abs", PyArray1::from_slice(py, &m.bin_abs))?;
         md.set_item("bin_sq", PyArray1::from_slice(py, &m.bin_sq))?;
         md.set_item("bin_time", PyArray1::from_slice(py, &m.bin_time))?;
+        md.set_item("max", m.max)?;
+        md.set_item("t_max", m.t_max)?;
+        md.set_item("min", m.min)?;
+        md.set_item("t_min", m.t_min)?;
         monitors.append(md)?;
     }
     if !out.monitors.is_empty() {
@@ -273,10 +277,30 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
 /// The check polled during long runs (at most every 50 ms): runs Python's signal handlers
 /// (Ctrl-C interrupts the run) and reports the simulated time reached to `progress(t)` if given
 /// (an exception raised there also stops the run).
-fn make_stop(progress: Option<Py<PyAny>>) -> impl Fn(f64) -> bool + Sync {
+///
+/// Python runs signal handlers only in its main thread, so without a progress callback the check
+/// takes the GIL only on the thread that made it, and only if that is Python's main thread: a
+/// run in a worker thread (or a batch's rayon threads) never waits for a GIL another thread holds
+/// (which used to hold runs past their wall-time budget: 16 s against 5 s in `clearsim paper`).
+fn make_stop(py: Python<'_>, progress: Option<Py<PyAny>>) -> impl Fn(f64) -> bool + Sync {
     let start = Instant::now();
     let last = AtomicU64::new(0);
+    let on_main = match py.import("threading").and_then(|th| Ok(th.call_method0("current_thread")?.is(&th.call_method0("main_thread")?))) {
+        Ok(v) => v,
+        Err(e) => {
+            // A Ctrl-C that lands in these calls must not be lost: trip the signal again, for
+            // the first check of the run.
+            if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                unsafe { pyo3::ffi::PyErr_SetInterrupt() };
+            }
+            true
+        }
+    };
+    let owner = std::thread::current().id();
     move |t: f64| {
+        if progress.is_none() && !(on_main && std::thread::current().id() == owner) {
+            return false;
+        }
         let now = start.elapsed().as_millis() as u64;
         if now.saturating_sub(last.load(Ordering::Relaxed)) < 50 {
             return false;
@@ -379,7 +403,7 @@ impl CompiledModel {
     fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let rs = read_settings(settings.as_any())?;
         let model = &self.model;
-        let stop = make_stop(progress);
+        let stop = make_stop(py, progress);
         let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
         output_to_dict(py, model, &out)
     }
@@ -402,7 +426,9 @@ impl CompiledModel {
     }
 
     fn build(py: Python<'_>, desc: MechanismDesc) -> PyResult<Self> {
-        let model = Model::compile(&desc).map_err(|e| to_pyerr(py, &e))?;
+        // Without the GIL: a finite-bearing table built here takes seconds, and other Python
+        // threads (the runs of a thread pool, their stop checks) must not wait for it.
+        let model = py.detach(|| Model::compile(&desc)).map_err(|e| to_pyerr(py, &e))?;
         let ws = Workspace::new(&model);
         let mem = vec![ImpactMemory::default(); model.clearance.len()];
         Ok(CompiledModel { model, desc, rhs_ws: Mutex::new((ws, mem)) })
@@ -435,7 +461,7 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, sett
     for rs in &settings {
         rs.validate().map_err(|e| to_pyerr(py, &e))?;
     }
-    let stop = make_stop(None);
+    let stop = make_stop(py, None);
     let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
     for (d, o) in descs.iter().zip(outs) {

@@ -77,3 +77,34 @@ def test_cli_run_animates(tmp_path):
     assert main(["run", str(SCENES / "four_bar_spring.toml"), "-o", str(out), "--t-end", "0.02", "--no-plots", "--animate", str(gif), "--speed", "0.05", "-q"]) == 0
     with Image.open(gif) as im:
         assert im.n_frames == 10  # 0.02 s at 1/20 of real time, 25 frames/s
+
+
+@pytest.mark.parametrize("scene", ["engine.toml", "four_bar_spring.toml", "slider_crank_guide_clearance.toml", "nine_bar_lubricated.toml"])
+def test_a_drawing_moved_to_a_pose_matches_one_drawn_there(scene):
+    """Animations move the artists of one drawing (draw.Drawing.update) instead of drawing each
+    frame anew: moved from q0 to q1 they must be where a drawing made at q1 puts them."""
+    from matplotlib.figure import Figure
+
+    m = load_scene(SCENES / scene)
+    res = m.simulate(0.004, dt_out=1e-4, progress=False)
+    q0, q1 = draw.states_at(res, np.array([0.0, 0.004]))
+    size = draw.extent(res.description, q0)
+
+    def geometry(drawing):
+        out = []
+        for a in drawing.artists:
+            for getter in ("get_xydata", "get_xy", "get_center", "get_position"):
+                if hasattr(a, getter) and not (getter == "get_position" and hasattr(a, "get_xy")):
+                    out.append(np.asarray(getattr(a, getter)(), dtype=float).ravel())
+                    break
+            if hasattr(a, "xy") and not hasattr(a, "get_xy"):
+                out.append(np.asarray(a.xy, dtype=float))
+        return out
+
+    moved = draw.Drawing(Figure().add_subplot(), res.description, q0, 5.0, size)
+    moved.update(q1)
+    fresh = draw.Drawing(Figure().add_subplot(), res.description, q1, 5.0, size)
+    assert len(moved.artists) == len(fresh.artists) > 3
+    for a, b in zip(geometry(moved), geometry(fresh)):
+        assert np.allclose(a, b, rtol=0, atol=1e-12)
+    assert not all(np.allclose(a, b) for a, b in zip(geometry(draw.Drawing(Figure().add_subplot(), res.description, q0, 5.0, size)), geometry(fresh)))

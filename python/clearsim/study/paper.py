@@ -25,16 +25,21 @@ Entry point: :func:`run_paper_study`.
 
 from __future__ import annotations
 
+import os
 import time
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
-from typing import List
+from typing import Dict, List
 
 import numpy as np
 
 from ..errors import InputError, check_choice
 from .paper_files import RELIABILITY_HEADER, _error_files, _orbit_files, _reliability_files, _summary_csvs, _write_csv
 from .paper_report import _films_section, _report
-from .paper_runs import CASES, CLEARANCE_CASES, CLEARANCE_STUDY, FILMS, Case, FILM_RUN_BUDGET_S, GRID_DEG, GRID_DEG_QUICK, QUANTITIES, SPEED_STUDY, _analyse, _film_runs, _ideal_key, _max_ecc, _run_all
+from .paper_runs import (
+    CASES, CLEARANCE_CASES, CLEARANCE_STUDY, FILMS, Case, FILM_RUN_BUDGET_S, GRID_DEG, GRID_DEG_QUICK, PRINTED_FORM_STEPS, QUANTITIES, SPEED_STUDY, Run,
+    _analyse, _collect, _film_runs, _ideal_key, _max_ecc, _run_all, _submit, film_cases,
+)
 from .paper_trends import _trends
 
 # The parts: paper_runs (cases, runs, analysis), paper_trends (the paper's claims checked),
@@ -45,7 +50,10 @@ __all__ = ["CASES", "CLEARANCE_CASES", "CLEARANCE_STUDY", "FILMS", "QUANTITIES",
 # ====================================================================== entry point
 
 
-def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progress: bool = True, film: str = "long", compare_films: bool = True) -> Path:
+def run_paper_study(
+    out_dir: Path, cycles: int = 3, quick: bool = False, progress: bool = True, film: str = "long", compare_films: bool = True,
+    printed_form_steps: int = PRINTED_FORM_STEPS,
+) -> Path:
     """Run the paper's study (docs/physics.md §7) and write figures, CSV files and ``report.md`` to ``out_dir``.
 
     Parameters
@@ -64,7 +72,12 @@ def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progres
         the paper's model corrected), ``"short"``, ``"finite"`` (L/D = 2.5 from the Reynolds
         equation) or ``"long_paper"`` (the printed closed forms).
     compare_films:
-        Also run the lubricated cases under the other film models and compare them in the report.
+        Also run the lubricated cases under the other film models and compare them in the report
+        (in the background, while the figures are drawn).
+    printed_form_steps:
+        Step budget of each run with the paper's printed closed forms (``film="long_paper"``),
+        which stall the integrator: the default, ten times what the corrected long bearing needs
+        for a whole run, shows the stall in about half a second per run.
 
     Returns
     -------
@@ -82,9 +95,26 @@ def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progres
     from ..joints import FILM_MODELS
 
     check_choice("film", film, FILM_MODELS)
-    runs = _run_all(cycles, grid_deg, progress, film)
+    if isinstance(printed_form_steps, bool) or not isinstance(printed_form_steps, (int, np.integer)) or printed_form_steps < 1:
+        raise InputError(f"invalid printed_form_steps = {printed_form_steps!r}: must be a positive integer", field="printed_form_steps", value=printed_form_steps)
+    # The film-comparison runs start first and go on in the background (the core releases the
+    # GIL) while the study's own runs, then its figures (one Python thread), take the rest.
+    background = ThreadPoolExecutor(max_workers=max(1, min(2, os.cpu_count() or 1)))
+    pending = _submit(background, film_cases(film), cycles, grid_deg, FILM_RUN_BUDGET_S, printed_form_steps) if compare_films else {}
+    try:
+        runs = _run_all(cycles, grid_deg, progress, film, printed_form_steps)
+        return _study(out, runs, pending, cycles, quick, grid_deg, progress, film, printed_form_steps, start)
+    finally:
+        background.shutdown(wait=True, cancel_futures=True)
+
+
+def _study(
+    out: Path, runs: Dict[str, Run], pending: "Dict[Future[Run], Case]", cycles: int, quick: bool, grid_deg: float, progress: bool, film: str,
+    printed_steps: int, start: float,
+) -> Path:
+    """Analysis, figures, CSV files and report of the runs; the film-comparison runs ``pending``
+    are collected after the figures."""
     an = {key: _analyse(runs[key].case, runs[key], runs[_ideal_key(CASES[key])], cycles) for key in CLEARANCE_CASES}
-    films = _film_runs(runs, cycles, grid_deg, progress, film, FILM_RUN_BUDGET_S) if compare_films else None
     trends = _trends(an, cycles)
     pooled_scope = "pooled_cycle_1" if cycles == 1 else f"pooled_cycles_2-{cycles}"
     cyc = f"{cycles} cycle{'s' if cycles > 1 else ''}"
@@ -124,6 +154,7 @@ def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progres
         },
     )  # fmt: skip
     files += _summary_csvs(out, runs, an, trends)
+    films = _film_runs(runs, _collect(pending, progress, "film models", by_film=True), cycles, film) if pending else None
 
     wall = time.perf_counter() - start
     report = out / "report.md"
@@ -134,6 +165,6 @@ def run_paper_study(out_dir: Path, cycles: int = 3, quick: bool = False, progres
     text = _report(out, runs, an, trends, cycles, quick, grid_deg, sorted(files), wall)
     if films is not None:
         marker = "## Files\n"
-        text = text.replace(marker, _films_section(films, cycles) + "\n" + marker, 1)
+        text = text.replace(marker, _films_section(films, cycles, printed_steps) + "\n" + marker, 1)
     report.write_text(text, encoding="utf-8")
     return report
