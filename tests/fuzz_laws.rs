@@ -67,7 +67,7 @@ fn film_model() -> impl Strategy<Value = FilmModel> {
 /// The finite bearing's table for every random geometry (one table: building one per random L/D
 /// would take seconds each; the table's evaluation is what is fuzzed).
 fn table() -> Option<&'static clearsim::laws::bearing_finite::FiniteBearingTable> {
-    Some(clearsim::laws::bearing_finite::table_for(0.4))
+    Some(clearsim::laws::bearing_finite_cache::table_for(0.4, clearsim::laws::FilmSupply::WidestGap))
 }
 
 fn geometry() -> impl Strategy<Value = BearingGeometry> {
@@ -272,6 +272,7 @@ fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> M
     let model = if lubricated {
         ClearanceModelDesc::Lubricated(LubricatedDesc {
             film: FilmModel::LongBearing,
+            supply: clearsim::laws::FilmSupply::WidestGap,
             viscosity: 0.04,
             length: 0.04,
             eps0: 2e-6,

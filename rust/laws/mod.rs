@@ -13,17 +13,20 @@
 //! (bearing centre → journal centre) and along `t` = `n` turned +90°.
 
 pub mod bearing_finite;
+pub mod bearing_finite_cache;
 pub mod bearing_long;
 pub mod bearing_short;
 pub mod contact;
 pub mod film;
 pub mod friction;
+pub mod geometry;
 pub mod quadrature;
 pub mod transition;
 
 pub use bearing_long::{long_bearing_centre_limit, long_bearing_force, long_bearing_force_quadrature, long_bearing_paper_closed_form, long_bearing_pressure};
 pub use bearing_short::{short_bearing_force, short_bearing_pressure, short_bearing_pressure_integrated};
 pub use contact::{hysteresis_factor, stiffness_internal, stiffness_paper_printed, ContactLaw, NormalLaw};
-pub use film::{attitude_angle, film_force, BearingGeometry, FilmModel, FilmState, FILM_EPS_CEILING};
+pub use film::{film_force, FilmModel};
+pub use geometry::{attitude_angle, BearingGeometry, FilmState, FilmSupply, FILM_EPS_CEILING};
 pub use friction::ModifiedCoulomb;
 pub use transition::{film_eps, small_eccentricity_scale, transition_weights};

@@ -3,6 +3,7 @@
 
 use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
+use crate::laws::geometry::FilmSupply;
 
 /// A rigid body: reference point at the centroid (docs/physics.md §1, P19).
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
@@ -113,6 +114,10 @@ pub struct WearDesc {
 pub struct LubricatedDesc {
     #[cfg_attr(feature = "serde", serde(default))]
     pub film: FilmModel,
+    /// Where the finite film's pressure is ambient (`film = "finite"` only; docs/physics.md §4):
+    /// on the line of the widest gap (default) or nowhere (a periodic film).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub supply: FilmSupply,
     /// Dynamic viscosity μ [Pa s].
     pub viscosity: f64,
     /// Bearing length L \[m\].

@@ -201,7 +201,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
             &l.dry,
             Some(Film {
                 model: l.film,
-                table: (l.film == crate::laws::FilmModel::Finite).then(|| crate::laws::bearing_finite::table_for(2.0 * c.journal_radius / l.length)),
+                table: (l.film == crate::laws::FilmModel::Finite).then(|| crate::laws::bearing_finite_cache::table_for(2.0 * c.journal_radius / l.length, l.supply)),
                 geometry: BearingGeometry {
                     viscosity: l.viscosity,
                     journal_radius: c.journal_radius,
