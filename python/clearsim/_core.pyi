@@ -93,7 +93,19 @@ def run_batch(
 run_batch_py = run_batch
 
 def film_force(
-    film: str, viscosity: float, journal_radius: float, clearance: float, length: float, eps: float, eps_dot: float, wedge: float
+    film: str,
+    viscosity: float,
+    journal_radius: float,
+    clearance: float,
+    length: float,
+    eps: float,
+    eps_dot: float,
+    wedge: float,
+    supply: str = "widest_gap",
 ) -> Tuple[float, float]:
     """Film force (F_ξ, F_η) [N] on the journal (docs/physics.md §4); film one of long, short,
-    long_paper, finite; SI units, ε̇ [1/s], wedge speed [rad/s]."""
+    long_paper, finite; SI units, ε̇ [1/s], wedge speed [rad/s]; supply (finite film) widest_gap
+    or none."""
+
+def finite_table_counts() -> Tuple[int, int]:
+    """Finite-bearing tables (solved, loaded from the disk cache) by this process so far."""

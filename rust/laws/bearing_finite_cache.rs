@@ -17,7 +17,7 @@ use std::sync::{Mutex, OnceLock};
 
 /// Version of the Reynolds solver and of the table's layout: bump it on any change that alters a
 /// table's numbers, so that older cache files are ignored.
-pub const SOLVER_VERSION: u32 = 2;
+pub const SOLVER_VERSION: u32 = 3;
 
 const MAGIC: &[u8; 8] = b"CSFBTAB\0";
 

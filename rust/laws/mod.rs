@@ -17,6 +17,7 @@ pub mod bearing_finite_cache;
 pub mod bearing_long;
 pub mod bearing_short;
 pub mod contact;
+pub mod contact_line;
 pub mod film;
 pub mod friction;
 pub mod geometry;

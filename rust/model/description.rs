@@ -82,6 +82,9 @@ pub struct DryDesc {
     pub stiffness: Option<f64>,
     /// Use the paper's printed stiffness (R_b + R_j in the denominator of P4) instead.
     pub stiffness_paper_printed: bool,
+    /// Pin length L \[m\] of a line contact (`Dry(stiffness_form="cylindrical")`, Johnson's
+    /// cylinders, docs/physics.md §3) instead of the point-contact stiffness; `None`: point contact.
+    pub cylinder_length: Option<f64>,
     /// Sliding friction coefficient c_f (≥ 0).
     pub friction: f64,
     /// Modified-Coulomb speed limits v0 < v1 [m/s].
@@ -387,6 +390,7 @@ impl DryDesc {
             exponent: 1.5,
             stiffness: None,
             stiffness_paper_printed: false,
+            cylinder_length: None,
             friction: 0.1,
             v0: 1e-4,
             v1: 1e-2,
