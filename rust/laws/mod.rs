@@ -19,6 +19,7 @@ pub mod bearing_short;
 pub mod contact;
 pub mod contact_line;
 pub mod film;
+pub mod film_friction;
 pub mod friction;
 pub mod geometry;
 pub mod quadrature;
