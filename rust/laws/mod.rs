@@ -12,6 +12,7 @@
 //! Film-force convention everywhere: `(F_ξ, F_η)` is the force ON THE JOURNAL along `n`
 //! (bearing centre → journal centre) and along `t` = `n` turned +90°.
 
+pub mod asperity;
 pub mod bearing_finite;
 pub mod bearing_finite_cache;
 pub mod bearing_long;
@@ -24,6 +25,7 @@ pub mod friction;
 pub mod geometry;
 pub mod quadrature;
 pub mod transition;
+pub mod viscosity;
 
 pub use bearing_long::{long_bearing_centre_limit, long_bearing_force, long_bearing_force_quadrature, long_bearing_paper_closed_form, long_bearing_pressure};
 pub use bearing_short::{short_bearing_force, short_bearing_pressure, short_bearing_pressure_integrated};
