@@ -200,13 +200,11 @@ class Lubricated:
         positive pressure; the paper's model), ``"short"`` (Ocvirk short bearing), ``"finite"``
         (any 1/16 ≤ L/D ≤ 16: the Reynolds equation with the Reynolds cavitation condition solved
         once per L/D into a table, a few seconds the first time on a machine, then read from the
-        user cache directory; within 1 % of Butenschön's tables, see ``supply``) or ``"long_paper"`` (the paper's printed closed forms P13–P14, wrong
-        for a receding journal; for comparison only, and they can stall the integrator).
-        Measured against ``"finite"`` (Sommerfeld number, pure rotation | approaching squeeze;
-        ``python benches/finite_bearing.py``): the long form is +250 % | +330 % at L/D = 1,
-        +40 % | +100 % at L/D = 2, +17 % | +47 % at L/D = 2.5 (ε = 0.5), −12 % | +26 % at L/D = 4
-        and −31 % | +12 % at L/D = 8; the short form is +3 % at L/D = 1/4, +20 % at L/D = 1/2 and
-        +69 % at L/D = 1 (ε = 0.5), and worse at larger ε. Neither closed form is accurate between
+        user cache directory; within 1 % of Butenschön's tables, see ``supply``) or
+        ``"long_paper"`` (the paper's printed closed forms P13–P14, wrong for a receding journal;
+        for comparison only, and they can stall the integrator). How far the long and short closed
+        forms are from ``"finite"`` across L/D is measured in docs/physics.md §4 (*Validity of the
+        closed forms*): neither is accurate between
         L/D ≈ 1/2 and 8: use ``"finite"`` there. Also for clearances of a few µm: a journal whirling
         at half the shaft speed sees a negative squeeze damping in the long bearing's
         half-Sommerfeld film, and with c ≤ 2 µm (R ≈ 10 mm) the run can crawl; the finite film damps

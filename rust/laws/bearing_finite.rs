@@ -172,6 +172,14 @@ impl ReynoldsSolver {
 /// `J = I w(ε)`, `w = (1 − ε)² e^{2ε}` (bounded up to ε → 1 and flat at ε = 0, where a plain
 /// (1 − ε)² would make J fall by half over the first two rows), and interpolated by Catmull–Rom
 /// splines in both.
+///
+/// Through the centre: the line of the widest gap turns by π as the journal passes the bearing
+/// centre, so the supply line's film jumps there (a squeeze through the centre at L/D = 2.5 meets
+/// a 4.5× weaker film receding than approaching, both at ε → 0). Below
+/// [`SUPPLY_CENTRE_BAND`] a `WidestGap` table blends into the periodic film, which has no
+/// direction to refer to and is continuous through the centre:
+/// `I = (1 − w) I_line + w I_periodic`, `w = (1 − ε/ε_c)²` (the long film's centre blend,
+/// docs/physics.md §4); the periodic film's first rows are kept in `centre` for it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FiniteBearingTable {
     /// k = D/L.
@@ -185,25 +193,37 @@ pub struct FiniteBearingTable {
     pub n_theta_m: usize,
     /// J_ξ, J_η at (s index, θm index), row-major in s.
     pub j: Vec<(f64, f64)>,
+    /// The periodic film's J at the first [`CENTRE_ROWS`] rows (`WidestGap` tables; else empty).
+    pub centre: Vec<(f64, f64)>,
 }
 
 /// Largest ε the table covers (the film is evaluated at min(ε, ε_max) ≤ this).
 pub const TABLE_EPS_MAX: f64 = 0.995;
 const S_STEP: f64 = 0.15;
 const THETA_M_CELLS: usize = 36; // 5°
+/// ε below which the supply line's film blends into the periodic one (see [`FiniteBearingTable`]).
+pub const SUPPLY_CENTRE_BAND: f64 = 0.05;
+/// Rows of the periodic film a `WidestGap` table keeps: s = 0, 0.15, 0.30 (the first cell's
+/// quadratic covers ε < 1 − e^{−0.15} = 0.139 > [`SUPPLY_CENTRE_BAND`]).
+pub const CENTRE_ROWS: usize = 3;
 
 impl FiniteBearingTable {
     /// The table's layout (key, ε and θm grids) without values.
     pub fn layout(k: f64, supply: FilmSupply, grid: ReynoldsGrid) -> Self {
         let s_max = -(1.0 - TABLE_EPS_MAX).ln();
         let n_s = (s_max / S_STEP).ceil() as usize + 1;
-        FiniteBearingTable { k, supply, grid, s_step: S_STEP, n_s, n_theta_m: THETA_M_CELLS + 1, j: Vec::new() }
+        FiniteBearingTable { k, supply, grid, s_step: S_STEP, n_s, n_theta_m: THETA_M_CELLS + 1, j: Vec::new(), centre: Vec::new() }
+    }
+
+    /// Rows of the periodic film the table keeps for its centre blend.
+    pub fn centre_rows(&self) -> usize {
+        if self.supply == FilmSupply::WidestGap { CENTRE_ROWS } else { 0 }
     }
 
     /// Solve the Reynolds equation on the table's grid (rows of ε in parallel).
     pub fn build(k: f64, supply: FilmSupply, grid: ReynoldsGrid) -> Self {
         let layout = Self::layout(k, supply, grid);
-        let row = |is: usize| -> Vec<(f64, f64)> {
+        let row = |(is, supply): (usize, FilmSupply)| -> Vec<(f64, f64)> {
             let eps = 1.0 - (-(is as f64) * layout.s_step).exp();
             let mut solver = ReynoldsSolver::new(k, supply, grid);
             let w = load_weight(eps);
@@ -214,26 +234,13 @@ impl FiniteBearingTable {
                 })
                 .collect()
         };
-        let rows: Vec<Vec<(f64, f64)>> = {
+        let jobs: Vec<(usize, FilmSupply)> = (0..layout.n_s).map(|is| (is, supply)).chain((0..layout.centre_rows()).map(|is| (is, FilmSupply::None))).collect();
+        let mut rows: Vec<Vec<(f64, f64)>> = {
             use rayon::prelude::*;
-            (0..layout.n_s).into_par_iter().map(row).collect()
+            jobs.into_par_iter().map(row).collect()
         };
-        FiniteBearingTable { j: rows.into_iter().flatten().collect(), ..layout }
-    }
-
-    /// J at grid indices, θm index mirrored beyond [0, π] (θm → −θm flips J_η).
-    fn at(&self, is: isize, im: isize) -> (f64, f64) {
-        let is = is.clamp(0, self.n_s as isize - 1) as usize;
-        let last = self.n_theta_m as isize - 1;
-        let (m, flip) = if im < 0 {
-            (-im, true)
-        } else if im > last {
-            (2 * last - im, true)
-        } else {
-            (im, false)
-        };
-        let v = self.j[is * self.n_theta_m + m as usize];
-        if flip { (v.0, -v.1) } else { v }
+        let centre = rows.split_off(layout.n_s).into_iter().flatten().collect();
+        FiniteBearingTable { j: rows.into_iter().flatten().collect(), centre, ..layout }
     }
 
     /// Dimensionless load I at (ε, θm), θm ∈ [0, π].
@@ -241,31 +248,55 @@ impl FiniteBearingTable {
         let eps = eps.clamp(0.0, TABLE_EPS_MAX);
         let s = -(1.0 - eps).ln() / self.s_step;
         let m = theta_m.clamp(0.0, PI) / PI * (self.n_theta_m - 1) as f64;
-        let (is, fs) = split(s, self.n_s);
-        let (im, fm) = split(m, self.n_theta_m);
-        // In ε the first and last cells have no outer neighbour: a quadratic through three
-        // points there (θm has its mirror images instead).
-        let ws = if is == 0 {
-            let l = lagrange3(fs);
-            [0.0, l[0], l[1], l[2]]
-        } else if is as usize == self.n_s - 2 {
-            let l = lagrange3(fs + 1.0);
-            [l[0], l[1], l[2], 0.0]
-        } else {
-            catmull_rom(fs)
-        };
-        let wm = catmull_rom(fm);
-        let (mut x, mut y) = (0.0, 0.0);
-        for (a, wa) in ws.iter().enumerate() {
-            for (b, wb) in wm.iter().enumerate() {
-                let v = self.at(is + a as isize - 1, im + b as isize - 1);
-                x += wa * wb * v.0;
-                y += wa * wb * v.1;
-            }
-        }
         let w = load_weight(eps);
+        let (x, y) = interpolate(&self.j, self.n_s, self.n_theta_m, s, m);
+        if !self.centre.is_empty() && eps < SUPPLY_CENTRE_BAND {
+            let (xc, yc) = interpolate(&self.centre, CENTRE_ROWS, self.n_theta_m, s, m);
+            let b = (1.0 - eps / SUPPLY_CENTRE_BAND) * (1.0 - eps / SUPPLY_CENTRE_BAND);
+            return (((1.0 - b) * x + b * xc) / w, ((1.0 - b) * y + b * yc) / w);
+        }
         (x / w, y / w)
     }
+}
+
+/// J of `rows` (row-major, `n_s` × `n_m`) at grid coordinates (s, m): Catmull–Rom in both, a
+/// quadratic through three rows in the first and last cells of s (θm has its mirror images
+/// instead: θm → −θm and 2π − θm flip J_η).
+fn interpolate(rows: &[(f64, f64)], n_s: usize, n_m: usize, s: f64, m: f64) -> (f64, f64) {
+    let (is, fs) = split(s, n_s);
+    let (im, fm) = split(m, n_m);
+    let ws = if is == 0 {
+        let l = lagrange3(fs);
+        [0.0, l[0], l[1], l[2]]
+    } else if is as usize == n_s - 2 {
+        let l = lagrange3(fs + 1.0);
+        [l[0], l[1], l[2], 0.0]
+    } else {
+        catmull_rom(fs)
+    };
+    let wm = catmull_rom(fm);
+    let last = n_m as isize - 1;
+    let at = |i: isize, k: isize| {
+        let i = i.clamp(0, n_s as isize - 1) as usize;
+        let (k, flip) = if k < 0 {
+            (-k, true)
+        } else if k > last {
+            (2 * last - k, true)
+        } else {
+            (k, false)
+        };
+        let v = rows[i * n_m + k as usize];
+        if flip { (v.0, -v.1) } else { v }
+    };
+    let (mut x, mut y) = (0.0, 0.0);
+    for (a, wa) in ws.iter().enumerate() {
+        for (b, wb) in wm.iter().enumerate() {
+            let v = at(is + a as isize - 1, im + b as isize - 1);
+            x += wa * wb * v.0;
+            y += wa * wb * v.1;
+        }
+    }
+    (x, y)
 }
 
 /// The weight w(ε) = (1 − ε)² e^{2ε} of the stored loads J = I w (see [`FiniteBearingTable`]).
@@ -490,5 +521,32 @@ mod butenschoen {
             assert_eq!(finite_bearing_force(&g, FilmState { eps: 0.6, eps_dot: 0.0, wedge: 0.0 }, table), (0.0, 0.0));
             assert!(f.1 > 0.0, "a journal turning counter-clockwise gets F_η > 0");
         }
+    }
+
+    /// The supply line turns by π as the journal passes the bearing centre; below ε = 0.05 the
+    /// line's table blends into the periodic film, so the force is continuous through the
+    /// centre: at ε → 0 both conventions agree and a squeeze through the centre meets the same
+    /// film on either side (|I(θm = 0)| = |I(θm = π)|, the periodic film only turning with θm).
+    #[test]
+    fn supply_line_film_is_continuous_through_the_centre() {
+        let k = 0.4;
+        let (line, none) = (table_for(k, FilmSupply::WidestGap), table_for(k, FilmSupply::None));
+        let norm = |v: (f64, f64)| v.0.hypot(v.1);
+        for tm in [0.0, 0.7, PI / 2.0, 2.5, PI] {
+            let (a, b) = (line.eval(1e-12, tm), none.eval(1e-12, tm));
+            assert!(norm((a.0 - b.0, a.1 - b.1)) < 1e-9 * norm(b), "θm {tm}: {a:?} vs {b:?}");
+            let (lo, hi) = (line.eval(SUPPLY_CENTRE_BAND * (1.0 - 1e-9), tm), line.eval(SUPPLY_CENTRE_BAND * (1.0 + 1e-9), tm));
+            assert!(norm((lo.0 - hi.0, lo.1 - hi.1)) < 1e-6 * norm(hi), "θm {tm} at ε_c: {lo:?} vs {hi:?}");
+        }
+        let (receding, approaching) = (line.eval(1e-12, 0.0), line.eval(1e-12, PI));
+        assert!((norm(receding) / norm(approaching) - 1.0).abs() < 1e-3, "{receding:?} vs {approaching:?}");
+        // Without the blend the line's film would jump by 4.5× there (direct solves at ε = 0.01).
+        let mut solver = ReynoldsSolver::new(k, FilmSupply::WidestGap, ReynoldsGrid::default());
+        let jump = norm(solver.solve(0.01, PI, Cavitation::Reynolds)) / norm(solver.solve(0.01, 0.0, Cavitation::Reynolds));
+        assert!(jump > 4.0, "{jump}");
+        // From ε_c on, the line's own film.
+        let d = solver.solve(0.08, 0.3, Cavitation::Reynolds);
+        let t = line.eval(0.08, 0.3);
+        assert!(norm((d.0 - t.0, d.1 - t.1)) < 0.01 * norm(d), "{t:?} vs {d:?}");
     }
 }

@@ -17,7 +17,7 @@ use std::sync::{Mutex, OnceLock};
 
 /// Version of the Reynolds solver and of the table's layout: bump it on any change that alters a
 /// table's numbers, so that older cache files are ignored.
-pub const SOLVER_VERSION: u32 = 3;
+pub const SOLVER_VERSION: u32 = 4;
 
 const MAGIC: &[u8; 8] = b"CSFBTAB\0";
 
@@ -122,7 +122,8 @@ fn encode(t: &FiniteBearingTable) -> Vec<u8> {
     b.extend_from_slice(&TABLE_EPS_MAX.to_le_bytes());
     b.extend_from_slice(&(t.n_s as u32).to_le_bytes());
     b.extend_from_slice(&(t.n_theta_m as u32).to_le_bytes());
-    for (x, y) in &t.j {
+    b.extend_from_slice(&(t.centre_rows() as u32).to_le_bytes());
+    for (x, y) in t.j.iter().chain(&t.centre) {
         b.extend_from_slice(&x.to_le_bytes());
         b.extend_from_slice(&y.to_le_bytes());
     }
@@ -148,10 +149,11 @@ fn decode(bytes: &[u8], k: f64, supply: FilmSupply, grid: ReynoldsGrid) -> Optio
     if r.f64()?.to_bits() != fresh.s_step.to_bits() || r.f64()?.to_bits() != TABLE_EPS_MAX.to_bits() {
         return None;
     }
-    if r.u32()? as usize != fresh.n_s || r.u32()? as usize != fresh.n_theta_m || r.b.len() != 16 * fresh.n_s * fresh.n_theta_m {
+    let (n_main, n_centre) = (fresh.n_s * fresh.n_theta_m, fresh.centre_rows() * fresh.n_theta_m);
+    if r.u32()? as usize != fresh.n_s || r.u32()? as usize != fresh.n_theta_m || r.u32()? as usize != fresh.centre_rows() || r.b.len() != 16 * (n_main + n_centre) {
         return None;
     }
-    let mut j = Vec::with_capacity(fresh.n_s * fresh.n_theta_m);
+    let mut j = Vec::with_capacity(n_main + n_centre);
     while !r.b.is_empty() {
         let (x, y) = (r.f64()?, r.f64()?);
         if !(x.is_finite() && y.is_finite()) {
@@ -159,7 +161,8 @@ fn decode(bytes: &[u8], k: f64, supply: FilmSupply, grid: ReynoldsGrid) -> Optio
         }
         j.push((x, y));
     }
-    Some(FiniteBearingTable { j, ..fresh })
+    let centre = j.split_off(n_main);
+    Some(FiniteBearingTable { j, centre, ..fresh })
 }
 
 struct Reader<'a> {
