@@ -204,14 +204,15 @@ class Lubricated:
         ``"long_paper"`` (the paper's printed closed forms P13–P14, wrong for a receding journal;
         for comparison only, and they can stall the integrator). How far the long and short closed
         forms are from ``"finite"`` across L/D is measured in docs/physics.md §4 (*Validity of the
-        closed forms*): neither is accurate between
-        L/D ≈ 1/2 and 8: use ``"finite"`` there. Also for clearances of a few µm: a journal whirling
-        at half the shaft speed sees a negative squeeze damping in the long bearing's
-        half-Sommerfeld film, and with c ≤ 2 µm (R ≈ 10 mm) the run can crawl; the periodic finite
-        film (``supply="none"``) damps it, the finite film with its supply line crawls there too
-        (1 µm: 23.8 million steps for one revolution against about 2 000; docs/hard_cases.md). A journal released at rest against the wall with the drive at speed
-        leaves it at default settings from c = 5 µm with the long film, 20 µm with the finite and
-        50 µm with the short (slider-crank, 5000 rpm, L = 40 mm): start µm films centred.
+        closed forms*): neither is accurate between L/D ≈ 1/2 and 8: use ``"finite"`` there.
+        Also for clearances of a few µm: a journal whirling at half the shaft speed sees a
+        negative squeeze damping in the long bearing's half-Sommerfeld film, and with c ≤ 2 µm
+        (R ≈ 10 mm) the run can crawl; the periodic finite film (``supply="none"``) damps it, the
+        finite film with its supply line crawls there too (1 µm: 23.8 million steps for one
+        revolution against about 2 000; docs/hard_cases.md). A journal released at rest against
+        the wall with the drive at speed leaves it at default settings from c = 5 µm with the
+        long film, 20 µm with the finite (measured with ``supply="none"``) and 50 µm with the
+        short (slider-crank, 5000 rpm, L = 40 mm): start µm films centred.
     eps0, m:
         Below ε0 both film components are scaled by (ε/ε0)^m (P15–P16, made continuous at
         ε0: docs/physics.md §4).
