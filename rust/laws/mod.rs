@@ -1,16 +1,23 @@
 //! Force laws of clearance joints (docs/physics.md §3–§4): pure functions of kinematic inputs and parameters.
 //!
 //! - [`contact`]: normal impact force (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores) and
-//!   contact stiffness (docs/physics.md §3, P3–P4).
+//!   contact stiffness (docs/physics.md §3, P3–P4); [`contact_line`]: a pin as a line contact.
 //! - [`friction`]: modified Coulomb friction (docs/physics.md §3, P5).
-//! - [`film`]: shared oil-film types and the model dispatch (docs/physics.md §4).
+//! - [`geometry`]: the film laws' shared leaf (bearing geometry, film state, supply convention).
+//! - [`film`]: the film-model dispatch (docs/physics.md §4).
 //! - [`bearing_long`]: long (Pinkus–Sternlicht) bearing, Gümbel condition (docs/physics.md §4, P10–P14).
 //! - [`bearing_short`]: short (Ocvirk) bearing, Gümbel condition (docs/physics.md §4).
+//! - [`bearing_finite`]: finite bearing, the Reynolds equation solved into a table per L/D and
+//!   supply; [`bearing_finite_cache`]: where those tables are kept (process and disk).
+//! - [`film_friction`]: the film's friction torques and power loss; the dry friction's moment.
+//! - [`viscosity`]: Vogel's viscosity law and the joint's lumped heat balance.
+//! - [`asperity`]: Greenwood–Tripp asperity pressure and load (rough surfaces).
 //! - [`transition`]: small-eccentricity scaling (P15–P16) and film-to-contact blend (P18).
 //! - [`quadrature`]: Gauss–Legendre rules.
 //!
-//! Film-force convention everywhere: `(F_ξ, F_η)` is the force ON THE JOURNAL along `n`
-//! (bearing centre → journal centre) and along `t` = `n` turned +90°.
+//! Imports run downward: the film laws import [`geometry`] (and [`quadrature`]) only; [`film`]
+//! imports them. Film-force convention everywhere: `(F_ξ, F_η)` is the force ON THE JOURNAL
+//! along `n` (bearing centre → journal centre) and along `t` = `n` turned +90°.
 
 pub mod asperity;
 pub mod bearing_finite;
