@@ -38,3 +38,12 @@ def test_a_window_shorter_than_a_turn_leaves_its_unseen_bins_empty(cycles):
                   omega=OMEGA, cycles=cycles, progress=False)  # fmt: skip
     fosm = study.fosm()
     assert np.all(np.isfinite(fosm.reliability[:n_seen])) and np.all(np.isnan(fosm.reliability[n_seen:]))
+
+
+def test_simulate_with_ideal_takes_the_options_of_simulate():
+    """``progress=False``, which every ``simulate`` call in a script carries, is accepted by
+    ``simulate_with_ideal`` too. Before: ``TypeError: Running.run_settings() got an unexpected
+    keyword argument 'progress'``."""
+    m = _dry(0.5e-3)
+    res, ideal = m.simulate_with_ideal(0.002, progress=False, dt_out=1e-4)
+    assert res.completed and ideal.completed and len(res.t) == len(ideal.t) == 21
