@@ -47,3 +47,29 @@ def test_simulate_with_ideal_takes_the_options_of_simulate():
     m = _dry(0.5e-3)
     res, ideal = m.simulate_with_ideal(0.002, progress=False, dt_out=1e-4)
     assert res.completed and ideal.completed and len(res.t) == len(ideal.t) == 21
+
+
+def test_each_clearance_joint_is_drawn_at_its_own_bearing():
+    """A drawing of a mechanism with two revolute clearance joints (the nine-bar's A and B, at
+    t = 0 and mid-run) puts each joint's magnified bearing at its own bearing point and its
+    journal inside it. Before: every joint's bearing was drawn at the last joint's (the update
+    closure looked up the loop's last ``centre``), the others' journals metres away."""
+    from matplotlib.patches import Circle
+
+    m = models.nine_bar("dry", clearance=0.5e-3)
+    res = m.simulate(0.05, dt_out=0.01, progress=False)
+    desc = m.description()
+    names = [b["name"] for b in desc["bodies"]]
+    for t in (0.0, 0.05):
+        fig = res.plot_mechanism(t, magnify=10)
+        circles = [p for p in fig.axes[0].patches if isinstance(p, Circle)]
+        for c in desc["clearance_joints"]:
+            body = names[c["bearing_body"]]
+            q = res.position(body)[np.searchsorted(res.t, t)]
+            rot = np.array([[math.cos(q[2]), -math.sin(q[2])], [math.sin(q[2]), math.cos(q[2])]])
+            centre = q[:2] + rot @ np.asarray(c["bearing_point"])
+            label = next(x for x in fig.axes[0].texts if x.get_text().startswith(f"{c['name']} (c ="))
+            assert np.allclose(label.xy, centre, atol=1e-9), c["name"]
+            bearing = [p for p in circles if np.allclose(p.center, centre, atol=1e-9) and p.zorder == 4]
+            journal = [p for p in circles if p.zorder == 5 and np.hypot(*(np.asarray(p.center) - centre)) <= 10 * c["clearance"] * 1.01]
+            assert len(bearing) == 1 and len(journal) == 1, c["name"]
