@@ -73,3 +73,26 @@ def test_each_clearance_joint_is_drawn_at_its_own_bearing():
             bearing = [p for p in circles if np.allclose(p.center, centre, atol=1e-9) and p.zorder == 4]
             journal = [p for p in circles if p.zorder == 5 and np.hypot(*(np.asarray(p.center) - centre)) <= 10 * c["clearance"] * 1.01]
             assert len(bearing) == 1 and len(journal) == 1, c["name"]
+
+
+def test_a_scene_name_as_title_fits_its_figure():
+    """``clearsim run`` titles its figures with the scene's name: the shipped slider-crank's
+    (56 characters) on its one-joint orbit figure, and a 90-character title on an error figure,
+    are wrapped inside the figure, and so is the orbit legend. Before: cut off at both edges."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from clearsim import plots
+
+    t = np.linspace(0.0, 1.0, 50)
+    figs = [
+        plots.plot_journal_orbits({"rod-slider (dry)": (1e-4 * np.cos(t), 1e-4 * np.sin(t))}, 5e-4,
+                                  title="slider-crank, dry clearance joint rod-slider, c = 0.5 mm"),  # fmt: skip
+        plots.plot_error_histories(t, {"dry": {"displacement": 1e-4 * t}}, quantities=["displacement"], title="x" * 45 + " " + "y" * 44),
+    ]
+    for fig in figs:
+        FigureCanvasAgg(fig).draw()
+        renderer = fig.canvas.get_renderer()
+        width = fig.bbox.width
+        boxes = [fig._suptitle.get_window_extent(renderer)] + [leg.get_window_extent(renderer) for leg in fig.legends]
+        for box in boxes:
+            assert box.x0 >= 0.0 and box.x1 <= width, (box, width)
