@@ -535,6 +535,7 @@ def load_scene_file(path: PathLike) -> Scene:
             else:
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
 
+    failed: Optional[InputError] = None
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         mech = builder.build()
@@ -544,8 +545,6 @@ def load_scene_file(path: PathLike) -> Scene:
             _core.compile(mech.description())
         except InputError as err:
             failed = err
-        else:
-            failed = None
     # The warnings first: a unit slip they name (a journal radius in mm) is often the cause
     # of the error that follows (an L/D outside the finite film's table).
     emit(caught)
