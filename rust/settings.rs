@@ -31,7 +31,7 @@ pub enum IntegratorName {
 #[serde(deny_unknown_fields)]
 pub struct RunSettingsDesc {
     pub integrator: IntegratorName,
-    /// Fixed step of `rk4` [s].
+    /// Fixed step of `rk4` \[s\].
     #[serde(default)]
     pub step: Option<f64>,
     #[serde(default)]
@@ -55,7 +55,7 @@ pub struct RunSettingsDesc {
     /// Which outputs to store (`None`: [`Channels::default`]).
     #[serde(default)]
     pub outputs: Option<Channels>,
-    /// Wall-time budget of the run [s].
+    /// Wall-time budget of the run \[s\].
     #[serde(default)]
     pub max_seconds: Option<f64>,
     #[serde(default)]
