@@ -17,6 +17,7 @@ from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
 from .joints import MICROMETRE_FILM_RATIO
 from .result import Result, extreme_monitors
+from .schema import COMPONENTS, DEFAULT_OUTPUTS, INTEGRATORS, OUTPUTS
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
@@ -39,12 +40,6 @@ class RunOptions(TypedDict, total=False):
     extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
 
-#: The components of a body's pose q = (x, y, θ), in the order of the state and of every result
-#: array: x, y [m] and theta [rad] (one word for them throughout: "component").
-COMPONENTS = ("x", "y", "theta")
-INTEGRATORS = ("auto", "rk45", "rk4", "dop853", "radau", "rodas4")
-OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation", "energy")
-DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
 #: Most outputs a dt_out grid may ask for (each holds every stored channel).
 MAX_OUTPUTS = 1e7
 
@@ -129,9 +124,7 @@ class Running:
     """What a :class:`clearsim.Mechanism` does with its description: compile, run, check."""
 
     _compiled: Any
-    if TYPE_CHECKING:  # provided by Mechanism (mechanism.py)
-        from .mechanism import Mechanism
-
+    if TYPE_CHECKING:  # provided by Mechanism (mechanism.py, the class that mixes this in)
         _bodies: List[Dict[str, Any]]
         _clearance: List[Dict[str, Any]]
 
@@ -140,7 +133,7 @@ class Running:
         @property
         def clearance_joint_names(self) -> List[str]: ...
         def description(self) -> Dict[str, Any]: ...
-        def idealized(self) -> "Mechanism": ...
+        def idealized(self) -> "Running": ...
         def _body(self, field: str, name: str, allow_ground: bool = True) -> Optional[int]: ...
 
     def compile(self) -> "_core.CompiledModel":
@@ -531,7 +524,7 @@ class Running:
         return None
 
 
-__all__ = ["RunOptions", "Running", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]
+__all__ = ["RunOptions", "Running", "COMPONENTS", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]
 
 
 def _plain(value: Any) -> Any:
