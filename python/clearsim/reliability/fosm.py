@@ -27,10 +27,12 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
-from scipy import special
 
 from ..errors import InputError, check_finite
 from .. import display
+from ..lazy import lazy
+
+special = lazy("scipy.special")
 
 #: The paper's allowable error ranges ``(Δv, Δu)`` of the slider (section 5): displacement [m],
 #: velocity [m/s], acceleration [m/s²].

@@ -30,13 +30,15 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Protocol, Sequence, Tuple
 
 import numpy as np
-from scipy import stats
 
 from ..errors import InputError, SimulationError, check_positive
 from .distributions import input_stream
 from .estimates import wilson_interval
 from .bridge import check_on_failure
 from .model import Model
+from ..lazy import lazy
+
+stats = lazy("scipy.stats")
 
 __all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "LifeModel", "StudyBlocks", "life", "study_life", "MAX_GROWTH", "WEAR_BINS"]
 
