@@ -187,7 +187,7 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
     if not panels:
         panels = ["pf"]
     with plots.style():
-        fig = plots._new_figure(4.2 * len(panels), 3.6)
+        fig = plots.new_figure(4.2 * len(panels), 3.6)
         axes = list(fig.subplots(1, len(panels), squeeze=False)[0])
         unit = study.output.unit
         ax = axes.pop(0)
