@@ -27,7 +27,7 @@ from .reliability.distributions import Distribution, sample_inputs
 from .reliability.estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, mc_bin_reliability, wilson_interval
 from .reliability.fosm import fosm_from_monitors
 from .reliability.outputs import Limit, Output
-from .reliability.runs import run_descriptions
+from .batch import run_descriptions
 from .reliability.study import Study
 
 QUANTITIES = {"displacement": "q", "velocity": "qd", "acceleration": "qdd"}

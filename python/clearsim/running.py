@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequenc
 import numpy as np
 
 from . import _core
+from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
 from .joints import MICROMETRE_FILM_RATIO
 from .result import Result, extreme_monitors
@@ -372,7 +373,7 @@ class Running:
         if ideal_kwargs.get("extremes") not in (None, True, False):
             ideal_kwargs["extremes"] = [n for n in ideal_kwargs["extremes"] if n in ideal.body_names]
         ideal_settings = ideal.run_settings(t_end, **ideal_kwargs)
-        raws = _core.run_batch([self.description(), ideal.description()], [settings, ideal_settings], 0)
+        raws = run_descriptions([self.description(), ideal.description()], [settings, ideal_settings])
         actual, twin = raws
         if isinstance(actual, BaseException):
             raise actual

@@ -33,7 +33,8 @@ from .estimates import failure_reasons, wilson_interval
 from .fosm import FosmResult, allowable_statistics, fosm_from_monitors
 from .model import Model
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Output, limits_and_outputs
-from .runs import REFERENCE_POINTS_PER_CYCLE, error_of, failed, monitor_spec, output_grid, progress, reference_grid, run_all
+from ..batch import error_of, failed, progress, run_all
+from .runs import REFERENCE_POINTS_PER_CYCLE, monitor_spec, output_grid, reference_grid
 from .. import display
 
 __all__ = ["Output", "Limit", "Study", "Evaluation", "MonteCarloEstimate", "ModeEstimate", "FosmResult", "BODY_QUANTITIES", "JOINT_QUANTITIES", "REFERENCE_POINTS_PER_CYCLE"]
