@@ -11,8 +11,9 @@ from typing import Any, Dict, List, Protocol, Tuple
 
 import numpy as np
 
+from .csvfile import write_columns
 from .errors import InputError
-from .schema import JOINT_COLUMN_UNITS, JOINT_COLUMNS
+from .schema import COMPONENTS, JOINT_COLUMN_UNITS, JOINT_COLUMNS
 
 
 class Result(Protocol):
@@ -29,7 +30,8 @@ class Result(Protocol):
     @property
     def completed(self) -> bool: ...
 
-COORDINATES = ("x", "y", "theta")
+#: Old name of :data:`clearsim.schema.COMPONENTS` here.
+COORDINATES = COMPONENTS
 #: (variable, raw key, long name, units of x, y, θ)
 BODY_VARIABLES: Tuple[Tuple[str, str, str, Tuple[str, str, str]], ...] = (
     ("position", "q", "centroid position and angle", ("m", "m", "rad")),
@@ -109,10 +111,7 @@ def save(res: "Result", path: "str | Path") -> Path:
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix == ".csv":
-        cols = [("t", "s", res.t)] + columns(res)
-        header = ",".join(f"{name} [{unit}]" for name, unit, _ in cols)
-        table = np.column_stack([values for _, _, values in cols]) if len(res.t) else np.zeros((0, len(cols)))
-        np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.17g")
+        write_columns(path, [("t", "s", res.t)] + columns(res))
     elif suffix in (".nc", ".netcdf"):
         ds = to_xarray(res)
         # NetCDF attributes take strings and numbers; lists of unit strings are joined.

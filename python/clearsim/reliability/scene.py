@@ -62,8 +62,8 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple, Union
 
 from .distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
-from ..running import COMPONENTS
-from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Output
+from ..schema import COMPONENTS
+from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Modes, Output
 from .sobol import SOBOL_METHODS
 from .study import Study
 
@@ -92,7 +92,7 @@ class LifeSettings:
 
 
 @dataclass
-class StudySettings:
+class StudySettings(Modes):
     """The ``[study]`` table, checked: ``outputs`` and their ``limits`` (one each, or several:
     a series system)."""
 
@@ -112,16 +112,6 @@ class StudySettings:
     step: Union[float, str] = "auto"
     max_runs: int = 150
     life: Optional[LifeSettings] = None
-
-    @property
-    def output(self) -> Output:
-        """The (first) output."""
-        return self.outputs[0]
-
-    @property
-    def limit(self) -> float:
-        """The (first) output's limit value."""
-        return self.limits[0].value
 
 
 def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:

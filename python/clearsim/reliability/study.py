@@ -26,13 +26,13 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import InputError, SimulationError, check_finite, check_positive
-from ..running import COMPONENTS
+from ..schema import COMPONENTS
 from .bridge import check_on_failure
 from .distributions import input_stream
 from .estimates import failure_reasons, wilson_interval
 from .fosm import FosmResult, allowable_statistics, fosm_from_monitors
 from .model import Model
-from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Output, limits_and_outputs
+from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
 from ..batch import error_of, failed, progress, run_all
 from .runs import REFERENCE_POINTS_PER_CYCLE, monitor_spec, output_grid, reference_grid
 from .. import display
@@ -149,7 +149,7 @@ class _Job:
     refine: int = 1
 
 
-class Study(Model):
+class Study(Model, Modes):
     """Reliability of one or several outputs of a mechanism with random inputs.
 
     Parameters
@@ -235,17 +235,7 @@ class Study(Model):
         self._ideal: "OrderedDict[str, Any]" = OrderedDict()
         self._assembly_checked = False
 
-    # ------------------------------------------------------------------ outputs and limits
-    @property
-    def output(self) -> Output:
-        """The analysed output (the first one of a system)."""
-        return self.outputs[0]
-
-    @property
-    def limit(self) -> float:
-        """The limit's value [output unit] (the first output's, for a system)."""
-        return self.limits[0].value
-
+    # ------------------------------------------------------------------ outputs and limits (Modes)
     @property
     def mode_names(self) -> List[str]:
         """One failure mode per output: its :attr:`Output.name`."""
