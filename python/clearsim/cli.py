@@ -37,7 +37,7 @@ from . import __version__, models
 from .csvfile import write_columns, write_rows
 from .errors import ClearsimError
 from .schema import INTEGRATORS
-from .scene import BODY_QUANTITIES, COMPONENTS, ERROR_QUANTITIES, JOINT_QUANTITIES, Scene, SceneRun, load_scene_file
+from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
 
 #: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
 EXIT_ERROR = 2
@@ -98,7 +98,7 @@ Columns = List[Tuple[str, np.ndarray]]  # (header "name [unit]", values (N,))
 
 
 def _unit(quantity: str, component: str) -> str:
-    return BODY_QUANTITIES[quantity][COMPONENTS.index(component)]
+    return BODY_CHANNELS[quantity][COMPONENTS.index(component)]
 
 
 def _body_columns(run: SceneRun, which: str) -> Columns:
@@ -143,7 +143,7 @@ def _joint_columns(run: SceneRun) -> Columns:
                 data = np.column_stack([result.contact_state(joint), result.dry_weight(joint)])
             else:
                 data = getters[quantity](joint)
-            for k, (name, unit) in enumerate(JOINT_QUANTITIES[quantity]):
+            for k, (name, unit) in enumerate(JOINT_CHANNELS[quantity]):
                 cols.append((f"{joint}.{name} [{unit}]", data[:, k]))
     return cols
 

@@ -21,21 +21,18 @@ import numpy as np
 from . import display
 from .errors import InputError, SimulationError, check_choice, check_positive, renamed
 from .mechanism import Mechanism
-from .running import COMPONENTS
+from .schema import BODY_QUANTITY_UNITS, COMPONENTS
 from .reliability.bridge import check_on_failure
 from .reliability.distributions import Distribution, sample_inputs
 from .reliability.estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, mc_bin_reliability, wilson_interval
-from .reliability.fosm import fosm_from_monitors
+from .reliability.fosm import BIN_WIDTH, fosm_from_monitors
 from .reliability.outputs import Limit, Output
 from .batch import run_descriptions
 from .reliability.study import Study
 
 QUANTITIES = {"displacement": "q", "velocity": "qd", "acceleration": "qdd"}
 #: Units of an error, per quantity and component (x, y: translation; theta: rotation).
-UNITS = {
-    ("displacement", False): "m", ("velocity", False): "m/s", ("acceleration", False): "m/s²",
-    ("displacement", True): "rad", ("velocity", True): "rad/s", ("acceleration", True): "rad/s²",
-}
+UNITS = {(q, theta): units[int(theta)] for q, units in BODY_QUANTITY_UNITS.items() for theta in (False, True)}
 
 
 @dataclass
@@ -156,7 +153,7 @@ def monte_carlo(
     on_failure: str = "fail",
     max_steps: Optional[int] = None,
     max_seconds: Optional[float] = None,
-    bin_width: float = 18.0,
+    bin_width: float = BIN_WIDTH,
     points_per_cycle: int = 360,
     seed: Optional[int] = 0,
     confidence: float = 0.95,

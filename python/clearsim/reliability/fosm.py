@@ -42,6 +42,9 @@ PAPER_ALLOWABLE: Dict[str, Tuple[float, float]] = {
     "acceleration": (0.0, 200.0),
 }
 
+#: The paper's crank-angle bins [deg]: the default bin width of every per-bin estimate.
+BIN_WIDTH = 18.0
+
 ArrayLike = Union[float, Sequence[float], np.ndarray]
 Allowable = Union[str, Tuple[float, float], Sequence[float]]
 
@@ -340,7 +343,7 @@ def fosm(
     error: ArrayLike,
     crank_angle: ArrayLike,
     allowable: Allowable,
-    bin_width: float = 18.0,
+    bin_width: float = BIN_WIDTH,
     per_cycle: bool = False,
     ddof: int = 0,
 ) -> FosmResult:

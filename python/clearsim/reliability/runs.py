@@ -10,7 +10,7 @@ of a study depends on an output grid (docs/physics.md §6).
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 

@@ -30,7 +30,7 @@ from ..schema import COMPONENTS
 from .bridge import check_on_failure
 from .distributions import input_stream
 from .estimates import failure_reasons, wilson_interval
-from .fosm import FosmResult, allowable_statistics, fosm_from_monitors
+from .fosm import BIN_WIDTH, FosmResult, allowable_statistics, fosm_from_monitors
 from .model import Model
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
 from ..batch import error_of, failed, progress, run_all
@@ -194,7 +194,7 @@ class Study(Model, Modes):
         omega: Any = None,
         cycles: float = 1.0,
         skip_cycles: float = 0.0,
-        bin_width: float = 18.0,
+        bin_width: float = BIN_WIDTH,
         integrator: str = "auto",
         rtol: float = 1e-6,
         atol: float = 1e-9,
