@@ -176,8 +176,8 @@ class Running:
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """ẏ = f(t, y), for driving clearsim's model with an external integrator such as
-        ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in the
-        order added, then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
+        ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in
+        name order (:attr:`body_names`; not the order added), then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
         return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
 
     def jacobian(self, t: float, y: np.ndarray) -> np.ndarray:

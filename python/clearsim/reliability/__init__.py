@@ -36,7 +36,7 @@ from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reason
 from .fosm import PAPER_ALLOWABLE, FosmResult, allowable_statistics, fosm, normal_cdf, normal_ppf, reliability_index
 from .form import FormResult, SystemFormResult
 from .life import LifeModel, LifeResult
-from .model import LimitState, Model
+from .model import LimitState, Model, ReliabilityModel
 from .outputs import Limit, Output
 from .sampling import SamplingResult
 from .sobol import SobolResult
@@ -63,6 +63,7 @@ __all__ = [
     "MonteCarloEstimate",
     "Normal",
     "Output",
+    "ReliabilityModel",
     "SamplingResult",
     "Scipy",
     "Shifted",

@@ -9,7 +9,7 @@ output grid). One output fails when it passes its limit; the limit-state functio
 ``g = 1 − peak / limit`` (``minimum / limit − 1`` for a lower limit), failure when ``g ≤ 0``.
 Several outputs make a series system: ``g = min_i g_i`` (docs/reliability.md).
 
-Every method inherited from :class:`~clearsim.reliability.model.Model` (FORM, importance
+Every method inherited from :class:`~clearsim.reliability.model.ReliabilityModel` (FORM, importance
 sampling, subset simulation, Sobol indices, tolerance design) runs the model through
 :meth:`Study.limit_states`; :meth:`Study.monte_carlo` and ``clearsim.monte_carlo`` run it through
 :meth:`Study.run_samples`, the one sample loop.
@@ -31,7 +31,7 @@ from .bridge import check_on_failure
 from .distributions import input_stream
 from .estimates import failure_reasons, wilson_interval
 from .fosm import BIN_WIDTH, FosmResult, allowable_statistics, fosm_from_monitors
-from .model import Model
+from .model import ReliabilityModel
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
 from ..batch import error_of, failed, progress, run_all
 from .runs import REFERENCE_POINTS_PER_CYCLE, monitor_spec, output_grid, reference_grid
@@ -149,7 +149,7 @@ class _Job:
     refine: int = 1
 
 
-class Study(Model, Modes):
+class Study(ReliabilityModel, Modes):
     """Reliability of one or several outputs of a mechanism with random inputs.
 
     Parameters
@@ -506,7 +506,7 @@ class Study(Model, Modes):
 
     # ------------------------------------------------------------------ methods of other rooms
     # Reliability over life (life.py) and active-learning surrogates (akmcs.py) add their
-    # methods here, each a thin call into its own module (as Model's methods call form.py etc.).
+    # methods here, each a thin call into its own module (as ReliabilityModel's methods call form.py etc.).
     def life(
         self, cycles: Sequence[float], n: int, seed: Optional[int] = 0, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None,
         settle: Optional[float] = None, on_failure: str = "fail", confidence: float = 0.95,
