@@ -26,7 +26,8 @@ systems), :mod:`.sampling` (importance sampling, subset simulation), :mod:`.sobo
 indices by sampling or polynomial chaos), :mod:`.tolerance` (tolerance design), :mod:`.akmcs` (AK-MCS,
 AK-IS), :mod:`.uq` (all of these in one import), :mod:`.model` (what the methods need of a model and every method on it;
 :class:`LimitState` for any function), :mod:`.study` (:class:`Study`, the simulation model and
-the one Monte Carlo sample loop), :mod:`.life` and :mod:`.life_plot` (reliability over life by
+the one Monte Carlo sample loop), :mod:`.binned` (``clearsim.monte_carlo``: per-bin Monte
+Carlo of one body coordinate's errors on that loop), :mod:`.life` and :mod:`.life_plot` (reliability over life by
 cycle jumping), :mod:`.scene` and :mod:`.report` (``clearsim reliability``).
 Methods on OpenTURNS need ``pip install clearsim[uq]``; docs/reliability.md says which to use.
 """
