@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import csv
 import json
 import math
 import sys
@@ -35,9 +34,10 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tupl
 import numpy as np
 
 from . import __version__, models
+from .csvfile import write_columns, write_rows
 from .errors import ClearsimError
-from .running import INTEGRATORS
-from .scene import BODY_QUANTITIES, COMPONENTS, ERROR_QUANTITIES, JOINT_QUANTITIES, Scene, SceneRun, load_scene_file
+from .schema import INTEGRATORS
+from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
 
 #: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
 EXIT_ERROR = 2
@@ -98,7 +98,7 @@ Columns = List[Tuple[str, np.ndarray]]  # (header "name [unit]", values (N,))
 
 
 def _unit(quantity: str, component: str) -> str:
-    return BODY_QUANTITIES[quantity][COMPONENTS.index(component)]
+    return BODY_CHANNELS[quantity][COMPONENTS.index(component)]
 
 
 def _body_columns(run: SceneRun, which: str) -> Columns:
@@ -143,7 +143,7 @@ def _joint_columns(run: SceneRun) -> Columns:
                 data = np.column_stack([result.contact_state(joint), result.dry_weight(joint)])
             else:
                 data = getters[quantity](joint)
-            for k, (name, unit) in enumerate(JOINT_QUANTITIES[quantity]):
+            for k, (name, unit) in enumerate(JOINT_CHANNELS[quantity]):
                 cols.append((f"{joint}.{name} [{unit}]", data[:, k]))
     return cols
 
@@ -154,12 +154,10 @@ def _clearances(scene: Scene) -> Dict[str, float]:
 
 
 def write_csv(path: Path, t: np.ndarray, columns: Columns) -> Path:
-    """A CSV file: ``t [s]`` and the columns, header row ``name [unit]``, 10 significant digits."""
+    """A CSV file (:mod:`clearsim.csvfile`): ``t [s]`` and the columns, header row ``name [unit]``,
+    over the samples every column has."""
     n = min([len(t)] + [len(v) for _, v in columns])
-    data = np.column_stack([t[:n]] + [np.asarray(v, dtype=float)[:n] for _, v in columns])
-    header = ",".join(["t [s]"] + [name for name, _ in columns])
-    np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
-    return path
+    return write_columns(path, [("t", "s", t[:n])] + [(name, None, np.asarray(v, dtype=float)[:n]) for name, v in columns])
 
 
 # ====================================================================== figures
@@ -386,11 +384,7 @@ def _errors_csv(run: SceneRun, out_dir: Path) -> List[Path]:
 
 def _fosm_csv(path: Path, fosm: Any) -> Path:
     rows = fosm.to_rows()
-    with path.open("w", newline="", encoding="utf-8") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    return path
+    return write_rows(path, list(rows[0]), [list(r.values()) for r in rows])
 
 
 # ====================================================================== commands

@@ -405,7 +405,7 @@ def plot_pose(desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] =
 
     with plots.style():
         if ax is None:
-            fig = plots._new_figure(6.0, 5.0)
+            fig = plots.new_figure(6.0, 5.0)
             ax = fig.add_subplot(1, 1, 1)
         else:
             fig = ax.figure
@@ -461,7 +461,7 @@ def animate(
     joints = [c for c in desc["clearance_joints"]] if orbits else []
     xlim, ylim = _limits(desc, qs[:: max(1, n // 50)])
     with plots.style():
-        fig = plots._new_figure(7.5 if joints else 6.0, 5.0)
+        fig = plots.new_figure(7.5 if joints else 6.0, 5.0)
         if joints:
             gs = fig.add_gridspec(len(joints), 2, width_ratios=[3, 1])
             ax = fig.add_subplot(gs[:, 0])

@@ -1,7 +1,7 @@
 """Exceptions raised by clearsim.
 
 Every error of the Rust core is mapped to one of these classes in one place
-(``rust/python.rs``); the Python layer raises the same classes for its own checks.
+(``rust/python/mod.rs``); the Python layer raises the same classes for its own checks.
 """
 
 from __future__ import annotations

@@ -7,27 +7,39 @@ xarray (and netCDF4 for ``.nc`` files) are optional: ``pip install 'clearsim[io]
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Dict, List, Tuple
+from typing import Any, Dict, List, Protocol, Tuple
 
 import numpy as np
 
+from .csvfile import write_columns
 from .errors import InputError
+from .schema import COMPONENTS, JOINT_COLUMN_UNITS, JOINT_COLUMNS
 
-if TYPE_CHECKING:  # pragma: no cover
-    from .result import Result
 
-COORDINATES = ("x", "y", "theta")
+class Result(Protocol):
+    """What the writers read of a :class:`clearsim.Result` (result.py calls them, so they name
+    the result by what they use rather than import it)."""
+
+    _raw: Dict[str, Any]
+    t: np.ndarray
+    body_names: List[str]
+    joint_names: List[str]
+    stats: Dict[str, Any]
+    failure: Any
+
+    @property
+    def completed(self) -> bool: ...
+
+#: Old name of :data:`clearsim.schema.COMPONENTS` here.
+COORDINATES = COMPONENTS
 #: (variable, raw key, long name, units of x, y, θ)
 BODY_VARIABLES: Tuple[Tuple[str, str, str, Tuple[str, str, str]], ...] = (
     ("position", "q", "centroid position and angle", ("m", "m", "rad")),
     ("velocity", "qd", "centroid velocity and angular velocity", ("m/s", "m/s", "rad/s")),
     ("acceleration", "qdd", "centroid acceleration and angular acceleration", ("m/s^2", "m/s^2", "rad/s^2")),
 )
-#: Units of the clearance-joint columns (``clearsim._core.JOINT_COLUMNS``).
-JOINT_UNITS: Dict[str, str] = {
-    "ex": "m", "ey": "m", "ex_dot": "m/s", "ey_dot": "m/s", "fx": "N", "fy": "N",
-    "normal": "N", "tangential": "N", "film_xi": "N", "film_eta": "N", "w_dry": "1", "state": "1",
-}
+#: Units of the clearance-joint columns (old name of :data:`clearsim.schema.JOINT_COLUMN_UNITS`).
+JOINT_UNITS: Dict[str, str] = JOINT_COLUMN_UNITS
 _SUFFIX = {"position": "", "velocity": "_dot", "acceleration": "_ddot"}
 
 
@@ -50,8 +62,6 @@ def columns(res: "Result") -> List[Tuple[str, str, np.ndarray]]:
             for k, (coord, unit) in enumerate(zip(COORDINATES, units)):
                 out.append((f"{body}.{coord}{_SUFFIX[var]}", unit, raw[key][:, 3 * b + k]))
     if "joints" in raw:
-        from .result import JOINT_COLUMNS
-
         for j, joint in enumerate(res.joint_names):
             for c, col in enumerate(JOINT_COLUMNS):
                 out.append((f"{joint}.{col}", JOINT_UNITS.get(col, "1"), raw["joints"][:, j, c]))
@@ -84,8 +94,6 @@ def to_xarray(res: "Result") -> Any:
             data[var] = (("time", "body", "coordinate"), values, {"long_name": long_name, "units": ", ".join(units), "units_by_coordinate": list(units)})
     coords: Dict[str, Any] = {"time": ("time", res.t, {"units": "s", "long_name": "time"}), "body": list(res.body_names), "coordinate": list(COORDINATES)}
     if "joints" in raw and res.joint_names:
-        from .result import JOINT_COLUMNS
-
         data["clearance_joint"] = (("time", "joint", "quantity"), raw["joints"], {"long_name": "clearance-joint quantities", "units_by_quantity": [JOINT_UNITS.get(c, "1") for c in JOINT_COLUMNS]})
         coords["joint"] = list(res.joint_names)
         coords["quantity"] = list(JOINT_COLUMNS)
@@ -103,10 +111,7 @@ def save(res: "Result", path: "str | Path") -> Path:
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix == ".csv":
-        cols = [("t", "s", res.t)] + columns(res)
-        header = ",".join(f"{name} [{unit}]" for name, unit, _ in cols)
-        table = np.column_stack([values for _, _, values in cols]) if len(res.t) else np.zeros((0, len(cols)))
-        np.savetxt(path, table, delimiter=",", header=header, comments="", fmt="%.17g")
+        write_columns(path, [("t", "s", res.t)] + columns(res))
     elif suffix in (".nc", ".netcdf"):
         ds = to_xarray(res)
         # NetCDF attributes take strings and numbers; lists of unit strings are joined.

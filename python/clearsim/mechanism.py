@@ -1,7 +1,7 @@
-"""Describe a planar mechanism and simulate it.
-
-A :class:`Mechanism` collects bodies, ideal joints, drivers and clearance joints as plain data;
-``simulate`` compiles it in the Rust core and integrates it there with the GIL released.
+"""Describing a planar mechanism: :class:`Mechanism` collects bodies, ideal joints, drivers,
+clearance joints and force elements as plain data, kept in name order (running it is
+:mod:`clearsim.running`'s job, mixed in: ``simulate`` compiles it in the Rust core and
+integrates it there with the GIL released).
 SI units throughout: metres, kilograms, seconds, radians.
 """
 

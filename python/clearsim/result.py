@@ -10,8 +10,8 @@ import numpy as np
 
 from . import _core, display
 from .errors import InputError, check_choice
+from .schema import COMPONENTS as _COMPONENTS, JOINT_COLUMNS
 
-JOINT_COLUMNS: List[str] = list(_core.JOINT_COLUMNS)
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
 CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
 
@@ -19,7 +19,6 @@ CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
 #: with the units (body: x and y | theta).
 BODY_QUANTITIES = {"displacement": ("m", "rad"), "velocity": ("m/s", "rad/s"), "acceleration": ("m/s²", "rad/s²")}
 JOINT_QUANTITIES = {"eccentricity": "1 (e/c)", "force": "N", "contact_force": "N", "film_force": "N"}
-_COMPONENTS = ("x", "y", "theta")
 
 
 @dataclass(frozen=True)

@@ -14,9 +14,11 @@ from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequenc
 import numpy as np
 
 from . import _core
+from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
 from .joints import MICROMETRE_FILM_RATIO
 from .result import Result, extreme_monitors
+from .schema import COMPONENTS, DEFAULT_OUTPUTS, INTEGRATORS, OUTPUTS
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
@@ -39,12 +41,6 @@ class RunOptions(TypedDict, total=False):
     extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
 
-#: The components of a body's pose q = (x, y, θ), in the order of the state and of every result
-#: array: x, y [m] and theta [rad] (one word for them throughout: "component").
-COMPONENTS = ("x", "y", "theta")
-INTEGRATORS = ("auto", "rk45", "rk4", "dop853", "radau", "rodas4")
-OUTPUTS = ("states", "accelerations", "reactions", "joints", "violation", "energy")
-DEFAULT_OUTPUTS = ("states", "accelerations", "joints", "violation")
 #: Most outputs a dt_out grid may ask for (each holds every stored channel).
 MAX_OUTPUTS = 1e7
 
@@ -129,9 +125,7 @@ class Running:
     """What a :class:`clearsim.Mechanism` does with its description: compile, run, check."""
 
     _compiled: Any
-    if TYPE_CHECKING:  # provided by Mechanism (mechanism.py)
-        from .mechanism import Mechanism
-
+    if TYPE_CHECKING:  # provided by Mechanism (mechanism.py, the class that mixes this in)
         _bodies: List[Dict[str, Any]]
         _clearance: List[Dict[str, Any]]
 
@@ -140,7 +134,7 @@ class Running:
         @property
         def clearance_joint_names(self) -> List[str]: ...
         def description(self) -> Dict[str, Any]: ...
-        def idealized(self) -> "Mechanism": ...
+        def idealized(self) -> "Running": ...
         def _body(self, field: str, name: str, allow_ground: bool = True) -> Optional[int]: ...
 
     def compile(self) -> "_core.CompiledModel":
@@ -182,8 +176,8 @@ class Running:
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """ẏ = f(t, y), for driving clearsim's model with an external integrator such as
-        ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in the
-        order added, then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
+        ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in
+        name order (:attr:`body_names`; not the order added), then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
         return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
 
     def jacobian(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -221,7 +215,14 @@ class Running:
         extremes: Union[bool, Sequence[str]] = False,
         extremes_from: Optional[float] = None,
     ) -> Dict[str, Any]:
-        """The settings dict of a run (see :meth:`simulate`)."""
+        """The settings dict of a run (see :meth:`simulate`).
+
+        The Rust core validates every setting (``rust/simulate.rs``, ``RunSettings::validate``).
+        Python checks only what it needs before it can build the dict, or says better: t0, t_end
+        and dt_out make the output grid; ``"auto"`` resolves by the integrator's name; numbers
+        are checked here so that the message quotes the value as the user wrote it (``1e-06``,
+        not the core's ``0.000001``), a bool or a fraction is not taken for ``max_steps``, and
+        ``h_min = 0`` (which the core would accept) stays an error."""
         t0 = check_finite("t0", t0)
         t_end = check_finite("t_end", t_end)
         if t_end <= t0:
@@ -233,9 +234,7 @@ class Running:
         atol = check_positive("atol", atol)
         if rtol >= 1.0:
             raise InputError(f"invalid rtol = {rtol!r}: must be below 1", field="rtol", value=rtol)
-        if integrator == "rk4":
-            if step is None:
-                raise InputError("invalid step = None: the rk4 integrator needs a fixed step [s]", field="step", value=step)
+        if integrator == "rk4" and step is not None:  # rk4 without a step: the core's error, "needs a fixed step"
             step = check_positive("step", step)
         if t_out is None:
             if dt_out is None:
@@ -253,10 +252,10 @@ class Running:
             grid = t0 + dt_out * np.arange(n + 1)
         else:
             grid = np.asarray(t_out, dtype=float)
+            # Sent as one buffer of times (the core checks that they increase strictly; a NaN there
+            # would read as "must increase", so it is named here).
             if grid.ndim != 1 or not np.all(np.isfinite(grid)):
                 raise InputError("invalid t_out: must be a 1-D sequence of finite times", field="t_out", value=t_out)
-            if np.any(np.diff(grid) <= 0):
-                raise InputError("invalid t_out: times must increase strictly", field="t_out", value=t_out)
         wanted = set(DEFAULT_OUTPUTS if outputs is None else outputs)
         unknown = wanted - set(OUTPUTS)
         if unknown:
@@ -279,7 +278,7 @@ class Running:
         if h_max is not None:
             settings["h_max"] = check_positive("h_max", h_max)
         if max_seconds is not None:
-            settings["max_seconds"] = check_positive("max_seconds", max_seconds)
+            settings["max_seconds"] = max_seconds  # the core checks it is a positive number
         if extremes is not False:
             start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
@@ -379,7 +378,7 @@ class Running:
         if ideal_kwargs.get("extremes") not in (None, True, False):
             ideal_kwargs["extremes"] = [n for n in ideal_kwargs["extremes"] if n in ideal.body_names]
         ideal_settings = ideal.run_settings(t_end, **ideal_kwargs)
-        raws = _core.run_batch([self.description(), ideal.description()], [settings, ideal_settings], 0)
+        raws = run_descriptions([self.description(), ideal.description()], [settings, ideal_settings])
         actual, twin = raws
         if isinstance(actual, BaseException):
             raise actual
@@ -531,7 +530,7 @@ class Running:
         return None
 
 
-__all__ = ["RunOptions", "Running", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]
+__all__ = ["RunOptions", "Running", "COMPONENTS", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]
 
 
 def _plain(value: Any) -> Any:

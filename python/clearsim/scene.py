@@ -179,21 +179,24 @@ import numpy as np
 from . import _core, display
 from .errors import InputError, PlausibilityWarning, SimulationError
 from .mechanism import Mechanism
-from .running import COMPONENTS, OUTPUTS
+from .schema import COMPONENTS, OUTPUTS
+from .reliability.fosm import BIN_WIDTH
 from .result import Result
 from .scene_builder import _Builder
 from .toml_reader import Table, dotted_key, read_toml
 
 PathLike = Union[str, Path]
 
-#: Body quantities and their components: (name, unit) per component x, y, theta.
-BODY_QUANTITIES: Dict[str, Tuple[str, str, str]] = {
+#: The body channels ``[outputs].quantities`` names and the unit of each component x, y, theta
+#: (ASCII, as the CSV headers write them). Not :data:`clearsim.schema.BODY_QUANTITIES`, the
+#: quantities of an error or extreme (``"displacement"`` where a channel says ``"position"``).
+BODY_CHANNELS: Dict[str, Tuple[str, str, str]] = {
     "position": ("m", "m", "rad"),
     "velocity": ("m/s", "m/s", "rad/s"),
     "acceleration": ("m/s^2", "m/s^2", "rad/s^2"),
 }
-#: Clearance-joint quantities: their columns (name, unit).
-JOINT_QUANTITIES: Dict[str, Tuple[Tuple[str, str], ...]] = {
+#: The clearance-joint channels ``[outputs].joint_quantities`` names: their columns (name, unit).
+JOINT_CHANNELS: Dict[str, Tuple[Tuple[str, str], ...]] = {
     "eccentricity": (("ex", "m"), ("ey", "m"), ("eps", "-")),
     "eccentricity_rate": (("ex_dot", "m/s"), ("ey_dot", "m/s")),
     "force": (("fx", "N"), ("fy", "N")),
@@ -205,6 +208,10 @@ JOINT_QUANTITIES: Dict[str, Tuple[Tuple[str, str], ...]] = {
 #: :meth:`Result.error` and the reliability analysis).
 ERROR_QUANTITIES: Dict[str, str] = {"position": "displacement", "velocity": "velocity", "acceleration": "acceleration"}
 RELIABILITY_QUANTITIES: Tuple[str, ...] = tuple(ERROR_QUANTITIES.values())
+#: Old names of :data:`BODY_CHANNELS` and :data:`JOINT_CHANNELS` (deprecated: the reliability
+#: package and :mod:`clearsim.schema` use these names for output quantities).
+BODY_QUANTITIES = BODY_CHANNELS
+JOINT_QUANTITIES = JOINT_CHANNELS
 _CHANNEL_OF = {"position": "states", "velocity": "states", "acceleration": "accelerations"}
 
 
@@ -248,7 +255,7 @@ class OutputSettings:
     """The ``[outputs]`` table: what ``clearsim run`` writes (CSV) and plots (PNG)."""
 
     bodies: List[str] = field(default_factory=list)
-    quantities: List[str] = field(default_factory=lambda: list(BODY_QUANTITIES))
+    quantities: List[str] = field(default_factory=lambda: list(BODY_CHANNELS))
     components: List[str] = field(default_factory=lambda: list(COMPONENTS))
     joints: List[str] = field(default_factory=list)
     joint_quantities: List[str] = field(default_factory=lambda: ["eccentricity", "force"])
@@ -270,7 +277,7 @@ class ReliabilitySettings:
     component: str
     allowable: Dict[str, Tuple[float, float]]
     omega: float
-    bin_width: float = 18.0
+    bin_width: float = BIN_WIDTH
     t_start: float = 0.0
 
 
@@ -452,10 +459,10 @@ def _outputs(b: _Builder, m: Mechanism) -> OutputSettings:
     joints = m.clearance_joint_names
     out = OutputSettings(
         bodies=t.strings("bodies", [], choices=m.body_names),
-        quantities=t.strings("quantities", list(BODY_QUANTITIES), choices=tuple(BODY_QUANTITIES)),
+        quantities=t.strings("quantities", list(BODY_CHANNELS), choices=tuple(BODY_CHANNELS)),
         components=t.strings("components", list(COMPONENTS), choices=COMPONENTS),
         joints=t.strings("joints", list(joints), choices=joints),
-        joint_quantities=t.strings("joint_quantities", ["eccentricity", "force"], choices=tuple(JOINT_QUANTITIES)),
+        joint_quantities=t.strings("joint_quantities", ["eccentricity", "force"], choices=tuple(JOINT_CHANNELS)),
         ideal=t.boolean("ideal", bool(joints)),
         csv=t.boolean("csv", True),
         plots=t.boolean("plots", True),
@@ -495,7 +502,7 @@ def _reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]:
             raise t.error(None, "missing key 'omega' in [reliability] (no constant-speed driver to take it from)")
     if omega == 0.0 or not math.isfinite(omega):
         raise t.error("omega", f"invalid reliability.omega = {omega!r}: must be a non-zero drive speed [rad/s]", omega)
-    bin_width = t.number("bin_width", 18.0)
+    bin_width = t.number("bin_width", BIN_WIDTH)
     if not 0.0 < bin_width <= 360.0:
         raise t.error("bin_width", f"invalid reliability.bin_width = {bin_width!r}: must lie in (0, 360] degrees", bin_width)
     return ReliabilitySettings(
@@ -572,7 +579,9 @@ def load_scene(path: PathLike) -> Mechanism:
 
 
 __all__ = [
+    "BODY_CHANNELS",
     "BODY_QUANTITIES",
+    "JOINT_CHANNELS",
     "JOINT_QUANTITIES",
     "OutputSettings",
     "ReliabilitySettings",

@@ -53,3 +53,10 @@ def test_reliability_rooms_import_downward():
     assert len(rooms) > 10
     circles = [(a, b) for a in rooms for b in edges[a] if _reaches(edges, b, a)]
     assert not circles, f"import circles: {circles}"
+
+
+def test_every_clearsim_module_imports_downward():
+    """The whole package: no circle (export ↔ result and mechanism ↔ running were the last)."""
+    edges = _graph()
+    circles = sorted((a, b) for a in edges for b in edges[a] if _reaches(edges, b, a))
+    assert not circles, f"import circles: {circles}"

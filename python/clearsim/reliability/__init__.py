@@ -26,7 +26,8 @@ systems), :mod:`.sampling` (importance sampling, subset simulation), :mod:`.sobo
 indices by sampling or polynomial chaos), :mod:`.tolerance` (tolerance design), :mod:`.akmcs` (AK-MCS,
 AK-IS), :mod:`.uq` (all of these in one import), :mod:`.model` (what the methods need of a model and every method on it;
 :class:`LimitState` for any function), :mod:`.study` (:class:`Study`, the simulation model and
-the one Monte Carlo sample loop), :mod:`.life` and :mod:`.life_plot` (reliability over life by
+the one Monte Carlo sample loop), :mod:`.binned` (``clearsim.monte_carlo``: per-bin Monte
+Carlo of one body coordinate's errors on that loop), :mod:`.life` and :mod:`.life_plot` (reliability over life by
 cycle jumping), :mod:`.scene` and :mod:`.report` (``clearsim reliability``).
 Methods on OpenTURNS need ``pip install clearsim[uq]``; docs/reliability.md says which to use.
 """
@@ -36,7 +37,7 @@ from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reason
 from .fosm import PAPER_ALLOWABLE, FosmResult, allowable_statistics, fosm, normal_cdf, normal_ppf, reliability_index
 from .form import FormResult, SystemFormResult
 from .life import LifeModel, LifeResult
-from .model import LimitState, Model
+from .model import LimitState, Model, ReliabilityModel
 from .outputs import Limit, Output
 from .sampling import SamplingResult
 from .sobol import SobolResult
@@ -63,6 +64,7 @@ __all__ = [
     "MonteCarloEstimate",
     "Normal",
     "Output",
+    "ReliabilityModel",
     "SamplingResult",
     "Scipy",
     "Shifted",

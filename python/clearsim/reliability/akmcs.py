@@ -41,12 +41,15 @@ from dataclasses import dataclass
 from typing import Any, List, Optional, Tuple, Union
 
 import numpy as np
-from scipy import linalg, special
 
 from ..errors import InputError, ReliabilityError, ReliabilityWarning, check_positive
 from .bridge import check_model, normal_interval, ot
 from .form import form, limit_state_noise, system_form
 from .sampling import SamplingResult
+from ..lazy import lazy
+
+linalg = lazy("scipy.linalg")
+special = lazy("scipy.special")
 
 __all__ = ["Kriging", "ak_mcs", "ak_is", "COVARIANCES", "STOP_U", "INITIAL_POINTS"]
 

@@ -28,7 +28,7 @@ def check_on_failure(on_failure: Any) -> str:
 
 
 class ModelLike(Protocol):
-    """What the methods need of a model (:class:`clearsim.reliability.Model` provides it)."""
+    """What the methods need of a model (:class:`clearsim.reliability.ReliabilityModel` provides it)."""
 
     inputs: Dict[str, Any]
     random_names: List[str]

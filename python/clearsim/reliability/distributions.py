@@ -16,9 +16,12 @@ from dataclasses import dataclass
 from typing import Any, Dict, Mapping, Optional, Tuple, Union
 
 import numpy as np
-from scipy import special, stats
 
 from ..errors import InputError, check_finite
+from ..lazy import lazy
+
+special = lazy("scipy.special")
+stats = lazy("scipy.stats")
 
 __all__ = [
     "Distribution",

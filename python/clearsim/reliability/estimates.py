@@ -12,6 +12,7 @@ import numpy as np
 from ..errors import InputError, check_finite
 from .. import display
 from .fosm import (
+    BIN_WIDTH,
     FosmResult,
     _as_finite_array,
     _assign_bins,
@@ -163,7 +164,7 @@ def mc_bin_reliability(
     crank_angle_deg: Any,
     upper: float,
     lower: float = 0.0,
-    bin_width: float = 18.0,
+    bin_width: float = BIN_WIDTH,
     confidence: float = 0.95,
     per_cycle: bool = False,
     failed: int = 0,

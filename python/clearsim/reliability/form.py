@@ -30,11 +30,14 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
-from scipy import special, stats
 
 from .. import display
 from ..errors import InputError, ReliabilityError, ReliabilityWarning, check_positive
 from .bridge import ModelLike, check_model
+from ..lazy import lazy
+
+special = lazy("scipy.special")
+stats = lazy("scipy.stats")
 
 __all__ = ["FormResult", "SystemFormResult", "form", "system_form", "limit_state_noise", "ditlevsen_bounds", "series_probability"]
 

@@ -27,10 +27,12 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
-from scipy import special
 
 from ..errors import InputError, check_finite
 from .. import display
+from ..lazy import lazy
+
+special = lazy("scipy.special")
 
 #: The paper's allowable error ranges ``(Δv, Δu)`` of the slider (section 5): displacement [m],
 #: velocity [m/s], acceleration [m/s²].
@@ -39,6 +41,9 @@ PAPER_ALLOWABLE: Dict[str, Tuple[float, float]] = {
     "velocity": (0.0, 0.6),
     "acceleration": (0.0, 200.0),
 }
+
+#: The paper's crank-angle bins [deg]: the default bin width of every per-bin estimate.
+BIN_WIDTH = 18.0
 
 ArrayLike = Union[float, Sequence[float], np.ndarray]
 Allowable = Union[str, Tuple[float, float], Sequence[float]]
@@ -338,7 +343,7 @@ def fosm(
     error: ArrayLike,
     crank_angle: ArrayLike,
     allowable: Allowable,
-    bin_width: float = 18.0,
+    bin_width: float = BIN_WIDTH,
     per_cycle: bool = False,
     ddof: int = 0,
 ) -> FosmResult:

@@ -30,13 +30,15 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Protocol, Sequence, Tuple
 
 import numpy as np
-from scipy import stats
 
 from ..errors import InputError, SimulationError, check_positive
 from .distributions import input_stream
 from .estimates import wilson_interval
 from .bridge import check_on_failure
-from .model import Model
+from .model import ReliabilityModel
+from ..lazy import lazy
+
+stats = lazy("scipy.stats")
 
 __all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "LifeModel", "StudyBlocks", "life", "study_life", "MAX_GROWTH", "WEAR_BINS"]
 
@@ -369,7 +371,7 @@ def study_life(
     return res
 
 
-class LifeModel(Model):
+class LifeModel(ReliabilityModel):
     """The limit state of a whole life as a reliability model: ``g(u)`` is the smallest g over
     the blocks of the life of the sample at u up to ``cycles`` operating cycles (failure by then
     when ≤ 0; a failed run gives −1), so AK-MCS, FORM or importance sampling answer

@@ -39,7 +39,7 @@ def plot_life(res: Any, *, limit: Optional[float] = None, unit: str = "", reliab
     from .. import plots
 
     with plots.style():
-        fig = plots._new_figure(12.6, 3.6)
+        fig = plots.new_figure(12.6, 3.6)
         ax_p, ax_peak, ax_d = fig.subplots(1, 3)
         n = res.cycles
         lo, hi = res.interval

@@ -23,10 +23,10 @@ from .sampling import SamplingResult, importance_sampling, subset
 from .sobol import SobolResult, sobol
 from .tolerance import ToleranceResult, tolerance
 
-__all__ = ["Model", "LimitState", "ON_FAILURE", "check_on_failure"]
+__all__ = ["ReliabilityModel", "Model", "LimitState", "ON_FAILURE", "check_on_failure"]
 
 
-class Model:
+class ReliabilityModel:
     """Named inputs (:class:`Distribution` each) and the map from standard normal points to them.
 
     Subclasses provide ``limit_state(u, on_failure) -> (N,) array`` and count their runs in
@@ -82,7 +82,7 @@ class Model:
         """Each mode's limit state at ``u``: ``(N, modes)``."""
         return np.asarray(self.limit_state(u, on_failure), dtype=float).reshape(-1, 1)
 
-    def mode(self, index: Union[int, str]) -> "Model":
+    def mode(self, index: Union[int, str]) -> "ReliabilityModel":
         """A view of one failure mode as a model (its runs counted with this one's)."""
         names = self.mode_names
         k = names.index(index) if isinstance(index, str) and index in names else index
@@ -140,7 +140,7 @@ class Model:
         :func:`clearsim.reliability.akmcs.ak_is`."""
         return ak_is(self, max_runs=max_runs, seed=seed, cov=cov, population=population, max_population=max_population, covariance=covariance, design_point=design_point, on_failure=on_failure, step=step)
 
-    def with_input(self, name: str, value: Any) -> "Model":
+    def with_input(self, name: str, value: Any) -> "ReliabilityModel":
         """A copy with input ``name`` replaced (caches shared, run count kept)."""
         if name not in self.inputs:
             raise InputError(f"invalid input {name!r}: not an input (known: {', '.join(self.inputs)})", field="name", value=name)
@@ -149,7 +149,7 @@ class Model:
         return other
 
 
-class LimitState(Model):
+class LimitState(ReliabilityModel):
     """Any vectorised limit-state function of named inputs.
 
     ``LimitState(lambda x: 3.0 - x["a"] - x["b"], {"a": Normal(0, 1), "b": Normal(0, 1)})``:
@@ -198,10 +198,10 @@ class LimitState(Model):
         return np.min(self.limit_states(u, on_failure), axis=1)
 
 
-class _Mode(Model):
+class _Mode(ReliabilityModel):
     """One failure mode of a model with several, seen as a model (runs counted on the parent)."""
 
-    def __init__(self, parent: Model, index: int) -> None:
+    def __init__(self, parent: ReliabilityModel, index: int) -> None:
         self.parent = parent
         self.index = index
         self.inputs = parent.inputs
@@ -215,5 +215,10 @@ class _Mode(Model):
     def limit_state(self, u: Any, on_failure: str = "fail") -> np.ndarray:
         return np.asarray(self.parent.limit_states(u, on_failure)[:, self.index], dtype=float)
 
-    def with_input(self, name: str, value: Any) -> "Model":
+    def with_input(self, name: str, value: Any) -> "ReliabilityModel":
         return _Mode(self.parent.with_input(name, value), self.index)
+
+
+#: Old name of :class:`ReliabilityModel` (deprecated: "model" also names the compiled mechanism,
+#: ``Mechanism.compile()``, and the mechanisms of :mod:`clearsim.models`).
+Model = ReliabilityModel

@@ -9,20 +9,17 @@ A study with several outputs is a series system: it fails when any output passes
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Optional, Tuple
+from typing import Any, List, Optional, Tuple
 
 import numpy as np
 
 from ..errors import InputError, check_choice, check_finite, check_positive, renamed
-from ..running import COMPONENTS
+from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, body_unit
 
-__all__ = ["BODY_QUANTITIES", "JOINT_QUANTITIES", "Output", "Limit", "as_limit"]
+__all__ = ["BODY_QUANTITIES", "JOINT_QUANTITIES", "Output", "Limit", "Modes", "as_limit"]
 
-#: Quantities of a body coordinate's error against the ideal mechanism.
-BODY_QUANTITIES = ("displacement", "velocity", "acceleration")
-#: Quantities of a clearance joint. ``film_thickness`` is the smallest gap over the window,
-#: h_min = c (1 − ε_max) [m], from the monitored eccentricity's peak (docs/physics.md §4).
-JOINT_QUANTITIES = ("eccentricity", "force", "contact_force", "film_force", "film_thickness")
+# BODY_QUANTITIES: the quantities of a body coordinate's error against the ideal mechanism;
+# JOINT_QUANTITIES: those of a clearance joint (clearsim.schema, with their units).
 SIDES = ("above", "below")
 
 
@@ -67,9 +64,8 @@ class Output:
     def unit(self) -> str:
         """Unit of the output (and of its limit)."""
         if self.joint is not None:
-            return {"eccentricity": "-", "film_thickness": "m"}.get(self.quantity, "N")
-        base = "rad" if self.component == "theta" else "m"
-        return {"displacement": base, "velocity": f"{base}/s", "acceleration": f"{base}/s²"}[self.quantity]
+            return JOINT_QUANTITY_UNITS[self.quantity]
+        return body_unit(self.quantity, str(self.component))
 
     @property
     def label(self) -> str:
@@ -135,6 +131,24 @@ class Limit:
 
     def text(self, unit: str) -> str:
         return f"{'≤' if self.side == 'above' else '≥'} {self.value:g} {unit}"
+
+
+class Modes:
+    """The failure modes of a study: its outputs with their limits (one each, or several: a
+    series system), and the first of each as a study of one output names them."""
+
+    outputs: List[Output]
+    limits: List[Limit]
+
+    @property
+    def output(self) -> Output:
+        """The analysed output (the first one of a system)."""
+        return self.outputs[0]
+
+    @property
+    def limit(self) -> float:
+        """The limit's value [output unit] (the first output's, for a system)."""
+        return self.limits[0].value
 
 
 def as_limit(value: Any, output: Output, field: str = "limit") -> Limit:

@@ -3,7 +3,6 @@ tables, a figure and a short text report."""
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -11,6 +10,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
+from ..csvfile import write_rows
 from .scene import scene_study
 
 FOSM_NOTE = (
@@ -169,12 +169,7 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
 
 
 def _write(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> Path:
-    with path.open("w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        for r in rows:
-            w.writerow([f"{v:.10g}" if isinstance(v, (float, np.floating)) else v for v in r])
-    return path
+    return write_rows(path, header, rows)
 
 
 def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
@@ -187,7 +182,7 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
     if not panels:
         panels = ["pf"]
     with plots.style():
-        fig = plots._new_figure(4.2 * len(panels), 3.6)
+        fig = plots.new_figure(4.2 * len(panels), 3.6)
         axes = list(fig.subplots(1, len(panels), squeeze=False)[0])
         unit = study.output.unit
         ax = axes.pop(0)

@@ -1,6 +1,6 @@
-"""Batches of runs for the reliability methods: the monitor each run carries (its spec, once) and
-the batch runner (in the Rust core on all local cores, or through any ``concurrent.futures``-style
-executor), with progress bars.
+"""What the reliability methods add to each run: the monitor it carries (its spec, once) and the
+grids of the ideal reference and of stored outputs. The batches themselves run through
+:mod:`clearsim.batch` (re-exported here under their old names).
 
 The monitor (``rust/monitor.rs``) tracks one output at every accepted step of the integrator —
 its peak, the first time it passes a limit and per-time-bin extremes and moments — so no answer
@@ -10,12 +10,11 @@ of a study depends on an output grid (docs/physics.md §6).
 from __future__ import annotations
 
 import math
-import os
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from .. import _core
+from ..batch import error_of, failed, progress, run_all, run_descriptions
 
 __all__ = ["REFERENCE_POINTS_PER_CYCLE", "MONITOR_SAMPLES_PER_STEP", "run_descriptions", "run_all", "progress", "monitor_spec", "failed", "error_of", "reference_grid", "output_grid"]
 
@@ -26,59 +25,6 @@ REFERENCE_POINTS_PER_CYCLE = 7200
 #: derivative, with one KKT solve at the worst interior point and one at the step's end): 4 a
 #: step missed impact peaks by 1e-4 relative to a 3 600-point grid on the dry slider-crank, 8 do not.
 MONITOR_SAMPLES_PER_STEP = 8
-
-
-def run_descriptions(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]]) -> List[Any]:
-    """Run descriptions with their settings in the Rust core (all local cores). A pure,
-    picklable function: this is what a remote executor runs for a chunk of samples."""
-    return _core.run_batch(descriptions, settings, 0)
-
-
-def failed(raw: Any) -> bool:
-    """Whether a raw run result is a failure (an exception or a result carrying an error)."""
-    return isinstance(raw, BaseException) or raw.get("error") is not None
-
-
-def error_of(raw: Any) -> Any:
-    """The error of a failed raw run result."""
-    return raw if isinstance(raw, BaseException) else raw["error"]
-
-
-def progress(total: int, enabled: bool, what: str) -> Any:
-    """A progress bar over ``total`` runs (:func:`clearsim.progress.bar`)."""
-    from ..progress import bar
-
-    return bar(total, what, "run", enabled=enabled)
-
-
-def run_all(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], executor: Any, chunk_size: Optional[int], show: bool, what: str) -> List[Any]:
-    """Run in chunks (so a progress bar can move), locally in Rust or through ``executor``."""
-    total = len(descriptions)
-    if total == 0:
-        return []
-    if chunk_size is None:
-        if executor is None:
-            # In-core batches: large enough that the threads stay busy to the batch's end (run
-            # times vary ±30 % between samples; with 3–6 runs a batch on 2 threads a quarter of
-            # the time was spent waiting for the slowest), small enough for the bar to move.
-            chunk_size = max(1, min(total, max(16 * (os.cpu_count() or 1), total // 20)))
-        else:
-            chunk_size = max(1, min(32, total // 20 or 1))  # spread over the executor's workers
-    chunks = [(descriptions[i : i + chunk_size], settings[i : i + chunk_size]) for i in range(0, total, chunk_size)]
-    bar = progress(total, show, what)
-    out: List[Any] = []
-    try:
-        if executor is None:
-            for d, s in chunks:
-                out += run_descriptions(d, s)
-                bar.update(len(d))
-        else:
-            for res in executor.map(run_descriptions, [c[0] for c in chunks], [c[1] for c in chunks]):
-                out += list(res)
-                bar.update(len(res))
-    finally:
-        bar.close()
-    return out
 
 
 def monitor_spec(ideal: Optional[Dict[str, Any]], col: int, quantity: str, limit: Optional[float], t_start: float, period: float, cycles: float, bin_width: float) -> Dict[str, Any]:

@@ -11,12 +11,14 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
-from scipy import special
 
 from .. import display
 from ..errors import check_positive
 from .bridge import ModelLike, event, normal_interval, ot, seed_ot
 from .form import FormResult, SystemFormResult, form, system_form
+from ..lazy import lazy
+
+special = lazy("scipy.special")
 
 __all__ = ["SamplingResult", "importance_sampling", "subset"]
 

@@ -62,8 +62,9 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple, Union
 
 from .distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
-from ..running import COMPONENTS
-from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Output
+from ..schema import COMPONENTS
+from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Modes, Output
+from .fosm import BIN_WIDTH
 from .sobol import SOBOL_METHODS
 from .study import Study
 
@@ -92,7 +93,7 @@ class LifeSettings:
 
 
 @dataclass
-class StudySettings:
+class StudySettings(Modes):
     """The ``[study]`` table, checked: ``outputs`` and their ``limits`` (one each, or several:
     a series system)."""
 
@@ -106,22 +107,12 @@ class StudySettings:
     samples: int = 1000
     cov: float = 0.1
     seed: int = 0
-    bin_width: float = 18.0
+    bin_width: float = BIN_WIDTH
     tolerance: Optional[Tuple[str, float, Optional[Tuple[float, float]]]] = None
     sobol_method: str = "saltelli"
     step: Union[float, str] = "auto"
     max_runs: int = 150
     life: Optional[LifeSettings] = None
-
-    @property
-    def output(self) -> Output:
-        """The (first) output."""
-        return self.outputs[0]
-
-    @property
-    def limit(self) -> float:
-        """The (first) output's limit value."""
-        return self.limits[0].value
 
 
 def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
@@ -228,7 +219,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
         step = fixed
     return StudySettings(
         outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
-        methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", 18.0), tolerance=tol,
+        methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", BIN_WIDTH), tolerance=tol,
         max_runs=max_runs, life=life,
     )  # fmt: skip
 

@@ -28,11 +28,13 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
-from scipy import special
 
 from .. import display
 from ..errors import InputError, ReliabilityWarning, check_choice
 from .bridge import ModelLike, check_model, ot, seed_ot
+from ..lazy import lazy
+
+special = lazy("scipy.special")
 
 __all__ = ["SobolResult", "sobol", "SOBOL_METHODS", "WIDE_INTERVAL"]
 

@@ -9,7 +9,7 @@ output grid). One output fails when it passes its limit; the limit-state functio
 ``g = 1 − peak / limit`` (``minimum / limit − 1`` for a lower limit), failure when ``g ≤ 0``.
 Several outputs make a series system: ``g = min_i g_i`` (docs/reliability.md).
 
-Every method inherited from :class:`~clearsim.reliability.model.Model` (FORM, importance
+Every method inherited from :class:`~clearsim.reliability.model.ReliabilityModel` (FORM, importance
 sampling, subset simulation, Sobol indices, tolerance design) runs the model through
 :meth:`Study.limit_states`; :meth:`Study.monte_carlo` and ``clearsim.monte_carlo`` run it through
 :meth:`Study.run_samples`, the one sample loop.
@@ -26,14 +26,15 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import InputError, SimulationError, check_finite, check_positive
-from ..running import COMPONENTS
+from ..schema import COMPONENTS
 from .bridge import check_on_failure
 from .distributions import input_stream
 from .estimates import failure_reasons, wilson_interval
-from .fosm import FosmResult, allowable_statistics, fosm_from_monitors
-from .model import Model
-from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Output, limits_and_outputs
-from .runs import REFERENCE_POINTS_PER_CYCLE, error_of, failed, monitor_spec, output_grid, progress, reference_grid, run_all
+from .fosm import BIN_WIDTH, FosmResult, allowable_statistics, fosm_from_monitors
+from .model import ReliabilityModel
+from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
+from ..batch import error_of, failed, progress, run_all
+from .runs import REFERENCE_POINTS_PER_CYCLE, monitor_spec, output_grid, reference_grid
 from .. import display
 
 __all__ = ["Output", "Limit", "Study", "Evaluation", "MonteCarloEstimate", "ModeEstimate", "FosmResult", "BODY_QUANTITIES", "JOINT_QUANTITIES", "REFERENCE_POINTS_PER_CYCLE"]
@@ -148,7 +149,7 @@ class _Job:
     refine: int = 1
 
 
-class Study(Model):
+class Study(ReliabilityModel, Modes):
     """Reliability of one or several outputs of a mechanism with random inputs.
 
     Parameters
@@ -193,7 +194,7 @@ class Study(Model):
         omega: Any = None,
         cycles: float = 1.0,
         skip_cycles: float = 0.0,
-        bin_width: float = 18.0,
+        bin_width: float = BIN_WIDTH,
         integrator: str = "auto",
         rtol: float = 1e-6,
         atol: float = 1e-9,
@@ -234,17 +235,7 @@ class Study(Model):
         self._ideal: "OrderedDict[str, Any]" = OrderedDict()
         self._assembly_checked = False
 
-    # ------------------------------------------------------------------ outputs and limits
-    @property
-    def output(self) -> Output:
-        """The analysed output (the first one of a system)."""
-        return self.outputs[0]
-
-    @property
-    def limit(self) -> float:
-        """The limit's value [output unit] (the first output's, for a system)."""
-        return self.limits[0].value
-
+    # ------------------------------------------------------------------ outputs and limits (Modes)
     @property
     def mode_names(self) -> List[str]:
         """One failure mode per output: its :attr:`Output.name`."""
@@ -515,7 +506,7 @@ class Study(Model):
 
     # ------------------------------------------------------------------ methods of other rooms
     # Reliability over life (life.py) and active-learning surrogates (akmcs.py) add their
-    # methods here, each a thin call into its own module (as Model's methods call form.py etc.).
+    # methods here, each a thin call into its own module (as ReliabilityModel's methods call form.py etc.).
     def life(
         self, cycles: Sequence[float], n: int, seed: Optional[int] = 0, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None,
         settle: Optional[float] = None, on_failure: str = "fail", confidence: float = 0.95,

@@ -9,13 +9,16 @@ import time
 from dataclasses import dataclass
 from typing import Any, List, Optional, Tuple, Union
 
-from scipy import optimize, special
 
 from .. import display
 from ..errors import InputError
 from .bridge import ModelLike
 from .form import form
 from .sampling import SamplingResult, importance_sampling
+from ..lazy import lazy
+
+optimize = lazy("scipy.optimize")
+special = lazy("scipy.special")
 
 __all__ = ["ToleranceResult", "tolerance"]
 

@@ -1,5 +1,5 @@
 """Rare events, sensitivity and tolerance design (``pip install clearsim[uq]`` for the methods on
-OpenTURNS): one import for every method on a :class:`~clearsim.reliability.model.Model`.
+OpenTURNS): one import for every method on a :class:`~clearsim.reliability.model.ReliabilityModel`.
 
 clearsim supplies the model — a vectorised limit-state function ``g(u)`` that runs a batch of
 simulations in parallel — and the methods work in the standard normal space ``u`` of the

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from .. import plots
+from ..csvfile import write_rows
 from ..reliability import FosmResult
 from . import paper_values as PV
 from .paper_runs import Analysis, CASES, CLEARANCE_CASES, CSV_UNIT, Case, JOINTS, QUANTITIES, Run, TRANSITION_FRACTION, UNIT, _short_label, minima_with_paper
@@ -19,12 +19,7 @@ from .paper_trends import Trend
 
 
 def _write_csv(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> Path:
-    with open(path, "w", newline="", encoding="utf-8") as fh:
-        w = csv.writer(fh)
-        w.writerow(header)
-        for row in rows:
-            w.writerow(["" if (isinstance(v, float) and not np.isfinite(v)) else (f"{v:.10g}" if isinstance(v, float) else v) for v in row])
-    return path
+    return write_rows(path, header, rows, blank_nonfinite=True)  # clearsim.csvfile: the one writer
 
 
 def _columns_csv(path: Path, columns: Dict[str, np.ndarray]) -> Path:

@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import SimulationError
 from ..models import nine_bar
 from ..reliability import FosmResult, fosm
+from ..reliability.fosm import BIN_WIDTH  # [deg] the paper's bins
 from ..result import Result
 from . import paper_values as PV
 
@@ -26,7 +27,6 @@ CSV_UNIT = {"displacement": "m", "velocity": "m_per_s", "acceleration": "m_per_s
 SLIDER = "slider9"
 AXIS_Y = 1
 JOINTS = ("A", "B")
-BIN_WIDTH = 18.0  # [deg] the paper's bins
 GRID_DEG = 0.5  # [deg] output grid of the full study
 GRID_DEG_QUICK = 2.0  # [deg] output grid of the quick study
 VISCOSITY = 0.4  # [Pa s]

@@ -1,0 +1,37 @@
+"""Report figures, one room a subject: :mod:`.paper` (error histories, journal orbits),
+:mod:`.reliability` (reliability curves, FOSM against Monte Carlo), :mod:`.wear` (wear depth),
+:mod:`.benchmark` (work–precision), all in the look of :mod:`.theme` (palette, rcParams,
+series styles, :func:`save`).
+
+Every function takes plain numpy arrays and labels (no simulation objects), returns a
+:class:`matplotlib.figure.Figure` and leaves no pyplot state behind: figures are built with
+``Figure(...)`` directly, so nothing is registered with pyplot and nothing needs closing unless
+you created it through pyplot yourself. Save with :func:`save` (PNG, 150 dpi).
+"""
+
+from .benchmark import plot_work_precision
+from .paper import plot_error_histories, plot_journal_orbits
+from .reliability import plot_fosm_vs_mc, plot_reliability, plot_reliability_panels
+from .theme import OKABE_ITO, QUANTITIES, RC, new_figure, save, series_style, style, suptitle
+from .wear import plot_wear
+
+#: Old name of :func:`new_figure` (deprecated).
+_new_figure = new_figure
+
+__all__ = [
+    "OKABE_ITO",
+    "QUANTITIES",
+    "RC",
+    "new_figure",
+    "plot_error_histories",
+    "plot_fosm_vs_mc",
+    "plot_journal_orbits",
+    "plot_reliability",
+    "plot_reliability_panels",
+    "plot_wear",
+    "plot_work_precision",
+    "save",
+    "series_style",
+    "style",
+    "suptitle",
+]

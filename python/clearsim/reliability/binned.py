@@ -1,0 +1,361 @@
+"""Monte Carlo dynamic-accuracy reliability of one body coordinate's errors per crank-angle bin,
+with stored error traces (``clearsim.monte_carlo``; docs/physics.md §6, beyond the paper).
+
+A thin layer over :class:`clearsim.reliability.Study`: the samples run through the study's one
+sample loop (:meth:`Study.run_samples`: in parallel inside the Rust core with the GIL released,
+or through any ``concurrent.futures``-style executor), each quantity an output of the study; this
+module turns the runs' monitors and stored traces into per-bin reliability and the first-passage
+probability with confidence intervals, next to FOSM (:func:`clearsim.reliability.fosm.fosm_from_monitors`).
+For p_f alone, ``Study.monte_carlo`` is the lighter call.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from .. import display
+from ..errors import InputError, SimulationError, check_choice, check_positive, renamed
+from ..mechanism import Mechanism
+from ..schema import BODY_QUANTITY_UNITS, COMPONENTS
+from .bridge import check_on_failure
+from .distributions import Distribution, sample_inputs
+from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, mc_bin_reliability, wilson_interval
+from .fosm import BIN_WIDTH, fosm_from_monitors
+from .outputs import Limit, Output
+from .study import Study
+
+QUANTITIES = {"displacement": "q", "velocity": "qd", "acceleration": "qdd"}
+#: Units of an error, per quantity and component (x, y: translation; theta: rotation).
+UNITS = {(q, theta): units[int(theta)] for q, units in BODY_QUANTITY_UNITS.items() for theta in (False, True)}
+
+
+@dataclass
+class MonteCarloResult:
+    """Outcome of :func:`monte_carlo`.
+
+    Attributes
+    ----------
+    inputs:
+        The sampled inputs, ``{name: (n,) array}`` (failed samples included).
+    ok:
+        Boolean mask of the samples whose clearance and ideal runs both completed.
+    failures:
+        ``(sample index, reason)`` of every sample that did not complete (simulation error,
+        step or wall-time budget used up); none is dropped silently.
+    on_failure:
+        How failed samples entered the estimates: ``"fail"`` (each counts as leaving the
+        allowable range, in every bin and in the first-passage probability) or ``"exclude"``
+        (estimates over the completed samples; ``pf_bounds`` bounds them both ways).
+    pf_bounds:
+        ``{quantity: (low, high)}`` first-passage probability if every failed sample had stayed
+        within / left the range: the honest range of the answer when failures are excluded (with
+        ``"fail"`` the estimate is the high end).
+    crank_angle:
+        (n_ok, n_times) crank angle [deg] of each analysed output sample.
+    errors:
+        ``{quantity: (n_ok, n_times) array}`` of signed errors (clearance − ideal response).
+    bins:
+        ``{quantity: MonteCarloBins}``: per-bin Monte Carlo reliability with Wilson intervals,
+        and FOSM from the pooled samples (``bins[q].fosm``).
+    first_passage:
+        ``{quantity: Estimate}``: probability that |error| leaves the allowable range anywhere
+        in the analysed cycles.
+    allowable:
+        ``{quantity: (lower, upper)}``.
+    peaks, first_passage_times:
+        ``{quantity: (n_ok,) array}``: each completed sample's largest |error| over the analysed
+        window and the first time [s] it exceeded the upper limit (NaN: never), tracked by the
+        integrator at every step (not from the stored grid).
+
+    ``first_passage``, the per-bin Monte Carlo reliability ``bins[q].reliability`` and the
+    pooled FOSM ``bins[q].fosm`` (time-averaged moments of |error| per bin) come from the same
+    step-by-step tracking, so they do not depend on ``points_per_cycle``; only the ``errors``
+    traces are on the stored output grid.
+    """
+
+    inputs: Dict[str, np.ndarray]
+    ok: np.ndarray
+    failures: List[Tuple[int, str]]
+    crank_angle: np.ndarray
+    errors: Dict[str, np.ndarray]
+    bins: Dict[str, MonteCarloBins]
+    first_passage: Dict[str, Estimate]
+    allowable: Dict[str, Tuple[float, float]]
+    on_failure: str = "fail"
+    pf_bounds: Dict[str, Tuple[float, float]] = field(default_factory=dict)
+    peaks: Dict[str, np.ndarray] = field(default_factory=dict)
+    first_passage_times: Dict[str, np.ndarray] = field(default_factory=dict)
+    wall_time: float = 0.0
+    extra: Dict[str, Any] = field(default_factory=dict)
+
+    def _display_rows(self) -> List[Tuple[str, Any]]:
+        rows: List[Tuple[str, Any]] = [("samples", int(self.ok.size)), ("completed", int(self.ok.sum())), ("failures", self.n_failed), ("on_failure", self.on_failure)]
+        rows += [(f"p_f {q}", f"{est.p:.4g} [{est.lo:.4g}, {est.hi:.4g}]") for q, est in self.first_passage.items()]
+        return rows + [("allowable", self.allowable), ("errors", self.errors), ("wall_time", self.wall_time)]
+
+    def __repr__(self) -> str:
+        return display.line("MonteCarloResult", self._display_rows())
+
+    def _repr_html_(self) -> str:
+        return display.table("MonteCarloResult", self._display_rows())
+
+    @property
+    def n_failed(self) -> int:
+        """Number of samples that did not complete."""
+        return len(self.failures)
+
+    def failure_reasons(self) -> Dict[str, int]:
+        """How many samples failed for each kind of reason (the message up to ' at t =')."""
+        return failure_reasons(self.failures)
+
+    def table(self, quantity: str) -> List[Dict[str, Any]]:
+        """Per-bin rows: Monte Carlo reliability with its interval next to FOSM."""
+        return compare_fosm_mc(self.bins[quantity])
+
+    def summary(self) -> Dict[str, Any]:
+        out: Dict[str, Any] = {
+            "samples": int(self.ok.size), "completed": int(self.ok.sum()), "failed": self.n_failed,
+            "failure_reasons": self.failure_reasons(), "on_failure": self.on_failure, "wall_time": self.wall_time,
+        }  # fmt: skip
+        for q, b in self.bins.items():
+            k = int(np.nanargmin(b.reliability))
+            fp = self.first_passage[q]
+            out[q] = {
+                "first_passage_probability": fp.p,
+                "first_passage_interval": (fp.lo, fp.hi),
+                "first_passage_bounds": self.pf_bounds.get(q),
+                "min_bin_reliability_mc": float(b.reliability[k]),
+                "min_bin_interval": (float(b.lo[k]), float(b.hi[k])),
+                "min_bin_angle_deg": float(b.bin_starts[k]),
+                "min_bin_reliability_fosm": float(np.nanmin(b.fosm.reliability)),
+            }
+        return out
+
+
+def monte_carlo(
+    build: Callable[..., Mechanism],
+    distributions: Mapping[str, Union[Distribution, float]],
+    n: int,
+    *,
+    omega: Union[str, float] = "omega",
+    cycles: float = 1.0,
+    skip_cycles: float = 0.0,
+    body: Optional[str] = None,
+    component: Optional[str] = None,
+    allowable: Optional[Mapping[str, Tuple[float, float]]] = None,
+    quantities: Optional[Sequence[str]] = None,
+    on_failure: str = "fail",
+    max_steps: Optional[int] = None,
+    max_seconds: Optional[float] = None,
+    bin_width: float = BIN_WIDTH,
+    points_per_cycle: int = 360,
+    seed: Optional[int] = 0,
+    confidence: float = 0.95,
+    executor: Any = None,
+    chunk_size: Optional[int] = None,
+    progress: bool = True,
+    integrator: str = "auto",
+    rtol: float = 1e-6,
+    atol: float = 1e-9,
+    axis: Optional[str] = None,
+) -> MonteCarloResult:
+    """Monte Carlo reliability of one output of a mechanism with random inputs.
+
+    Parameters
+    ----------
+    build:
+        ``build(**inputs) -> Mechanism`` for one sample, e.g.
+        ``lambda clearance, omega: clearsim.models.nine_bar("dry", clearance, omega)``.
+    distributions:
+        ``{input name: Distribution or number}`` (see :mod:`clearsim.reliability`).
+    n:
+        Number of samples.
+    omega:
+        The drive speed [rad/s] that defines the crank angle: the name of a sampled input, or a
+        number. Each sample runs ``skip_cycles + cycles`` crank turns; the first ``skip_cycles``
+        (start-up transient) are not analysed.
+    body, component:
+        The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
+        error against the ideal mechanism. (``axis=`` is the old name of ``component=``.)
+    allowable:
+        Required: ``{quantity: (lower, upper)}`` allowable |error| range of each analysed
+        quantity (``"displacement"``, ``"velocity"``, ``"acceleration"``) in that quantity's unit:
+        m, m/s, m/s² for ``x``/``y``; rad, rad/s, rad/s² for ``theta``. The paper's slider
+        limits are :data:`clearsim.reliability.PAPER_ALLOWABLE`, to be passed explicitly.
+    quantities:
+        The quantities analysed (default: those given in ``allowable``; each needs its limit).
+    on_failure:
+        A sample whose run fails (simulation error, ``max_steps`` or ``max_seconds`` used up) is
+        kept with its reason in ``.failures`` and ``"fail"`` (default) counts it as leaving the
+        allowable range; ``"exclude"`` estimates from the completed samples and reports
+        ``.pf_bounds``; ``"raise"`` raises :class:`clearsim.SimulationError` naming the sample.
+    max_steps, max_seconds:
+        Budget of each run (steps; wall time [s]): a sample that stalls fails with its reason
+        instead of holding up the batch.
+    executor:
+        ``None`` runs the batch in the Rust core on all local cores. Otherwise any object with a
+        ``concurrent.futures``-style ``map`` (``ProcessPoolExecutor``, Dask's
+        ``client.get_executor()``): chunks of samples are sent to :func:`run_descriptions`.
+    integrator, rtol, atol:
+        As in :meth:`Mechanism.simulate`; ``"auto"`` (default) runs lubricated samples with
+        RADAU5 and their ideal counterparts and dry samples with RK45.
+    """
+    start = time.perf_counter()
+    n = int(n)
+    if n < 1:
+        raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
+    if body is None:
+        raise InputError("missing body: name the body whose error is analysed (there is no default)", field="body", value=None)
+    component = renamed("axis", "component", axis, component)
+    check_choice("component", component, COMPONENTS, "(there is no default)")
+    check_on_failure(on_failure)
+    if not allowable:
+        raise InputError(
+            "missing allowable: give {quantity: (lower, upper)} for each analysed quantity, in its unit "
+            "(m, m/s, m/s² for x and y; rad, rad/s, rad/s² for theta); there is no default",
+            field="allowable", value=allowable,
+        )  # fmt: skip
+    quantities = list(allowable) if quantities is None else list(quantities)
+    for q in quantities:
+        check_choice("quantities", q, list(QUANTITIES))
+        if q not in allowable:
+            unit = UNITS[(q, component == "theta")]
+            raise InputError(f"missing allowable[{q!r}]: the limit of the {component} {q} error [{unit}] is required", field=f"allowable.{q}", value=None)
+    cycles = check_positive("cycles", cycles)
+    if skip_cycles < 0:
+        raise InputError(f"invalid skip_cycles = {skip_cycles!r}: must not be negative", field="skip_cycles", value=skip_cycles)
+    limits: Dict[str, Tuple[float, float]] = {}
+    for q in quantities:
+        pair = allowable[q]
+        try:
+            lo, hi = (float(v) for v in pair)
+        except (TypeError, ValueError):
+            lo = hi = math.nan
+        if not lo < hi:
+            unit = UNITS[(q, component == "theta")]
+            raise InputError(f"invalid allowable[{q!r}] = {pair!r}: give (lower, upper) with lower < upper [{unit}]", field=f"allowable.{q}", value=pair)
+        limits[q] = (lo, hi)
+    inputs = sample_inputs(distributions, n, seed)
+    if isinstance(omega, str) and omega not in inputs:
+        raise InputError(f"invalid omega = {omega!r}: not a sampled input; give the drive speed [rad/s]", field="omega", value=omega)
+    omegas = np.asarray(inputs[omega], dtype=float) if isinstance(omega, str) else np.full(n, float(omega))
+    if np.any(omegas == 0) or not np.all(np.isfinite(omegas)):
+        raise InputError("invalid omega: the drive speed must be finite and non-zero", field="omega", value=omega)
+    budget: Dict[str, Any] = {}
+    if max_steps is not None:
+        budget["max_steps"] = max_steps
+    if max_seconds is not None:
+        budget["max_seconds"] = max_seconds
+    study = Study(
+        build, distributions, [Output(body=body, component=component, quantity=q) for q in quantities], [Limit.above(limits[q][1]) for q in quantities],
+        omega=omega, cycles=cycles, skip_cycles=skip_cycles, bin_width=bin_width, integrator=integrator, rtol=rtol, atol=atol,
+        executor=executor, chunk_size=chunk_size, progress=progress, **budget,
+    )  # fmt: skip
+    outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
+    ev, traces = study.run_samples(
+        inputs, keep_traces=n, points_per_cycle=points_per_cycle, trace_outputs=outputs, raw_traces=True, keep_monitors=True,
+        check_assembly=False, what="Monte Carlo samples", show=progress,
+    )  # fmt: skip
+    assert ev.monitors is not None
+    failed_at = dict(ev.failures)
+    failures = [(k, reason[: -len("(ideal mechanism)")] + "(ideal twin of the sample)" if reason.endswith("(ideal mechanism)") else f"{reason} (sample)") for k, reason in ev.failures]
+    ok = np.zeros(n, dtype=bool)
+    errs: Dict[str, List[np.ndarray]] = {q: [] for q in quantities}
+    angles: List[np.ndarray] = []
+    monitored: Dict[str, List[Dict[str, Any]]] = {q: [] for q in quantities}
+    by_sample = iter(traces)
+    for k in range(n):
+        if k in failed_at:
+            continue
+        trace = next(by_sample)
+        actual, ideal = trace["sample"], trace["ideal"]
+        col = trace["columns"][0]
+        ok[k] = True
+        for i, q in enumerate(quantities):
+            channel = QUANTITIES[q]
+            errs[q].append(actual[channel][:, col] - ideal[channel][:, col])
+            monitored[q].append(ev.monitors[k][i])
+        angles.append(np.degrees(abs(omegas[k]) * (actual["t"] - actual["t"][0])))
+    if failures and on_failure == "raise":
+        k, reason = failures[0]
+        sample_text = ", ".join(f"{name}={float(v[k]):.6g}" for name, v in inputs.items())
+        raise SimulationError(f"Monte Carlo sample {k} ({sample_text}) failed: {reason}; {len(failures)} of {n} samples failed", reason=reason)
+    if not ok.any():
+        raise SimulationError(f"no Monte Carlo sample completed ({n} failed); first failure: {failures[0][1]}", reason=failures[0][1])
+    n_failed = len(failures) if on_failure == "fail" else 0
+    crank = np.array(angles)
+    errors = {q: np.array(v) for q, v in errs.items()}
+    bins = {}
+    passage = {}
+    bounds: Dict[str, Tuple[float, float]] = {}
+    peaks: Dict[str, np.ndarray] = {}
+    first_times: Dict[str, np.ndarray] = {}
+    for q in quantities:
+        lo, hi = limits[q]
+        bins[q] = mc_bin_reliability(np.abs(errors[q]), crank, hi, lo, bin_width=bin_width, confidence=confidence, failed=n_failed)
+        # Exceedances from the integrator's every step (the monitor), not from the stored grid.
+        exceed_bins = np.array([(mon["bin_max"] > hi) | (mon["bin_min"] < lo) for mon in monitored[q]])
+        _fold_into_bins(bins[q], exceed_bins, monitored[q], bin_width, n_failed, confidence)
+        exceed = exceed_bins.any(axis=1)
+        k_out = int(exceed.sum())
+        n_all = int(exceed.size) + n_failed
+        p_lo, p_hi = wilson_interval(k_out + n_failed, n_all, confidence)
+        passage[q] = Estimate((k_out + n_failed) / n_all, float(p_lo), float(p_hi))
+        bins[q].overall = Estimate(1.0 - passage[q].p, 1.0 - passage[q].hi, 1.0 - passage[q].lo)
+        bounds[q] = (k_out / n, (k_out + len(failures)) / n)
+        peaks[q] = np.array([mon["peak"] for mon in monitored[q]])
+        first_times[q] = np.array([mon["first_passage"] for mon in monitored[q]])
+    return MonteCarloResult(
+        inputs=inputs,
+        ok=ok,
+        failures=failures,
+        crank_angle=crank,
+        errors=errors,
+        bins=bins,
+        first_passage=passage,
+        allowable={q: limits[q] for q in quantities},
+        on_failure=on_failure,
+        pf_bounds=bounds,
+        peaks=peaks,
+        first_passage_times=first_times,
+        wall_time=time.perf_counter() - start,
+    )
+
+
+def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], bin_width: float, failed: int, confidence: float) -> None:
+    """Per crank-angle bin (cycles folded modulo 360°, as ``b`` numbers its bins), from the
+    monitor's time bins: the fraction of samples whose |error| stays in range over the whole
+    bin, and FOSM (P27–P32) from the time-averaged mean and standard deviation of |error| over
+    the completed samples and the analysed cycles (μ_s = Σ∫|e|dt / Σ∫dt, σ_s² = Σ∫e²dt / Σ∫dt −
+    μ_s²), so neither depends on the stored output grid."""
+    n_s, n_time_bins = exceed_bins.shape
+    per_cycle = max(1, int(math.ceil(360.0 / bin_width - 1e-9)))
+    starts = np.asarray(b.bin_starts, dtype=float)
+    n_bins = len(starts)
+    fold = np.array([k % per_cycle if n_bins == per_cycle else int(np.argmin(np.abs(starts - (k * bin_width) % 360.0))) for k in range(n_time_bins)])
+    left = np.zeros((n_s, n_bins), dtype=bool)
+    for k in range(n_time_bins):
+        left[:, fold[k]] |= exceed_bins[:, k]
+    # Bins the analysed window never reaches (cycles < 1) hold no sample: NaN, not R = 1.
+    seen = np.zeros(n_bins, dtype=bool)
+    for mon in monitored:
+        seen[fold[np.asarray(mon["bin_time"], dtype=float)[:n_time_bins] > 0.0]] = True
+    n_in = np.where(seen, n_s + failed, 0)
+    k_ok = (~left).sum(axis=0)
+    b.n_samples = n_in
+    b.reliability = np.full(n_bins, np.nan)
+    b.lo, b.hi = np.full(n_bins, np.nan), np.full(n_bins, np.nan)
+    if np.any(seen):
+        b.reliability[seen] = k_ok[seen] / n_in[seen]
+        lo, hi = wilson_interval(k_ok[seen], n_in[seen], confidence)
+        b.lo[seen], b.hi[seen] = lo, hi
+    old = b.fosm
+    b.fosm = fosm_from_monitors(monitored, fold, old.bin_starts, old.bin_centres, old.cycle, old.mu_S, old.sigma_S, old.bin_width)
+
+
+__all__ = ["monte_carlo", "MonteCarloResult"]
