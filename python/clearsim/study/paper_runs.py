@@ -85,7 +85,7 @@ class Case:
             return nine_bar("ideal", omega=self.omega)
         from ..joints import Lubricated
 
-        lub = Lubricated(viscosity=VISCOSITY, length=BEARING_LENGTH, film=self.film, **({"supply": self.supply} if self.film == "finite" else {}))
+        lub = Lubricated(viscosity=VISCOSITY, length=BEARING_LENGTH, film=self.film, supply=self.supply)
         return nine_bar(self.joints, clearance=self.clearance, omega=self.omega, lubricated=lub)
 
 
