@@ -1,6 +1,8 @@
 //! Where finite-bearing tables are kept between uses (docs/physics.md §4, finite bearing): a
-//! process cache keyed by (D/L, supply convention) over a disk cache in the user's cache
-//! directory, so that only the first process on a machine ever solves a table.
+//! process cache keyed by (D/L, supply convention), the tables shipped inside the library (the
+//! paper's L/D = 2.5, both conventions: [`SHIPPED`]), and a disk cache in the user's cache
+//! directory, so that only the first process on a machine ever solves any other table, and only
+//! one thread of it.
 //!
 //! Disk cache: `$CLEARSIM_CACHE_DIR` if set (empty: no disk cache), else `$XDG_CACHE_HOME/clearsim`,
 //! else `~/.cache/clearsim` (`%LOCALAPPDATA%\clearsim` on Windows). One file per (D/L, supply,
@@ -13,7 +15,7 @@ use super::geometry::FilmSupply;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Condvar, Mutex, OnceLock};
 
 /// Version of the Reynolds solver and of the table's layout: bump it on any change that alters a
 /// table's numbers, so that older cache files are ignored.
@@ -54,22 +56,98 @@ pub fn cache_dir() -> Option<PathBuf> {
     std::env::var_os("HOME").filter(|v| !v.is_empty()).map(|h| PathBuf::from(h).join(".cache").join("clearsim"))
 }
 
+/// Tables shipped inside the library, in the disk cache's format ([`encode`]): the paper's
+/// bearing (L/D = 2.5, k = 2R/L as the nine-bar computes it) under both supply conventions, so
+/// that `clearsim paper` solves none on a first run. A test checks them against a fresh solve
+/// (`shipped_tables_match_a_fresh_solve`); after a change of the solver (and of
+/// [`SOLVER_VERSION`]) regenerate them with
+/// `CLEARSIM_WRITE_SHIPPED_TABLES=1 cargo test --release --features python shipped_tables`.
+pub const SHIPPED: [(&str, &[u8]); 2] = [
+    ("ld2.5_widest_gap.bin", include_bytes!("bearing_finite_tables/ld2.5_widest_gap.bin")),
+    ("ld2.5_none.bin", include_bytes!("bearing_finite_tables/ld2.5_none.bin")),
+];
+
+/// The shipped table for (k, supply) on the default grid, if one was solved for this k (to 4e-16
+/// relative: 2R/L rounds differently for one L/D given by different R and L, a difference 1e8
+/// times below the solver's tolerance) with this solver version.
+pub fn shipped(k: f64, supply: FilmSupply) -> Option<FiniteBearingTable> {
+    SHIPPED.iter().find_map(|(_, bytes)| {
+        let k_file = f64::from_le_bytes(bytes.get(12..20)?.try_into().ok()?);
+        ((k_file - k).abs() <= 4e-16 * k.abs()).then(|| decode(bytes, k_file, supply, ReynoldsGrid::default()))?
+    })
+}
+
+/// The keys `table_for` looked up beyond the process cache, in order (for the tests).
+#[cfg(test)]
+static FETCHED: Mutex<Vec<(u64, FilmSupply)>> = Mutex::new(Vec::new());
+
+/// A table of the process cache: solved (or loaded) already, or being solved by a thread.
+#[derive(Clone, Copy)]
+enum Slot {
+    Ready(&'static FiniteBearingTable),
+    Solving(std::thread::ThreadId),
+}
+
 /// The table of a bearing with diameter-to-length ratio `k` and supply convention `supply` on the
-/// default grid: from this process's cache, else from the disk cache, else solved (a few seconds
-/// on two cores) and stored in both. Kept for the life of the process.
+/// default grid: from this process's cache, else shipped ([`SHIPPED`]), else from the disk cache,
+/// else solved (a few seconds on two cores) and stored in both. Kept for the life of the process.
+///
+/// Solved once: a thread asking for a table another thread is solving waits for it. Except on a
+/// thread of rayon's pool (a batch's run), which solves its own copy instead (the first stored
+/// wins): the solve itself runs on that pool, so a pool thread waiting for it could hold up the
+/// very work it waits for (or, reached again on the solving thread through work stealing, wait
+/// for itself).
 pub fn table_for(k: f64, supply: FilmSupply) -> &'static FiniteBearingTable {
     type Key = (u64, FilmSupply);
-    static CACHE: OnceLock<Mutex<HashMap<Key, &'static FiniteBearingTable>>> = OnceLock::new();
-    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    static CACHE: OnceLock<(Mutex<HashMap<Key, Slot>>, Condvar)> = OnceLock::new();
+    let (cache, solved) = CACHE.get_or_init(|| (Mutex::new(HashMap::new()), Condvar::new()));
     let key = (k.to_bits(), supply);
-    if let Some(t) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-        return t;
+    let me = std::thread::current().id();
+    let mut map = cache.lock().unwrap_or_else(|e| e.into_inner());
+    loop {
+        match map.get(&key).copied() {
+            Some(Slot::Ready(t)) => return t,
+            Some(Slot::Solving(who)) if who != me && rayon::current_thread_index().is_none() => {
+                map = solved.wait(map).unwrap_or_else(|e| e.into_inner());
+            }
+            Some(Slot::Solving(_)) => break,
+            None => {
+                map.insert(key, Slot::Solving(me));
+                break;
+            }
+        }
     }
-    // Not holding the lock while solving: two threads asking for one new table may both solve it
-    // (the first one stored wins), but no thread ever waits on another's parallel solve.
-    let (table, _) = load_or_build(cache_dir().as_deref(), k, supply, ReynoldsGrid::default());
+    drop(map);
+    // Not holding the lock while solving; if the solve panics, the slot is freed for the next caller.
+    struct Release<'a>(&'a Mutex<HashMap<Key, Slot>>, &'a Condvar, Key, std::thread::ThreadId);
+    impl Drop for Release<'_> {
+        fn drop(&mut self) {
+            let mut map = self.0.lock().unwrap_or_else(|e| e.into_inner());
+            if matches!(map.get(&self.2), Some(Slot::Solving(who)) if *who == self.3) {
+                map.remove(&self.2);
+            }
+            self.1.notify_all();
+        }
+    }
+    let release = Release(cache, solved, key, me);
+    #[cfg(test)]
+    FETCHED.lock().unwrap_or_else(|e| e.into_inner()).push(key);
+    let table = match shipped(k, supply) {
+        Some(t) => t,
+        None => load_or_build(cache_dir().as_deref(), k, supply, ReynoldsGrid::default()).0,
+    };
     let table: &'static FiniteBearingTable = Box::leak(Box::new(table));
-    cache.lock().unwrap_or_else(|e| e.into_inner()).entry(key).or_insert(table)
+    let mut map = cache.lock().unwrap_or_else(|e| e.into_inner());
+    let table = match map.get(&key) {
+        Some(Slot::Ready(first)) => *first,
+        _ => {
+            map.insert(key, Slot::Ready(table));
+            table
+        }
+    };
+    drop(map);
+    drop(release);
+    table
 }
 
 /// The table for (k, supply, grid) from the cache directory `dir` if a valid file is there, else
@@ -247,6 +325,54 @@ mod tests {
         let left: Vec<_> = std::fs::read_dir(&dir).unwrap().filter_map(|e| e.ok()).filter(|e| e.file_name().to_string_lossy().ends_with(".tmp")).collect();
         assert!(left.is_empty());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The shipped tables are what the solver gives today: same version, same key, the same
+    /// numbers as a fresh solve (bit for bit on the platform that wrote them; 1e-6 of the table's
+    /// largest load leaves room for another platform's last-digit sin/exp). With
+    /// `CLEARSIM_WRITE_SHIPPED_TABLES=1` it writes them instead (after a solver change).
+    #[test]
+    fn shipped_tables_match_a_fresh_solve() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("rust/laws/bearing_finite_tables");
+        let write = std::env::var_os("CLEARSIM_WRITE_SHIPPED_TABLES").is_some_and(|v| !v.is_empty());
+        let mut supplies = Vec::new();
+        for (name, bytes) in SHIPPED {
+            let k = f64::from_le_bytes(bytes[12..20].try_into().unwrap());
+            let supply = if name.contains("widest_gap") { FilmSupply::WidestGap } else { FilmSupply::None };
+            let fresh = FiniteBearingTable::build(k, supply, ReynoldsGrid::default());
+            if write {
+                std::fs::write(dir.join(name), encode(&fresh)).unwrap();
+                continue;
+            }
+            let version = u32::from_le_bytes(bytes[8..12].try_into().unwrap());
+            let again = "regenerate: CLEARSIM_WRITE_SHIPPED_TABLES=1 cargo test --release --features python shipped_tables";
+            assert_eq!(version, SOLVER_VERSION, "{name} was solved by solver version {version}; {again}");
+            let t = shipped(k, supply).unwrap_or_else(|| panic!("{name} does not decode as {supply:?}; {again}"));
+            assert_eq!((t.k, t.supply, t.n_s, t.n_theta_m, t.j.len(), t.centre.len()), (fresh.k, fresh.supply, fresh.n_s, fresh.n_theta_m, fresh.j.len(), fresh.centre.len()));
+            let scale = fresh.j.iter().chain(&fresh.centre).fold(0.0f64, |m, v| m.max(v.0.hypot(v.1)));
+            for (a, b) in t.j.iter().chain(&t.centre).zip(fresh.j.iter().chain(&fresh.centre)) {
+                assert!((a.0 - b.0).hypot(a.1 - b.1) <= 1e-6 * scale, "{name}: shipped {a:?}, solved now {b:?}; {again}");
+            }
+            // The nine-bar's k (2R/L, not exactly 0.4) and 0.4 itself both find it.
+            assert!(shipped(0.4, supply).is_some() && shipped(2.0 * 0.02 / 0.1, supply).is_some());
+            assert!(shipped(0.4 * (1.0 + 1e-12), supply).is_none());
+            supplies.push(supply);
+        }
+        assert!(write || supplies == [FilmSupply::WidestGap, FilmSupply::None], "{supplies:?}");
+    }
+
+    /// Threads asking for one new table at once get the same table, solved once.
+    #[test]
+    fn concurrent_requests_solve_a_table_once() {
+        // B/D = 1/4 without the supply line: the squeeze test asks for it too (maybe at once).
+        let key = (4.0f64.to_bits(), FilmSupply::None);
+        let tables: Vec<usize> = std::thread::scope(|s| {
+            let handles: Vec<_> = (0..3).map(|_| s.spawn(|| table_for(4.0, FilmSupply::None) as *const _ as usize)).collect();
+            handles.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        assert!(tables.iter().all(|&t| t == tables[0]), "different tables: {tables:?}");
+        let fetched = FETCHED.lock().unwrap().iter().filter(|&&k| k == key).count();
+        assert_eq!(fetched, 1, "solved (or read from disk) {fetched} times");
     }
 
     #[test]

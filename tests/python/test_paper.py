@@ -195,3 +195,7 @@ def test_film_models_are_compared_on_every_lubricated_run(study):
     # The finite bearing moves the journal: its peaks are not the long bearing's.
     by = {(r[0], r[1]): float(r[3]) for r in rows}
     assert any(abs(by[(k, "finite")] - by[(k, "long")]) > 1e-3 * by[(k, "long")] for k in lub)
+    # Issue 30 item 1: the finite film in both conventions, the default (supply line) and
+    # supply="none", each its own row with its own film (their velocity peaks differ).
+    assert 'supply="widest_gap"' in text and 'finite (supply="none")' in text
+    assert any(abs(by[(k, "finite_none")] - by[(k, "finite")]) > 1e-2 * by[(k, "finite")] for k in lub)

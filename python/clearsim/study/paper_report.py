@@ -3,6 +3,7 @@ film-model comparison, the trend verdicts and their discussion."""
 
 from __future__ import annotations
 
+import math
 import os
 import platform
 from pathlib import Path
@@ -397,7 +398,10 @@ def _films_section(films: Dict[Tuple[str, str], Tuple[Run, Analysis]], cycles: i
         return float(np.exp(np.mean(np.log(v)))) if v.size else float("nan")
 
     gm = {f: gmean(ratio[f]) for f in FILMS}
-    others = f"corrected long: {gm['long']:.2g}×, short: {gm['short']:.2g}×, finite L/D = 2.5: {gm['finite']:.2g}×"
+    others = (
+        f"corrected long: {gm['long']:.2g}×, short: {gm['short']:.2g}×, finite L/D = 2.5: {gm['finite']:.2g}× with the supply line "
+        f"(the default), {gm['finite_none']:.2g}× without it"
+    )
     stalled = [k for k in cases if films[(k, "long_paper")][0].failure]
     printed = [films[(k, "long_paper")][0] for k in stalled]
     reached = [float(r.result.stats["t_reached"]) for r in printed]
@@ -431,10 +435,12 @@ def _films_section(films: Dict[Tuple[str, str], Tuple[Run, Analysis]], cycles: i
         )  # fmt: skip
         if stalled:
             verdict += f"({stall}; their peaks cover the time reached.) "
+    valid = [f for f in FILMS if f != "long_paper" and np.isfinite(gm[f]) and gm[f] > 0]
+    closest = min(valid, key=lambda f: abs(math.log(gm[f]))) if valid else None
     verdict += (
         f"Velocity and acceleration peaks against the paper's printed ones, geometric mean: {others}: the film model of the "
-        "paper's L/D = 2.5 bearing moves our lubricated errors more than anything else we can vary, and the finite bearing, "
-        "the model valid there, brings them closest to the printed ones."
+        "paper's L/D = 2.5 bearing moves our lubricated errors more than anything else we can vary"
+        + (f"; closest to the printed ones: {FILM_LABEL[closest]}." if closest else ".")
     )
     return (
         "## Film models on the lubricated runs\n\n"
@@ -442,7 +448,9 @@ def _films_section(films: Dict[Tuple[str, str], Tuple[Run, Analysis]], cycles: i
         "printed peaks. The paper's bearing has L/D = 2.5, between the long and short closed forms: the finite-length bearing "
         "(Reynolds equation with the Reynolds cavitation condition, validated against Butenschön's tables, docs/physics.md §4) is the "
         "reference; at L/D = 2.5 the long form is 7–19 % high in Sommerfeld number under rotation and 20–70 % high in squeeze, the "
-        "short form several times too high.\n\n"
+        "short form several times too high. The finite film runs in both of Butenschön's conventions: with ambient pressure on the "
+        'line of the widest gap (`supply="widest_gap"`, the default, as his rotation table and the paper\'s P12) and without it '
+        '(`supply="none"`, a film periodic around the bearing, as his squeeze table).\n\n'
         + table
         + "\n\n"
         + verdict

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 import os
-import threading
 import time
 from concurrent.futures import Executor, Future, ThreadPoolExecutor, as_completed
 from dataclasses import dataclass, field
@@ -49,6 +48,13 @@ class Case:
     clearance: Optional[float]
     omega: float
     film: str = "long"  # film model of the lubricated joints (clearsim.Lubricated.film)
+    supply: str = "widest_gap"  # ambient-pressure convention of a finite film (clearsim.Lubricated.supply)
+
+    @property
+    def film_key(self) -> str:
+        """The film model as the comparison names it: ``film``, or ``"finite_none"`` for the
+        finite film without its supply line."""
+        return "finite_none" if self.film == "finite" and self.supply == "none" else self.film
 
     @property
     def speed(self) -> str:
@@ -79,7 +85,7 @@ class Case:
             return nine_bar("ideal", omega=self.omega)
         from ..joints import Lubricated
 
-        lub = Lubricated(viscosity=VISCOSITY, length=BEARING_LENGTH, film=self.film)
+        lub = Lubricated(viscosity=VISCOSITY, length=BEARING_LENGTH, film=self.film, supply=self.supply)
         return nine_bar(self.joints, clearance=self.clearance, omega=self.omega, lubricated=lub)
 
 
@@ -139,16 +145,12 @@ def _grid(case: Case, cycles: int, grid_deg: float) -> np.ndarray:
     return np.linspace(0.0, cycles * case.period, n + 1)
 
 
-#: One finite-bearing table build at a time: the runs that wait for it find it built (two threads
-#: compiling the same L/D at once would each build it, on the same cores).
-_TABLE_LOCK = threading.Lock()
-
-
 def _simulate(case: Case, grid: np.ndarray, max_seconds: Optional[float] = None, printed_steps: Optional[int] = None) -> Run:
     mech = case.mechanism()
     if case.joints == "lubricated" and case.film == "finite":
-        with _TABLE_LOCK:
-            mech.compile()  # its table, once per process: not part of the run's wall time
+        # Its table (shipped for L/D = 2.5, else solved once per machine, by one thread): not
+        # part of the run's wall time.
+        mech.compile()
     start = time.perf_counter()
     failure = None
     budget: Dict[str, Any] = {} if max_seconds is None else {"max_seconds": max_seconds}
@@ -165,10 +167,15 @@ def _simulate(case: Case, grid: np.ndarray, max_seconds: Optional[float] = None,
 
 
 def _with_film(case: Case, film: str) -> Case:
-    """The case with its lubricated joints on ``film`` (dry and ideal cases unchanged)."""
+    """The case with its lubricated joints on ``film`` (a key of :data:`FILM_LABEL`; dry and
+    ideal cases unchanged)."""
     import dataclasses
 
-    return dataclasses.replace(case, film=film) if case.joints == "lubricated" else case
+    if case.joints != "lubricated":
+        return case
+    if film == "finite_none":
+        return dataclasses.replace(case, film="finite", supply="none")
+    return dataclasses.replace(case, film=film)
 
 
 def _submit(pool: Executor, cases: Sequence[Case], cycles: int, grid_deg: float, max_seconds: Optional[float] = None, printed_steps: Optional[int] = None) -> "Dict[Future[Run], Case]":
@@ -185,7 +192,7 @@ def _collect(futures: "Dict[Future[Run], Case]", progress: bool, what: str, by_f
     with progress_bar(len(futures), f"clearsim paper: {what}", "run", enabled=progress, delay=0.0, leave=True) as bar:
         for fut in as_completed(futures):
             run = fut.result()
-            runs[f"{run.case.key}|{run.case.film}" if by_film else run.case.key] = run
+            runs[f"{run.case.key}|{run.case.film_key}" if by_film else run.case.key] = run
             bar.set_postfix_str(run.case.key)
             bar.update(1)
     return runs
@@ -283,12 +290,15 @@ def _analyse(case: Case, run: Run, ideal: Run, cycles: int) -> Analysis:
 PRINTED_FORM_STEPS = 10_000
 #: Wall-time budget [s] of each film-comparison run, a safety net only (the others take 0.1 s).
 FILM_RUN_BUDGET_S = 30.0
-#: The film models the report compares on the lubricated runs.
-FILMS: Tuple[str, ...] = ("long", "short", "finite", "long_paper")
+#: The film models the report compares on the lubricated runs: the finite film in its default
+#: convention (ambient pressure on the line of the widest gap, as the paper's P12) and without
+#: that line (``supply="none"``, a film periodic around the bearing; docs/physics.md §4).
+FILMS: Tuple[str, ...] = ("long", "short", "finite", "finite_none", "long_paper")
 FILM_LABEL = {
     "long": "long (Gümbel, corrected)",
     "short": "short (Ocvirk)",
-    "finite": "finite L/D = 2.5 (Reynolds)",
+    "finite": 'finite L/D = 2.5 (Reynolds, supply="widest_gap")',
+    "finite_none": 'finite (supply="none")',
     "long_paper": "paper's printed P13–P14",
 }
 
