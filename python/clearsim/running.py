@@ -16,6 +16,7 @@ import numpy as np
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
 from .joints import MICROMETRE_FILM_RATIO
+from .joint_readings import film_monitors
 from .result import Result, extreme_monitors
 
 if TYPE_CHECKING:
@@ -283,6 +284,9 @@ class Running:
         if extremes is not False:
             start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
+        films = film_monitors(self.description(), self.clearance_joint_names, t0, t_end)
+        if films:
+            settings["monitors"] = settings.get("monitors", []) + films
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:

@@ -106,7 +106,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     components = ["x"]               # of x, y, theta (default all three)
     joints = ["rod-slider"]          # clearance joints (default: all)
     joint_quantities = ["eccentricity", "force"]  # + eccentricity_rate, contact_force,
-                                                  #   film_force, state
+                                                  #   film_force, state, film_thickness,
+                                                  #   friction_torque, power_loss
     ideal = true                     # also run the ideal mechanism; write its response and
                                      #   the errors (default: true if there are clearance joints)
     csv = true                       # default true
@@ -200,6 +201,9 @@ JOINT_QUANTITIES: Dict[str, Tuple[Tuple[str, str], ...]] = {
     "contact_force": (("normal", "N"), ("tangential", "N")),
     "film_force": (("film_xi", "N"), ("film_eta", "N")),
     "state": (("state", "-"), ("w_dry", "-")),
+    "film_thickness": (("film_thickness", "m"),),
+    "friction_torque": (("friction_torque", "N m"), ("friction_torque_bearing", "N m")),
+    "power_loss": (("power_loss", "W"),),
 }
 #: Body quantity → the name of its error against the ideal mechanism (as in
 #: :meth:`Result.error` and the reliability analysis).

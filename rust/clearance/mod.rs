@@ -4,9 +4,11 @@
 
 pub mod kinematics;
 pub mod memory;
+pub mod readings;
 
 pub use kinematics::JointKinematics;
 pub use memory::ImpactMemory;
+pub use readings::{body_rates, Readings, READING_COLUMNS};
 
 use crate::constraints::{BodyKin, V2};
 use crate::laws::contact::ContactLaw;
