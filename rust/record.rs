@@ -29,9 +29,9 @@ impl Default for Channels {
 
 /// Columns stored per clearance joint and output time: the kinematics and forces, then the
 /// readings of [`crate::clearance::READING_COLUMNS`] (film thickness, friction torques, power loss).
-pub const JOINT_COLUMNS: [&str; 18] = [
+pub const JOINT_COLUMNS: [&str; 19] = [
     "ex", "ey", "ex_dot", "ey_dot", "fx", "fy", "normal", "tangential", "film_xi", "film_eta", "w_dry", "state",
-    "film_thickness", "friction_torque", "friction_torque_bearing", "couette_torque", "poiseuille_torque", "power_loss",
+    "film_thickness", "friction_torque", "friction_torque_bearing", "couette_torque", "poiseuille_torque", "power_loss", "asperity_force",
 ];
 
 /// Recorded outputs; each array is row-major with one row per output time.

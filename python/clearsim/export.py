@@ -28,7 +28,7 @@ JOINT_UNITS: Dict[str, str] = {
     "ex": "m", "ey": "m", "ex_dot": "m/s", "ey_dot": "m/s", "fx": "N", "fy": "N",
     "normal": "N", "tangential": "N", "film_xi": "N", "film_eta": "N", "w_dry": "1", "state": "1",
     "film_thickness": "m", "friction_torque": "N m", "friction_torque_bearing": "N m", "couette_torque": "N m",
-    "poiseuille_torque": "N m", "power_loss": "W",
+    "poiseuille_torque": "N m", "power_loss": "W", "asperity_force": "N",
 }
 _SUFFIX = {"position": "", "velocity": "_dot", "acceleration": "_ddot"}
 

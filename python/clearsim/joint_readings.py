@@ -81,6 +81,12 @@ class JointReadings:
         each by its share of the transition blend; a prismatic joint gives its ends (N, 2)."""
         return self._reading(joint, "power_loss")
 
+    def asperity_force(self, joint: str) -> np.ndarray:
+        """(N,) load the asperities carry [N] (≥ 0, pressing the journal back towards the centre) of
+        a joint with ``Lubricated(roughness=σ)``: Greenwood & Tripp's pressure where the film is
+        thinner than 4σ (docs/physics.md §4, *Roughness and mixed lubrication*); 0 without roughness."""
+        return self._reading(joint, "asperity_force")
+
     def _tracked(self, j: int, quantity: str) -> Optional[Dict[str, Any]]:
         results = self._raw.get("monitors") or []
         for spec, found in zip(self.monitor_specs, results):
@@ -102,8 +108,10 @@ class JointReadings:
         """Per lubricated joint: ``min_film_thickness`` [m] with ``t_min_film`` [s] and
         ``min_film_crank_angle_deg`` (the first driver's angle then, if any), ``peak_power_loss``
         and ``mean_power_loss`` [W] over the run, tracked at every integration step (independent
-        of ``dt_out``)."""
+        of ``dt_out``); with ``roughness`` σ also ``lambda`` = min film / σ (below ~3 the
+        asperities carry load: mixed lubrication)."""
         out: Dict[str, Dict[str, Any]] = {}
+        models = {cj["name"]: cj["model"] for cj in (self.description or {}).get("clearance_joints", [])}
         for j, name in enumerate(self.joint_names):
             h, p = self._tracked(j, "film_thickness"), self._tracked(j, "power_loss")
             if h is None or p is None:
@@ -118,6 +126,9 @@ class JointReadings:
             angle = self.driver_angle(entry["t_min_film"])
             if angle is not None:
                 entry["min_film_crank_angle_deg"] = angle % 360.0
+            sigma = models.get(name, {}).get("roughness")
+            if sigma:
+                entry["lambda"] = entry["min_film_thickness"] / float(sigma)
             out[name] = entry
         return out
 

@@ -10,7 +10,8 @@ use crate::laws::transition::film_eps;
 use crate::laws::FilmState;
 
 /// The joint columns [`Readings::columns`] adds to [`crate::record::JOINT_COLUMNS`].
-pub const READING_COLUMNS: [&str; 6] = ["film_thickness", "friction_torque", "friction_torque_bearing", "couette_torque", "poiseuille_torque", "power_loss"];
+pub const READING_COLUMNS: [&str; 7] =
+    ["film_thickness", "friction_torque", "friction_torque_bearing", "couette_torque", "poiseuille_torque", "power_loss", "asperity_force"];
 
 /// One instant's readings of a clearance joint.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -30,12 +31,14 @@ pub struct Readings {
     /// Power dissipated \[W\] (≥ 0): the film's shear and pressure flow plus the dry friction's
     /// −F_t · slip, each by its share of the blend.
     pub power_loss: f64,
+    /// The load the asperities carry \[N\] (rough surfaces only, [`super::mixed`]; else 0).
+    pub asperity_force: f64,
 }
 
 impl Readings {
     /// The values in the order of [`READING_COLUMNS`].
-    pub fn columns(&self) -> [f64; 6] {
-        [self.film_thickness, self.torque_journal, self.torque_bearing, self.couette, self.poiseuille, self.power_loss]
+    pub fn columns(&self) -> [f64; 7] {
+        [self.film_thickness, self.torque_journal, self.torque_bearing, self.couette, self.poiseuille, self.power_loss, self.asperity_force]
     }
 }
 
@@ -53,8 +56,13 @@ impl ClearanceJoint {
     /// force was evaluated at (min(ε, ε_max)) with the film force as recorded (small-ε scale
     /// included); the dry friction's from [`dry_friction_torque`].
     pub fn readings(&self, k: &JointKinematics, f: &JointForce, w_bearing: f64, w_journal: f64) -> Readings {
-        let w_dry = f.w_dry;
-        let friction = w_dry * f.tangential;
+        // The friction force at the contact points: the dry law's by its weight, plus the
+        // asperities' boundary friction on a rough joint (which has no band: the film in full).
+        let friction = f.friction();
+        let w_film = match &self.film {
+            Some(film) if film.mixed.is_some() => 1.0,
+            _ => 1.0 - f.w_dry,
+        };
         let (dry_j, dry_b) = dry_friction_torque(self.journal_radius, self.bearing_radius, friction);
         let mut out = Readings {
             film_thickness: self.clearance - k.e,
@@ -64,9 +72,9 @@ impl ClearanceJoint {
             poiseuille: 0.0,
             // The dry friction force opposes the slip (P5): −F_t·slip ≥ 0.
             power_loss: -friction * k.slip,
+            asperity_force: f.asperity,
         };
-        if let (Some(film), true) = (&self.film, w_dry < 1.0) {
-            let w_film = 1.0 - w_dry;
+        if let (Some(film), true) = (&self.film, w_film > 0.0) {
             let s = FilmState { eps: film_eps(k.eps, film.eps_max), eps_dot: k.eps_dot, wedge: k.wedge };
             let t = film_friction(&film.geometry, s, w_journal, w_bearing, (f.film_xi, f.film_eta));
             out.couette = w_film * t.couette;
@@ -109,6 +117,7 @@ mod tests {
                 m: 0.5,
                 e0: 0.05 * c,
                 eps_max: 0.99,
+                mixed: None,
             }),
             guide_normal: None,
             penetration_limit: c,

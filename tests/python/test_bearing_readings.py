@@ -151,3 +151,54 @@ def test_clearsim_run_writes_the_readings_and_their_summary(tmp_path: Path) -> N
 
     bearings = json.loads((tmp_path / "out" / "summary.json").read_text(encoding="utf-8"))["run"]["bearings"]
     assert set(bearings) == {"A", "B"} and 0 < bearings["A"]["min_film_thickness"] < 5e-4
+
+
+# ---------------------------------------------------------------- roughness (mixed lubrication)
+SIGMA, LOAD = 1e-6, 2000.0
+
+
+def ramped_rotor(t_end: float, omega_end: float) -> clearsim.Mechanism:
+    """The rotor of :func:`rotor` (finite film, L/D = 1) with σ = 1 µm, μ_b = 0.12, loaded by 2 kN,
+    started where the asperities carry the load (ε = 0.9925) and driven by θ = a t⁴ from standstill
+    to ``omega_end`` at ``t_end``."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("rotor", mass=1.0, inertia=1e-3)
+    m.driver("rotor", polynomial=[0, 0, 0, 0, omega_end / (4 * t_end**3)])
+    model = clearsim.Lubricated(viscosity=MU, length=0.04, film="finite", roughness=SIGMA, boundary_friction=0.12)
+    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=model, initial_eccentricity=(0.0, -0.9925 * C))
+    m.force("rotor", (0, 0), (0.0, -LOAD))
+    return m
+
+
+def test_a_rough_journal_runs_up_from_boundary_to_full_film_through_a_stribeck_minimum() -> None:
+    t_end, omega_end = 4.0, 200.0
+    res = ramped_rotor(t_end, omega_end).simulate(t_end, dt_out=t_end / 400, progress=False)
+    omega = omega_end * (res.t / t_end) ** 3
+    share = res.asperity_force("pin") / LOAD
+    f = np.abs(res.friction_torque("pin")) / (R * LOAD)
+    assert np.all(share[omega < 0.05] > 0.9)  # boundary: the asperities carry the load
+    assert np.all(share[omega > 20] < 0.01)  # full film
+    # No jump: between outputs 0.01 s apart the share and the friction coefficient move little.
+    assert np.max(np.abs(np.diff(share))) < 0.02 and np.max(np.abs(np.diff(f))) < 0.005
+    # Stribeck: boundary friction μ_b × share where the slip is past the friction ramp (R ω > v1),
+    # a minimum in between, viscous friction growing with the speed beyond.
+    developed = (omega * R > 0.01) & (share > 0.5)
+    assert np.allclose(f[developed], 0.12 * share[developed], rtol=0.05)
+    k = int(np.argmin(np.where(omega > 0.5, f, np.inf)))
+    assert 2 < omega[k] < 50 and f[k] < 0.1 * f[developed].max() and f[k] < 0.5 * f[-1]
+    s = res.summary()["bearings"]["pin"]
+    assert s["lambda"] == pytest.approx(s["min_film_thickness"] / SIGMA) and s["lambda"] < 1
+    assert set(np.unique(res.contact_state("pin"))) <= {0, 1}  # mixed (1), never the mean surfaces in contact
+
+
+def test_roughness_replaces_the_transition_band_and_is_checked() -> None:
+    """Inside the band (c < e, a smooth joint's blend) a rough joint keeps its film in full and
+    adds the asperities; without roughness nothing changes."""
+    with pytest.raises(clearsim.InputError, match="roughness"):
+        clearsim.Lubricated(roughness=-1e-6)
+    with pytest.raises(clearsim.InputError, match="boundary_friction"):
+        clearsim.Lubricated(boundary_friction=0.1)
+    m = rotor("short", 0.01)
+    m.clearance_joint("pin2", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=clearsim.Lubricated(length=0.01, film="short", roughness=C / 3))
+    with pytest.raises(clearsim.InputError, match=r"clearance joint 'pin2'.roughness.*quarter of the clearance"):
+        m.simulate(0.001, progress=False)
