@@ -530,7 +530,7 @@ class Running:
         if joint["model"]["film"] == "long" and err.eccentricity < 0.5:
             return (
                 f"hint: {where}; a journal whirling near the centre of a µm long-bearing (half-Sommerfeld) film meets a "
-                "negative squeeze damping and the run crawls: film='finite' damps it (docs/hard_cases.md)"
+                "negative squeeze damping and the run crawls: film='finite', supply='none' (the periodic film) damps it; the default supply line crawls like the long film (docs/hard_cases.md)"
             )
         return None
 

@@ -64,6 +64,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     #                                # Archard wear (docs/physics.md §12), needed by [study.life]
     # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
+    # roughness = 0.5e-6             # m, composite RMS σ: Greenwood–Tripp asperities where
+    # boundary_friction = 0.12       #   h < 4σ with friction μ_b, in place of the band e0
 
     [[force]]                        # force elements and loads (docs/physics.md §10); type =
     type = "spring"                  #   spring | rotational_spring | force | torque | motor
