@@ -94,7 +94,7 @@ impl EnergyBook {
             self.g.fill(0.0);
             joint.apply(&ws.kin, &ws.joint_kin[j], &f, &mut self.g);
             let total = self.g.iter().zip(qd).map(|(g, v)| g * v).sum::<f64>();
-            let friction = f.w_dry * f.tangential * ws.joint_kin[j].slip;
+            let friction = f.friction() * ws.joint_kin[j].slip;
             p[4] += total - friction;
             p[5] += friction;
         }

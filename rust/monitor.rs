@@ -31,12 +31,21 @@ pub enum Quantity {
     ContactForce,
     /// Film force magnitude \[N\] (before the transition blend).
     FilmForce,
+    /// Film thickness h = c − |e| \[m\] ([`crate::clearance::Readings`]).
+    FilmThickness,
+    /// Friction torque on the journal \[N m\] ([`crate::clearance::Readings`]).
+    FrictionTorque,
+    /// Power dissipated in the joint \[W\] ([`crate::clearance::Readings`]).
+    PowerLoss,
 }
 
 impl Quantity {
     /// Whether the quantity belongs to a clearance joint rather than a body coordinate.
     pub fn of_joint(self) -> bool {
-        matches!(self, Quantity::Eccentricity | Quantity::Force | Quantity::ContactForce | Quantity::FilmForce)
+        matches!(
+            self,
+            Quantity::Eccentricity | Quantity::Force | Quantity::ContactForce | Quantity::FilmForce | Quantity::FilmThickness | Quantity::FrictionTorque | Quantity::PowerLoss
+        )
     }
 }
 

@@ -27,9 +27,11 @@ impl Default for Channels {
     }
 }
 
-/// Columns stored per clearance joint and output time.
-pub const JOINT_COLUMNS: [&str; 12] = [
+/// Columns stored per clearance joint and output time: the kinematics and forces, then the
+/// readings of [`crate::clearance::READING_COLUMNS`] (film thickness, friction torques, power loss).
+pub const JOINT_COLUMNS: [&str; 19] = [
     "ex", "ey", "ex_dot", "ey_dot", "fx", "fy", "normal", "tangential", "film_xi", "film_eta", "w_dry", "state",
+    "film_thickness", "friction_torque", "friction_torque_bearing", "couette_torque", "poiseuille_torque", "power_loss", "asperity_force",
 ];
 
 /// Recorded outputs; each array is row-major with one row per output time.
@@ -49,6 +51,8 @@ pub struct Recording {
     pub violation: Vec<f64>,
     /// `ENERGY_COLUMNS.len()` per output time.
     pub energy: Vec<f64>,
+    /// The clearance joints whose readings the `joints` channel stores (empty without it).
+    readers: Vec<crate::clearance::ClearanceJoint>,
 }
 
 impl Recording {
@@ -65,6 +69,7 @@ impl Recording {
             joints: cap(channels.joints, JOINT_COLUMNS.len() * model.clearance.len()),
             violation: cap(channels.violation, 2),
             energy: cap(channels.energy, crate::energy::ENERGY_COLUMNS.len()),
+            readers: if channels.joints { model.clearance.clone() } else { Vec::new() },
         }
     }
 
@@ -89,7 +94,7 @@ impl Recording {
             self.lambda.extend_from_slice(&ws.lambda);
         }
         if ch.joints {
-            for (k, f) in ws.joint_kin.iter().zip(&ws.joint_force) {
+            for ((k, f), joint) in ws.joint_kin.iter().zip(&ws.joint_force).zip(&self.readers) {
                 self.joints.extend_from_slice(&[
                     k.e_vec.x,
                     k.e_vec.y,
@@ -104,6 +109,8 @@ impl Recording {
                     f.w_dry,
                     f.state as f64,
                 ]);
+                let (w_b, w_j) = crate::clearance::body_rates(joint, &y[n..2 * n]);
+                self.joints.extend_from_slice(&joint.readings(k, f, w_b, w_j).columns());
             }
         }
         if ch.violation {

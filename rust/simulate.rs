@@ -252,11 +252,21 @@ impl<'a> MechanismSystem<'a> {
                 if q == Quantity::Eccentricity {
                     return k.eps;
                 }
-                let f = self.model.clearance[c].force(&k, &self.memory[c]);
+                let joint = &self.model.clearance[c];
+                let f = joint.force(&k, &self.memory[c]);
                 match q {
                     Quantity::Force => f.total.norm(),
                     Quantity::ContactForce => f.normal,
-                    _ => f.film_xi.hypot(f.film_eta),
+                    Quantity::FilmForce => f.film_xi.hypot(f.film_eta),
+                    _ => {
+                        let (w_b, w_j) = crate::clearance::body_rates(joint, &y[nq..2 * nq]);
+                        let r = joint.readings(&k, &f, w_b, w_j);
+                        match q {
+                            Quantity::FilmThickness => r.film_thickness,
+                            Quantity::FrictionTorque => r.torque_journal,
+                            _ => r.power_loss,
+                        }
+                    }
                 }
             }
         }

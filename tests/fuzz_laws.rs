@@ -173,6 +173,7 @@ fn joint(lubricated: bool, law: NormalLaw, film: FilmModel, c: f64, r_j: f64, ce
             m: 0.5,
             e0: 0.05 * c,
             eps_max: 0.99,
+            mixed: None,
         }),
         guide_normal: None,
         penetration_limit: c.max(0.05 * r_j),
@@ -280,6 +281,8 @@ fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> M
             e0: Some(0.05 * c),
             eps_max: 0.99,
             dry,
+            roughness: None,
+            boundary_friction: None,
         })
     } else {
         ClearanceModelDesc::Dry(dry)

@@ -36,6 +36,7 @@ import numpy as np
 from . import __version__, models
 from .csvfile import write_columns, write_rows
 from .errors import ClearsimError
+from .joint_readings import summary_markdown
 from .schema import INTEGRATORS
 from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
 
@@ -132,6 +133,9 @@ def _joint_columns(run: SceneRun) -> Columns:
         "force": result.joint_force,
         "contact_force": result.contact_force,
         "film_force": result.film_force,
+        "film_thickness": lambda j: result.film_thickness(j)[:, None],
+        "friction_torque": lambda j: np.column_stack([result.friction_torque(j), result.friction_torque(j, body="bearing")]),
+        "power_loss": lambda j: result.power_loss(j)[:, None],
     }
     cols: Columns = []
     for joint in out.joints:
@@ -310,6 +314,7 @@ def _markdown(summary: Dict[str, Any], files: Sequence[Path]) -> str:
             f"| {label} | {r['outputs']} | {r['steps']} | {r['rejected_steps']} | {r['min_step']:.3g} | "
             f"{r['wall_time']:.3g} | {'–' if viol is None else f'{viol:.3g}'} | {impacts} |"
         )
+    lines += summary_markdown(run.get("bearings"))
     if run.get("failure"):
         lines += ["", f"**The run stopped early:** {run['failure']}"]
     if "max_abs_error" in summary:

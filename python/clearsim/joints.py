@@ -260,6 +260,16 @@ class Lubricated:
         Butenschön's rotation table, the Raimondi–Boyd charts, DIN 31652 and the paper's
         long-bearing pressure P12 take it) or ``"none"`` (a film periodic around the bearing,
         ambient only at its ends, as Butenschön's squeeze table). docs/physics.md §4 compares both.
+    roughness:
+        Composite RMS roughness σ = √(σ₁² + σ₂²) of journal and bearing [m] (``None``, the
+        default: smooth surfaces). Where the film is thinner than 4σ the asperities carry load by
+        Greenwood & Tripp's law (σηβ = 0.04, σ/β = 10⁻³, the modulus of the ``dry`` law's
+        materials), with ``boundary_friction`` on that load; this replaces the film-to-contact
+        band ``e0`` (P18), and the dry law acts only where the mean surfaces overlap (e > c).
+        docs/physics.md §4, *Roughness and mixed lubrication*. Must be below c/4.
+    boundary_friction:
+        Friction coefficient μ_b on the asperity load (with ``roughness``; default: the ``dry``
+        law's ``friction``).
     """
 
     viscosity: float = 0.4
@@ -271,6 +281,8 @@ class Lubricated:
     eps_max: float = 0.99
     dry: Dry = field(default_factory=Dry)
     supply: str = "widest_gap"
+    roughness: Optional[float] = None
+    boundary_friction: Optional[float] = None
 
     def __post_init__(self) -> None:
         check_choice("film", self.film, FILM_MODELS)
@@ -284,9 +296,19 @@ class Lubricated:
         _check_range("eps_max", self.eps_max, 0.0, 1.0, True, True)
         if not isinstance(self.dry, Dry):
             raise InputError(f"invalid dry = {self.dry!r}: must be clearsim.Dry(...)", field="dry", value=self.dry)
+        if self.roughness is not None:
+            check_positive("roughness", self.roughness)
+        if self.boundary_friction is not None:
+            _check_range("boundary_friction", self.boundary_friction, 0.0, math.inf, False, True)
+            if self.roughness is None:
+                raise InputError(
+                    f"invalid boundary_friction = {self.boundary_friction!r}: applies with roughness only (the friction on the asperity load): give roughness too",
+                    field="boundary_friction",
+                    value=self.boundary_friction,
+                )
 
     def _as_dict(self) -> Dict[str, Any]:
-        d = {
+        d: Dict[str, Any] = {
             "kind": "lubricated",
             "film": self.film,
             "supply": self.supply,
@@ -299,4 +321,8 @@ class Lubricated:
         }
         if self.e0 is not None:
             d["e0"] = self.e0
+        if self.roughness is not None:
+            d["roughness"] = self.roughness
+        if self.boundary_friction is not None:
+            d["boundary_friction"] = self.boundary_friction
         return d

@@ -75,7 +75,7 @@ def micrometre_film_note(name: str, r_j: float, c: float, film: str) -> Optional
         return None
     return (f"clearance joint '{name}': a {film!r} film in a {c * 1e6:.3g} µm clearance (R_j/c = {r_j / c:.0f}): a journal that whirls "
             "near the centre (started off-centre, say) meets the half-Sommerfeld film's negative squeeze damping and the run can "
-            "crawl (measured at R_j ≈ 10 mm: docs/hard_cases.md, µm films); film='finite' damps it")
+            "crawl (measured at R_j ≈ 10 mm: docs/hard_cases.md, µm films); film='finite', supply='none' damps it")
 
 
 def span(desc: Dict[str, Any]) -> float:

@@ -10,6 +10,7 @@ import numpy as np
 
 from . import _core, display
 from .errors import InputError, check_choice
+from .joint_readings import JointReadings
 from .schema import COMPONENTS as _COMPONENTS, JOINT_COLUMNS
 
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
@@ -19,6 +20,9 @@ CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
 #: with the units (body: x and y | theta).
 BODY_QUANTITIES = {"displacement": ("m", "rad"), "velocity": ("m/s", "rad/s"), "acceleration": ("m/s²", "rad/s²")}
 JOINT_QUANTITIES = {"eccentricity": "1 (e/c)", "force": "N", "contact_force": "N", "film_force": "N"}
+#: Joint quantities :meth:`Result.extremes` also answers where the run tracked them (every
+#: lubricated joint's film thickness and power loss: :mod:`clearsim.joint_readings`).
+READING_QUANTITIES = {"film_thickness": "m", "friction_torque": "N m", "power_loss": "W"}
 
 
 @dataclass(frozen=True)
@@ -64,7 +68,7 @@ def extreme_monitors(
     return out
 
 
-class Result:
+class Result(JointReadings):
     """Outputs of one simulation.
 
     Attributes
@@ -101,7 +105,8 @@ class Result:
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"
         steps = f"{self.stats.get('integrator', '?')} in {self.stats.get('steps', 0)} steps"
-        return f"<clearsim.Result {len(self.t)} outputs, t ∈ [{self.t[0] if len(self.t) else 0:g}, {self.t[-1] if len(self.t) else 0:g}] s, {steps}, {status}>"
+        films = "".join(f", {j}: h_min {b['min_film_thickness'] * 1e6:.3g} µm, mean loss {b['mean_power_loss']:.3g} W" for j, b in self.bearing_summary().items())
+        return f"<clearsim.Result {len(self.t)} outputs, t ∈ [{self.t[0] if len(self.t) else 0:g}, {self.t[-1] if len(self.t) else 0:g}] s, {steps}{films}, {status}>"
 
     def _repr_html_(self) -> str:
         s = self.summary()
@@ -111,6 +116,8 @@ class Result:
                 ("impacts", ", ".join(f"{j}: {n}" for j, n in self.impacts.items()) or "–")]  # fmt: skip
         if "max_constraint_violation" in s:
             rows.append(("max ‖Φ‖ [m]", s["max_constraint_violation"]))
+        for joint, b in s.get("bearings", {}).items():
+            rows.append((f"{joint}: min film [µm], peak / mean loss [W]", f"{b['min_film_thickness'] * 1e6:.4g} at t = {b['t_min_film']:.6g} s, {b['peak_power_loss']:.4g} / {b['mean_power_loss']:.4g}"))
         rows.append(("status", "complete" if self.failure is None else f"stopped early: {self.failure}"))
         return display.table("clearsim.Result", rows)
 
@@ -276,11 +283,11 @@ class Result:
             coordinate = 3 * self.body_names.index(name) + c
             unit = BODY_QUANTITIES[quantity][c == 2]
         elif name in self.joint_names:
-            check_choice("quantity", quantity, list(JOINT_QUANTITIES))
+            check_choice("quantity", quantity, list(JOINT_QUANTITIES) + list(READING_QUANTITIES))
             if component is not None:
                 raise InputError(f"invalid component = {component!r}: a joint's {quantity} has none (give component=None)", field="component", value=component)
             coordinate = self.joint_names.index(name)
-            unit = JOINT_QUANTITIES[quantity]
+            unit = {**JOINT_QUANTITIES, **READING_QUANTITIES}[quantity]
         else:
             known = ", ".join(self.body_names + self.joint_names)
             raise InputError(f"invalid name = {name!r}: no such body or clearance joint (known: {known})", field="name", value=name)
@@ -346,6 +353,9 @@ class Result:
         out["impacts"] = dict(self.impacts)
         if "violation" in self._raw and len(self.t):
             out["max_constraint_violation"] = float(np.max(self.constraint_violation))
+        bearings = self.bearing_summary()
+        if bearings:
+            out["bearings"] = bearings
         out["failure"] = None if self.failure is None else str(self.failure)
         return out
 

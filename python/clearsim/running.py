@@ -17,6 +17,7 @@ from . import _core
 from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
 from .joints import MICROMETRE_FILM_RATIO
+from .joint_readings import film_monitors
 from .result import Result, extreme_monitors
 from .schema import COMPONENTS, DEFAULT_OUTPUTS, INTEGRATORS, OUTPUTS
 
@@ -282,6 +283,9 @@ class Running:
         if extremes is not False:
             start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
+        films = film_monitors(self.description(), self.clearance_joint_names, t0, t_end)
+        if films:
+            settings["monitors"] = settings.get("monitors", []) + films
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
@@ -525,7 +529,7 @@ class Running:
         if joint["model"]["film"] == "long" and err.eccentricity < 0.5:
             return (
                 f"hint: {where}; a journal whirling near the centre of a µm long-bearing (half-Sommerfeld) film meets a "
-                "negative squeeze damping and the run crawls: film='finite' damps it (docs/hard_cases.md)"
+                "negative squeeze damping and the run crawls: film='finite', supply='none' (the periodic film) damps it; the default supply line crawls like the long film (docs/hard_cases.md)"
             )
         return None
 

@@ -64,6 +64,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     #                                # Archard wear (docs/physics.md §12), needed by [study.life]
     # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
+    # roughness = 0.5e-6             # m, composite RMS σ: Greenwood–Tripp asperities where
+    # boundary_friction = 0.12       #   h < 4σ with friction μ_b, in place of the band e0
 
     [[force]]                        # force elements and loads (docs/physics.md §10); type =
     type = "spring"                  #   spring | rotational_spring | force | torque | motor
@@ -106,7 +108,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     components = ["x"]               # of x, y, theta (default all three)
     joints = ["rod-slider"]          # clearance joints (default: all)
     joint_quantities = ["eccentricity", "force"]  # + eccentricity_rate, contact_force,
-                                                  #   film_force, state
+                                                  #   film_force, state, film_thickness,
+                                                  #   friction_torque, power_loss
     ideal = true                     # also run the ideal mechanism; write its response and
                                      #   the errors (default: true if there are clearance joints)
     csv = true                       # default true
@@ -203,6 +206,9 @@ JOINT_CHANNELS: Dict[str, Tuple[Tuple[str, str], ...]] = {
     "contact_force": (("normal", "N"), ("tangential", "N")),
     "film_force": (("film_xi", "N"), ("film_eta", "N")),
     "state": (("state", "-"), ("w_dry", "-")),
+    "film_thickness": (("film_thickness", "m"),),
+    "friction_torque": (("friction_torque", "N m"), ("friction_torque_bearing", "N m")),
+    "power_loss": (("power_loss", "W"),),
 }
 #: Body quantity → the name of its error against the ideal mechanism (as in
 #: :meth:`Result.error` and the reliability analysis).

@@ -28,6 +28,8 @@ JOINT_COLUMNS: List[str] = list(_core.JOINT_COLUMNS)
 JOINT_COLUMN_UNITS: Dict[str, str] = {
     "ex": "m", "ey": "m", "ex_dot": "m/s", "ey_dot": "m/s", "fx": "N", "fy": "N",
     "normal": "N", "tangential": "N", "film_xi": "N", "film_eta": "N", "w_dry": "1", "state": "1",
+    "film_thickness": "m", "friction_torque": "N m", "friction_torque_bearing": "N m", "couette_torque": "N m",
+    "poiseuille_torque": "N m", "power_loss": "W", "asperity_force": "N",
 }  # fmt: skip
 
 #: The quantities of a body coordinate (its extremes, its error against the ideal mechanism)

@@ -4,9 +4,12 @@
 
 pub mod kinematics;
 pub mod memory;
+pub mod mixed;
+pub mod readings;
 
 pub use kinematics::JointKinematics;
 pub use memory::ImpactMemory;
+pub use readings::{body_rates, Readings, READING_COLUMNS};
 
 use crate::constraints::{BodyKin, V2};
 use crate::laws::contact::ContactLaw;
@@ -63,6 +66,9 @@ pub struct Film {
     pub m: f64,
     pub e0: f64,
     pub eps_max: f64,
+    /// Rough surfaces (`Lubricated(roughness=σ)`): asperity load and boundary friction in
+    /// place of the transition band ([`mixed`]); `None`: the band (P18).
+    pub mixed: Option<mixed::Mixed>,
 }
 
 /// A compiled clearance joint. The dry law is always present: for a lubricated joint it acts
@@ -105,8 +111,23 @@ pub struct JointForce {
     pub film_eta: f64,
     /// Weight of the dry law (0 in the film, 1 in full contact).
     pub w_dry: f64,
-    /// 0: free flight (dry) or film; 1: transition band; 2: contact (δ > 0, dry law in full).
+    /// 0: free flight (dry) or film; 1: transition band (with roughness: asperities touching);
+    /// 2: contact (δ > 0, dry law in full).
     pub state: u8,
+    /// Rough surfaces only ([`mixed`]): the asperities' load \[N\] (along −n) and its boundary
+    /// friction along t \[N\].
+    pub asperity: f64,
+    pub asperity_tangential: f64,
+}
+
+impl JointForce {
+    /// The friction force along t acting at the contact points \[N\]: the dry law's by its weight,
+    /// plus the asperities' boundary friction on a rough joint.
+    #[inline]
+    pub fn friction(&self) -> f64 {
+        let dry = self.w_dry * self.tangential;
+        if self.asperity_tangential == 0.0 { dry } else { dry + self.asperity_tangential }
+    }
 }
 
 impl ClearanceJoint {
@@ -141,6 +162,8 @@ impl ClearanceJoint {
         let delta = k.delta - memory.wear_offset;
         let (w_film, w_dry) = match &self.film {
             None => (0.0, if delta > 0.0 { 1.0 } else { 0.0 }),
+            // Rough surfaces: no band; the film everywhere, the dry law where the mean surfaces overlap.
+            Some(Film { mixed: Some(_), .. }) => (1.0, if delta > 0.0 { 1.0 } else { 0.0 }),
             Some(f) => transition_weights(k.e, self.clearance, f.e0),
         };
         if w_dry > 0.0 && delta > 0.0 {
@@ -167,10 +190,17 @@ impl ClearanceJoint {
         }
         out.w_dry = w_dry;
         // On the journal: film F_ξ n + F_η t; dry −F_N n + F_t t (docs/physics.md §3, P17–P18).
-        let f_n = w_film * out.film_xi - w_dry * out.normal;
-        let f_t = w_film * out.film_eta + w_dry * out.tangential;
+        let mut f_n = w_film * out.film_xi - w_dry * out.normal;
+        let mut f_t = w_film * out.film_eta + w_dry * out.tangential;
+        if let Some(Film { mixed: Some(m), geometry, .. }) = &self.film {
+            (out.asperity, out.asperity_tangential) = m.force(geometry, k.eps, k.slip);
+            f_n -= out.asperity;
+            f_t += out.asperity_tangential;
+        }
         out.total = k.n.scale(f_n).add(k.t.scale(f_t));
-        out.state = if self.film.is_some() {
+        out.state = if self.film.as_ref().is_some_and(|f| f.mixed.is_some()) {
+            if delta > 0.0 { 2 } else if out.asperity > 0.0 { 1 } else { 0 }
+        } else if self.film.is_some() {
             if k.delta <= 0.0 { 0 } else if w_film > 0.0 { 1 } else { 2 }
         } else if delta > 0.0 {
             2
@@ -204,7 +234,7 @@ impl ClearanceJoint {
         let law = |z: [f64; 6]| -> [f64; 3] {
             let k = JointKinematics::relative(V2::new(z[0], z[1]), V2::new(z[2], z[3]), z[4], z[5], r_j, r_b, c);
             let f = self.force(&k, memory);
-            [f.total.x, f.total.y, f.w_dry * f.tangential]
+            [f.total.x, f.total.y, f.friction()]
         };
         let z0 = [k0.e_vec.x, k0.e_vec.y, k0.e_dot.x, k0.e_dot.y, kb.w, kj.w];
         let cbrt = f64::EPSILON.cbrt();
@@ -278,7 +308,7 @@ impl ClearanceJoint {
     /// the contact points Q_k = P_k + R_k n and so adds the moments R_j F_t and −R_b F_t.
     #[inline]
     pub fn apply(&self, kin: &[BodyKin], k: &JointKinematics, f: &JointForce, g: &mut [f64]) {
-        let friction = f.w_dry * f.tangential;
+        let friction = f.friction();
         if let Some(j) = self.journal {
             let kj = kin[j as usize];
             let arm = kj.rot(self.journal_point);
@@ -322,7 +352,7 @@ mod tests {
             clearance: c,
             contact: ContactLaw { line: None, law: NormalLaw::LankaraniNikravesh, stiffness: 1e10, exponent: 1.5, restitution: 0.9, impact_speed_floor: 1e-4 },
             friction: ModifiedCoulomb { friction_coefficient: 0.1, v0: 1e-4, v1: 1e-3 },
-            film: Some(Film { model, table: None, geometry, eps0: 2e-6, m: 0.5, e0: 0.05 * c, eps_max: 0.99 }),
+            film: Some(Film { model, table: None, geometry, eps0: 2e-6, m: 0.5, e0: 0.05 * c, eps_max: 0.99, mixed: None }),
             guide_normal: None,
             penetration_limit: c,
             wear: None,

@@ -146,6 +146,15 @@ pub struct LubricatedDesc {
     /// The dry law used beyond e = c (default: [`DryDesc::steel`]).
     #[cfg_attr(feature = "serde", serde(default))]
     pub dry: DryDesc,
+    /// Composite RMS roughness σ \[m\] of the two surfaces (docs/physics.md §4, roughness): the
+    /// Greenwood–Tripp asperity load where the film is thinner than 4σ replaces the transition
+    /// band; `None`: smooth surfaces and the band (P18).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub roughness: Option<f64>,
+    /// Boundary friction coefficient μ_b on the asperity load (with `roughness`); `None`: the dry
+    /// law's friction coefficient.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub boundary_friction: Option<f64>,
 }
 
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]

@@ -231,6 +231,13 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
                 m: l.m,
                 e0: l.e0.unwrap_or(DEFAULT_TRANSITION_WIDTH * c.clearance),
                 eps_max: l.eps_max,
+                mixed: l.roughness.map(|sigma| crate::clearance::mixed::Mixed {
+                    asperity: crate::laws::asperity::GreenwoodTripp::typical(
+                        sigma,
+                        crate::clearance::mixed::composite_modulus(l.dry.youngs_bearing, l.dry.poisson_bearing, l.dry.youngs_journal, l.dry.poisson_journal),
+                    ),
+                    friction: ModifiedCoulomb { friction_coefficient: l.boundary_friction.unwrap_or(l.dry.friction), v0: l.dry.v0, v1: l.dry.v1 },
+                }),
             }),
         ),
     };

@@ -273,6 +273,22 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 }
                 within(&format!("{f}.eps_max"), l.eps_max, 0.0, 1.0, true, true)?;
                 validate_dry(&f, &l.dry)?;
+                if let Some(sigma) = l.roughness {
+                    positive(&format!("{f}.roughness"), sigma)?;
+                    if 4.0 * sigma >= c.clearance {
+                        return Err(Error::invalid(
+                            format!("{f}.roughness"),
+                            num(sigma),
+                            format!("must be below a quarter of the clearance c = {} m: the asperities (up to 4σ high) would touch with the journal centred; is it in metres?", num(c.clearance)),
+                        ));
+                    }
+                }
+                if let Some(mu_b) = l.boundary_friction {
+                    non_negative(&format!("{f}.boundary_friction"), mu_b)?;
+                    if l.roughness.is_none() {
+                        return Err(Error::invalid(format!("{f}.boundary_friction"), num(mu_b), "applies with roughness only (the friction on the asperity load): give roughness too"));
+                    }
+                }
             }
         }
     }

@@ -571,7 +571,7 @@ def test_ctrl_c_returns_partial_result():
     assert any("interrupted at t =" in w and "partial result" in w for w in info["warnings"])
 
 
-@pytest.mark.parametrize("start, budget, says", [(0.05, 1.0, "film='finite' damps it"), (0.99, None, "start it centred or off the wall")])
+@pytest.mark.parametrize("start, budget, says", [(0.05, 1.0, "film='finite', supply='none' (the periodic film) damps it"), (0.99, None, "start it centred or off the wall")])
 def test_a_stalled_micrometre_film_says_what_to_try(start, budget, says):
     """A 1 µm long-bearing film that stalls — in its whirl near the centre (stopped by the
     wall-time budget) or released at rest against the wall (step-size underflow at t = 0) — says

@@ -1,0 +1,153 @@
+"""What a bearing engineer reads off a clearance joint: film thickness, friction torque and power
+loss over a run (the core's joint columns, rust/clearance/readings.rs) and their summary (minimum
+film thickness, peak and mean power, tracked at every integration step by the core's monitors).
+
+:class:`JointReadings` holds the methods of :class:`clearsim.Result` for them (docs/physics.md §4,
+"Film thickness, friction and power"); :func:`film_monitors` the monitors a run is given so that
+:func:`bearing_summary` does not depend on the output grid.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, List, Optional, Sequence
+
+import numpy as np
+
+from .errors import check_choice
+
+#: The summary's tracked quantities of every lubricated joint (rust/monitor.rs, ``Quantity``).
+FILM_MONITORED = ("film_thickness", "power_loss")
+#: Parts of :meth:`JointReadings.friction_torque` and the joint column each reads.
+TORQUE_PARTS = {"total": "friction_torque", "couette": "couette_torque", "poiseuille": "poiseuille_torque"}
+
+
+def film_monitors(description: Dict[str, Any], joint_names: Sequence[str], t0: float, t_end: float) -> List[Dict[str, Any]]:
+    """Exact monitors (rust/monitor.rs) of the film thickness and power loss of every lubricated
+    revolute clearance joint over [t0, t_end] [s]: their minimum, peak and time integral."""
+    span = {"t_start": t0, "bin_width": t_end - t0, "exact": True, "samples_per_step": 4}
+    out: List[Dict[str, Any]] = []
+    for cj in description.get("clearance_joints", []):
+        if cj["model"].get("kind") == "lubricated" and cj["name"] in joint_names:
+            j = list(joint_names).index(cj["name"])
+            out += [{"coordinate": j, "quantity": q, **span} for q in FILM_MONITORED]
+    return out
+
+
+class JointReadings:
+    """Methods of :class:`clearsim.Result` for the readings of a clearance joint (needs the
+    ``"joints"`` output, stored by default). A prismatic clearance joint's name gives its two slider
+    ends as columns (front, rear)."""
+
+    joint_names: List[str]
+    body_names: List[str]
+    t: np.ndarray
+    _raw: Dict[str, Any]
+    monitor_specs: List[Dict[str, Any]]
+    description: Optional[Dict[str, Any]]
+
+    def _joint_cols(self, joint: str, cols: List[str]) -> np.ndarray:  # pragma: no cover - Result's
+        raise NotImplementedError
+
+    def _reading(self, joint: str, column: str) -> np.ndarray:
+        ends = [f"{joint} front", f"{joint} rear"]
+        if joint not in self.joint_names and all(e in self.joint_names for e in ends):
+            return np.column_stack([self._joint_cols(e, [column])[:, 0] for e in ends])
+        return self._joint_cols(joint, [column])[:, 0]
+
+    def film_thickness(self, joint: str) -> np.ndarray:
+        """(N,) smallest gap h = c − |e| [m] between journal and bearing (negative: penetration);
+        for a prismatic clearance joint (N, 2), the gap at each slider end (front, rear)."""
+        return self._reading(joint, "film_thickness")
+
+    def friction_torque(self, joint: str, part: str = "total", body: str = "journal") -> np.ndarray:
+        """(N,) friction torque [N m] about the ``body``'s (``"journal"`` or ``"bearing"``) joint
+        centre, counter-clockwise positive (docs/physics.md §4, "Film thickness, friction and
+        power"): the film's shear, ``part="couette"`` (the shear flow, Petroff's torque at the
+        centre: the bearing gets its negative) plus ``"poiseuille"`` (the pressure flow, −e F_η/2
+        on either body), in the transition band and in contact blended with the dry friction's
+        moment (R_j F_t on the journal, −R_b F_t on the bearing). An output only: the dynamics
+        apply the film force through the centres and do not apply this torque."""
+        check_choice("part", part, list(TORQUE_PARTS))
+        check_choice("body", body, ["journal", "bearing"])
+        if part == "total":
+            return self._reading(joint, "friction_torque" if body == "journal" else "friction_torque_bearing")
+        values = self._reading(joint, TORQUE_PARTS[part])
+        return -values if (part == "couette" and body == "bearing") else values
+
+    def power_loss(self, joint: str) -> np.ndarray:
+        """(N,) power dissipated in the joint [W] (≥ 0): the film's shear and pressure flow
+        (2πμR³L(θ̇_j − θ̇_b)²/(c√(1 − ε²)) + (e/2)F_η W − cε̇F_ξ) and the dry friction's −F_t·slip,
+        each by its share of the transition blend; a prismatic joint gives its ends (N, 2)."""
+        return self._reading(joint, "power_loss")
+
+    def asperity_force(self, joint: str) -> np.ndarray:
+        """(N,) load the asperities carry [N] (≥ 0, pressing the journal back towards the centre) of
+        a joint with ``Lubricated(roughness=σ)``: Greenwood & Tripp's pressure where the film is
+        thinner than 4σ (docs/physics.md §4, *Roughness and mixed lubrication*); 0 without roughness."""
+        return self._reading(joint, "asperity_force")
+
+    def _tracked(self, j: int, quantity: str) -> Optional[Dict[str, Any]]:
+        results = self._raw.get("monitors") or []
+        for spec, found in zip(self.monitor_specs, results):
+            if spec.get("exact") and spec["coordinate"] == j and spec["quantity"] == quantity and not spec.get("reference"):
+                return dict(found)
+        return None
+
+    def driver_angle(self, t: float) -> Optional[float]:
+        """The first driver's body angle [deg] at ``t`` [s], interpolated between the stored
+        outputs (``None`` without a driver or stored states)."""
+        drivers = (self.description or {}).get("drivers") or []
+        q = self._raw.get("q")
+        if not drivers or q is None or not len(self.t) or not math.isfinite(t):
+            return None
+        b = int(drivers[0]["body"])
+        return float(np.degrees(np.interp(t, self.t, q[:, 3 * b + 2])))
+
+    def bearing_summary(self) -> Dict[str, Dict[str, Any]]:
+        """Per lubricated joint: ``min_film_thickness`` [m] with ``t_min_film`` [s] and
+        ``min_film_crank_angle_deg`` (the first driver's angle then, if any), ``peak_power_loss``
+        and ``mean_power_loss`` [W] over the run, tracked at every integration step (independent
+        of ``dt_out``); with ``roughness`` σ also ``lambda`` = min film / σ (below ~3 the
+        asperities carry load: mixed lubrication)."""
+        out: Dict[str, Dict[str, Any]] = {}
+        models = {cj["name"]: cj["model"] for cj in (self.description or {}).get("clearance_joints", [])}
+        for j, name in enumerate(self.joint_names):
+            h, p = self._tracked(j, "film_thickness"), self._tracked(j, "power_loss")
+            if h is None or p is None:
+                continue
+            time = float(np.sum(p["bin_time"]))
+            entry: Dict[str, Any] = {
+                "min_film_thickness": float(h["min"]),
+                "t_min_film": float(h["t_min"]),
+                "peak_power_loss": float(p["max"]),
+                "mean_power_loss": float(np.sum(p["bin_abs"]) / time) if time > 0 else math.nan,
+            }
+            angle = self.driver_angle(entry["t_min_film"])
+            if angle is not None:
+                entry["min_film_crank_angle_deg"] = angle % 360.0
+            sigma = models.get(name, {}).get("roughness")
+            if sigma:
+                entry["lambda"] = entry["min_film_thickness"] / float(sigma)
+            out[name] = entry
+        return out
+
+
+def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]:
+    """Lines of a Markdown table of :meth:`JointReadings.bearing_summary` (none if empty)."""
+    if not bearings:
+        return []
+
+    def num(v: Any, scale: float = 1.0, fmt: str = ".4g") -> str:
+        return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(float(v) * scale, fmt)
+
+    lines = ["", "| lubricated joint | min film [µm] | at t [s] | crank angle [deg] | peak power loss [W] | mean power loss [W] |", "|---|---|---|---|---|---|"]
+    for joint, b in bearings.items():
+        lines.append(
+            f"| {joint} | {num(b.get('min_film_thickness'), 1e6)} | {num(b.get('t_min_film'), fmt='.6g')} | {num(b.get('min_film_crank_angle_deg'), fmt='.1f')} | "
+            f"{num(b.get('peak_power_loss'))} | {num(b.get('mean_power_loss'))} |"
+        )
+    return lines
+
+
+__all__ = ["JointReadings", "film_monitors", "summary_markdown", "FILM_MONITORED"]

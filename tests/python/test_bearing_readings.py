@@ -1,0 +1,204 @@
+"""Film thickness, friction torque and power loss of a clearance joint (docs/physics.md §4, "Film
+thickness, friction and power") against Petroff's law, the long- and short-bearing closed forms and
+the recorded eccentricity; their run summary against the output grid."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+import pytest
+
+import clearsim
+
+R, C, MU, OMEGA = 0.02, 4e-5, 0.05, 100.0
+
+
+def rotor(film: str, length: float, load: float = 0.0, supply: str = "widest_gap", dry: Optional[clearsim.Dry] = None) -> clearsim.Mechanism:
+    """A 1 kg rotor driven at OMEGA in a ground bearing (journal at its centroid, no gravity),
+    loaded by ``load`` [N] along −y."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("rotor", mass=1.0, inertia=1e-3)
+    m.driver("rotor", omega=OMEGA, angle0=0.0)
+    model = dry if dry is not None else clearsim.Lubricated(viscosity=MU, length=length, film=film, supply=supply)
+    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=model)
+    if load:
+        m.force("rotor", (0, 0), (0.0, -load))
+    return m
+
+
+def petroff(length: float) -> float:
+    return 2 * math.pi * MU * R**3 * length * OMEGA / C
+
+
+@pytest.mark.parametrize(("film", "length", "supply"), [("long", 0.1, "widest_gap"), ("short", 0.01, "widest_gap"), ("finite", 0.04, "widest_gap"), ("finite", 0.04, "none")])
+def test_a_centred_unloaded_journal_gives_petroffs_torque(film: str, length: float, supply: str) -> None:
+    res = rotor(film, length, supply=supply).simulate(0.02, dt_out=1e-3, progress=False)
+    torque = res.friction_torque("pin")
+    assert np.all(np.abs(torque / -petroff(length) - 1) < 0.01)
+    # Couette only; the bearing takes the opposite; the loss is Petroff's torque times ω.
+    assert np.allclose(res.friction_torque("pin", "couette"), torque, rtol=1e-6)
+    assert np.allclose(res.friction_torque("pin", body="bearing"), -torque, rtol=1e-6)
+    assert np.all(np.abs(res.power_loss("pin") / (petroff(length) * OMEGA) - 1) < 0.01)
+    b = res.summary()["bearings"]["pin"]
+    assert b["mean_power_loss"] == pytest.approx(petroff(length) * OMEGA, rel=0.01)
+    assert b["min_film_thickness"] == pytest.approx(C, rel=0.01)
+
+
+def test_a_loaded_journal_gives_the_long_and_short_closed_forms() -> None:
+    """Steadily loaded, the journal turns at ω about a fixed eccentricity ε: the long film
+    (half Sommerfeld) gives πμR³Lω(4 + 5ε²)/(c(2 + ε²)√(1 − ε²)), Ocvirk's short film
+    2πμR³Lω/(c√(1 − ε²)) + πμRL³ωε²/(8c(1 − ε²)^{3/2}) at the recorded ε."""
+    for film, length, load in (("long", 0.1, 3000.0), ("short", 0.01, 100.0)):
+        res = rotor(film, length, load).simulate(0.4, dt_out=0.01, rtol=1e-9, atol=1e-12, progress=False)
+        eps = float(np.hypot(*res.eccentricity("pin")[-1])) / C
+        k, root = math.pi * MU * R**3 * length * OMEGA / C, math.sqrt(1 - eps * eps)
+        if film == "long":
+            want = k * (4 + 5 * eps**2) / ((2 + eps**2) * root)
+        else:
+            want = 2 * k / root + math.pi * MU * R * length**3 * OMEGA * eps**2 / (8 * C * (1 - eps**2) ** 1.5)
+        assert 0.1 < eps < 0.9
+        assert -res.friction_torque("pin")[-1] == pytest.approx(want, rel=1e-4), film
+        # The film carries the load: its Poiseuille part −e F_η/2 is the load's moment share.
+        assert res.friction_torque("pin", "poiseuille")[-1] < 0
+
+
+def test_film_thickness_is_the_clearance_less_the_recorded_eccentricity() -> None:
+    res = rotor("finite", 0.04, 1000.0).simulate(0.05, dt_out=1e-3, progress=False)
+    h = res.film_thickness("pin")
+    e = res.eccentricity("pin")
+    assert np.allclose(h, C - np.hypot(e[:, 0], e[:, 1]), rtol=0, atol=1e-20)
+    assert h.min() < 0.8 * C
+
+
+def test_the_minimum_film_does_not_depend_on_the_output_grid() -> None:
+    m = rotor("finite", 0.04, 1000.0)
+    runs = [m.simulate(0.1, dt_out=dt, progress=False) for dt in (1e-2, 1e-3, 3.7e-5)]
+    summaries = [r.summary()["bearings"]["pin"] for r in runs]
+    for s in summaries[1:]:
+        assert s["min_film_thickness"] == pytest.approx(summaries[0]["min_film_thickness"], rel=1e-9)
+        assert s["t_min_film"] == pytest.approx(summaries[0]["t_min_film"], abs=1e-9)
+        assert s["peak_power_loss"] == pytest.approx(summaries[0]["peak_power_loss"], rel=1e-9)
+    for r, s in zip(runs, summaries):
+        # At least every stored value, and the tracked minimum sits between the samples.
+        assert s["min_film_thickness"] <= r.film_thickness("pin").min()
+        assert s["peak_power_loss"] >= r.power_loss("pin").max()
+        assert r.extremes("pin", "film_thickness").min == s["min_film_thickness"]
+    assert summaries[0]["min_film_thickness"] < runs[0].film_thickness("pin").min()
+    # The crank angle at the minimum: the driver's θ = ωt.
+    s = summaries[-1]
+    assert s["min_film_crank_angle_deg"] == pytest.approx(math.degrees(OMEGA * s["t_min_film"]) % 360, abs=1e-6)
+    assert "pin: h_min" in repr(runs[0])
+
+
+def test_dry_friction_moment_and_power_in_contact() -> None:
+    """A dry pin pressed against its bearing by the load while turning: R_j F_t on the journal,
+    −R_b F_t on the bearing, and the friction power −F_t · slip ≈ c_f F_N R_j ω."""
+    res = rotor("", 0.0, 50.0, dry=clearsim.Dry(friction=0.1)).simulate(0.05, dt_out=1e-4, progress=False)
+    normal, tangential = res.contact_force("pin").T
+    touching = res.contact_state("pin") == 2
+    assert touching.sum() > 100 and np.all(np.abs(tangential[touching]) == pytest.approx(0.1 * normal[touching], rel=1e-9))
+    assert np.allclose(res.friction_torque("pin"), R * tangential * touching, rtol=1e-12, atol=0)
+    assert np.allclose(res.friction_torque("pin", body="bearing"), -(R + C) * tangential * touching, rtol=1e-12, atol=0)
+    # The slip of the contact points along t = n turned +90°: t·ė + R_j ω (the bearing is fixed).
+    e, e_dot = res.eccentricity("pin"), res.eccentricity_rate("pin")
+    n = e / np.maximum(np.hypot(e[:, 0], e[:, 1]), 1e-300)[:, None]
+    slip = -n[:, 1] * e_dot[:, 0] + n[:, 0] * e_dot[:, 1] + R * OMEGA
+    assert np.allclose(res.power_loss("pin")[touching], -(tangential * slip)[touching], rtol=1e-9)
+    assert np.all(res.power_loss("pin")[touching] > 0)
+    assert np.all(res.power_loss("pin")[~touching] == 0)
+    assert "bearings" not in res.summary()  # the summary's film rows are for lubricated joints
+
+
+def test_a_prismatic_clearance_reads_its_two_ends() -> None:
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("slider", mass=1.0, inertia=1e-3)
+    m.prismatic_clearance("ground", (0, 0), "slider", (1, 0), 1e-3, 0.08, clearsim.Dry(), name="G")
+    res = m.simulate(0.01, dt_out=1e-3, progress=False)
+    h = res.film_thickness("G")
+    assert h.shape == (len(res.t), 2)
+    assert np.array_equal(h[:, 0], res.film_thickness("G front"))
+    assert h[0, 0] == pytest.approx(0.5e-3)
+
+
+def test_parts_and_bodies_are_checked() -> None:
+    res = rotor("short", 0.01).simulate(0.001, dt_out=1e-4, progress=False)
+    with pytest.raises(clearsim.InputError, match="part"):
+        res.friction_torque("pin", part="viscous")
+    with pytest.raises(clearsim.InputError, match="body"):
+        res.friction_torque("pin", body="crank")
+    with pytest.raises(clearsim.InputError, match="no such clearance joint"):
+        res.power_loss("nope")
+
+
+def test_clearsim_run_writes_the_readings_and_their_summary(tmp_path: Path) -> None:
+    """``clearsim run``: the joints CSV columns and the summary's table of the lubricated joints."""
+    from clearsim import cli
+
+    text = (Path(__file__).resolve().parents[2] / "scenes" / "nine_bar_lubricated.toml").read_text(encoding="utf-8")
+    text = text.replace("cycles = 3 ", "cycles = 0.25 ").replace('joint_quantities = ["eccentricity", "force"]', 'joint_quantities = ["film_thickness", "friction_torque", "power_loss"]')
+    text = text[: text.index("[reliability]")]
+    scene = tmp_path / "scene.toml"
+    scene.write_text(text, encoding="utf-8")
+    assert cli.main(["run", str(scene), "-o", str(tmp_path / "out"), "--no-plots", "-q"]) == 0
+    header = (tmp_path / "out" / "joints.csv").read_text(encoding="utf-8").splitlines()[0]
+    assert "A.film_thickness [m]" in header and "B.friction_torque_bearing [N m]" in header and "A.power_loss [W]" in header
+    md = (tmp_path / "out" / "summary.md").read_text(encoding="utf-8")
+    assert "| lubricated joint | min film [µm]" in md and "| A |" in md
+    import json
+
+    bearings = json.loads((tmp_path / "out" / "summary.json").read_text(encoding="utf-8"))["run"]["bearings"]
+    assert set(bearings) == {"A", "B"} and 0 < bearings["A"]["min_film_thickness"] < 5e-4
+
+
+# ---------------------------------------------------------------- roughness (mixed lubrication)
+SIGMA, LOAD = 1e-6, 2000.0
+
+
+def ramped_rotor(t_end: float, omega_end: float) -> clearsim.Mechanism:
+    """The rotor of :func:`rotor` (finite film, L/D = 1) with σ = 1 µm, μ_b = 0.12, loaded by 2 kN,
+    started where the asperities carry the load (ε = 0.9925) and driven by θ = a t⁴ from standstill
+    to ``omega_end`` at ``t_end``."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("rotor", mass=1.0, inertia=1e-3)
+    m.driver("rotor", polynomial=[0, 0, 0, 0, omega_end / (4 * t_end**3)])
+    model = clearsim.Lubricated(viscosity=MU, length=0.04, film="finite", roughness=SIGMA, boundary_friction=0.12)
+    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=model, initial_eccentricity=(0.0, -0.9925 * C))
+    m.force("rotor", (0, 0), (0.0, -LOAD))
+    return m
+
+
+def test_a_rough_journal_runs_up_from_boundary_to_full_film_through_a_stribeck_minimum() -> None:
+    t_end, omega_end = 4.0, 200.0
+    res = ramped_rotor(t_end, omega_end).simulate(t_end, dt_out=t_end / 400, progress=False)
+    omega = omega_end * (res.t / t_end) ** 3
+    share = res.asperity_force("pin") / LOAD
+    f = np.abs(res.friction_torque("pin")) / (R * LOAD)
+    assert np.all(share[omega < 0.05] > 0.9)  # boundary: the asperities carry the load
+    assert np.all(share[omega > 20] < 0.01)  # full film
+    # No jump: between outputs 0.01 s apart the share and the friction coefficient move little.
+    assert np.max(np.abs(np.diff(share))) < 0.02 and np.max(np.abs(np.diff(f))) < 0.005
+    # Stribeck: boundary friction μ_b × share where the slip is past the friction ramp (R ω > v1),
+    # a minimum in between, viscous friction growing with the speed beyond.
+    developed = (omega * R > 0.01) & (share > 0.5)
+    assert np.allclose(f[developed], 0.12 * share[developed], rtol=0.05)
+    k = int(np.argmin(np.where(omega > 0.5, f, np.inf)))
+    assert 2 < omega[k] < 50 and f[k] < 0.1 * f[developed].max() and f[k] < 0.5 * f[-1]
+    s = res.summary()["bearings"]["pin"]
+    assert s["lambda"] == pytest.approx(s["min_film_thickness"] / SIGMA) and s["lambda"] < 1
+    assert set(np.unique(res.contact_state("pin"))) <= {0, 1}  # mixed (1), never the mean surfaces in contact
+
+
+def test_roughness_replaces_the_transition_band_and_is_checked() -> None:
+    """Inside the band (c < e, a smooth joint's blend) a rough joint keeps its film in full and
+    adds the asperities; without roughness nothing changes."""
+    with pytest.raises(clearsim.InputError, match="roughness"):
+        clearsim.Lubricated(roughness=-1e-6)
+    with pytest.raises(clearsim.InputError, match="boundary_friction"):
+        clearsim.Lubricated(boundary_friction=0.1)
+    m = rotor("short", 0.01)
+    m.clearance_joint("pin2", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=clearsim.Lubricated(length=0.01, film="short", roughness=C / 3))
+    with pytest.raises(clearsim.InputError, match=r"clearance joint 'pin2'.roughness.*quarter of the clearance"):
+        m.simulate(0.001, progress=False)
