@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use clearsim::batch::run_batch;
 use clearsim::integrate::Method;
-use clearsim::model::ClearanceModelDesc;
+use clearsim::description::ClearanceModelDesc;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
 const RUNS: usize = 8;

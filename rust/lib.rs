@@ -1,6 +1,6 @@
 //! clearsim: planar multibody dynamics with dry and lubricated revolute clearance joints.
 //!
-//! The flow of one run (see `DESIGN.md`): a plain [`model::MechanismDesc`] is compiled into a
+//! The flow of one run (see `DESIGN.md`): a plain [`description::MechanismDesc`] is compiled into a
 //! [`model::Model`]; [`simulate::simulate`] assembles it, integrates `ẏ = f(t, y)`
 //! ([`system`], [`kkt`], [`clearance`], [`laws`]) with an [`integrate`] method and records the
 //! requested channels ([`record`]). `rust/python.rs` (feature `python`) is the only file that
@@ -10,6 +10,7 @@ pub mod assembly;
 pub mod batch;
 pub mod clearance;
 pub mod constraints;
+pub mod description;
 pub mod energy;
 pub mod error;
 pub mod forces;

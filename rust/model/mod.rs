@@ -2,10 +2,9 @@
 //! (docs/physics.md §1). Only the parts the scene uses are present: a mechanism without lubricated joints
 //! has no film data, a joint without clearance is a constraint.
 
-pub mod description;
 mod validate;
 
-pub use description::*;
+use crate::description::*;
 
 use crate::clearance::{ClearanceJoint, Film};
 use crate::constraints::{CompiledAngleLaw, Constraint, V2};
@@ -160,27 +159,6 @@ impl Model {
     /// Degrees of freedom left after the constraints (clearance joints add 2 each).
     pub fn dof(&self) -> isize {
         3 * self.n_bodies() as isize - self.rows as isize
-    }
-}
-
-impl MechanismDesc {
-    /// The ideal mechanism: every clearance joint replaced by a revolute joint between its
-    /// bearing and journal points (docs/physics.md §5).
-    pub fn idealized(&self) -> MechanismDesc {
-        let mut d = self.clone();
-        for c in d.clearance_joints.drain(..) {
-            d.joints.push(JointDesc::Revolute {
-                name: c.name,
-                body_a: c.bearing_body,
-                point_a: c.bearing_point,
-                body_b: c.journal_body,
-                point_b: c.journal_point,
-            });
-        }
-        for p in d.prismatic_clearance_joints.drain(..) {
-            d.joints.push(JointDesc::Prismatic { name: p.name, body_a: p.guide_body, point_a: p.guide_point, axis: p.axis, body_b: p.slider_body, point_b: [0.0, 0.0] });
-        }
-        d
     }
 }
 

@@ -2,7 +2,7 @@
 
 use std::collections::HashSet;
 
-use super::description::*;
+use crate::description::*;
 use crate::error::{Error, Result};
 
 /// A number as it appears in a message: plain for ordinary magnitudes, scientific for very

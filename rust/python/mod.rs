@@ -18,7 +18,8 @@ use crate::batch::run_batch;
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
 use crate::integrate::OdeSystem;
-use crate::model::*;
+use crate::description::{MechanismDesc, ELEMENTS};
+use crate::model::Model;
 use crate::record::{Channels, JOINT_COLUMNS};
 use crate::settings::RunSettingsDesc;
 use crate::simulate::{simulate, MechanismSystem, RunOutput, RunSettings};
@@ -90,14 +91,14 @@ fn read_settings(d: &Bound<'_, PyAny>) -> PyResult<RunSettings> {
 }
 
 /// A description from Python: a JSON string, or plain data (dicts, lists, numbers, strings).
-/// Either way it enters the core through serde ([`crate::model::from_value`]), the one path.
+/// Either way it enters the core through serde ([`crate::description::from_value`]), the one path.
 fn read_description(d: &Bound<'_, PyAny>) -> PyResult<MechanismDesc> {
     let py = d.py();
     let v = match d.extract::<String>() {
-        Ok(text) => return crate::model::from_json(&text).map_err(|e| to_pyerr(py, &e)),
+        Ok(text) => return crate::description::from_json(&text).map_err(|e| to_pyerr(py, &e)),
         Err(_) => plain_value(d, "", true)?,
     };
-    crate::model::from_value(&v).map_err(|e| to_pyerr(py, &e))
+    crate::description::from_value(&v).map_err(|e| to_pyerr(py, &e))
 }
 
 /// Python plain data as a JSON value. A number that is not finite (JSON has no NaN) is an
@@ -129,7 +130,7 @@ fn plain_value(obj: &Bound<'_, PyAny>, field: &str, top: bool) -> PyResult<serde
         let mut map = serde_json::Map::with_capacity(d.len());
         for (k, v) in d.iter() {
             let k: String = k.extract().map_err(|_| input_error(py, field, &k, "keys must be strings"))?;
-            let list_of = if top { crate::model::ELEMENTS.iter().find(|(l, _)| *l == k).map(|(_, what)| *what) } else { None };
+            let list_of = if top { ELEMENTS.iter().find(|(l, _)| *l == k).map(|(_, what)| *what) } else { None };
             let value = match list_of {
                 Some(what) => {
                     let mut items = Vec::new();
