@@ -9,6 +9,7 @@
 pub mod assembly;
 pub mod batch;
 pub mod clearance;
+pub mod compile;
 pub mod constraints;
 pub mod description;
 pub mod energy;

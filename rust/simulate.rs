@@ -21,15 +21,6 @@ use crate::system::Workspace;
 /// progress bars.
 pub type StopCheck<'a> = &'a (dyn Fn(f64) -> bool + Sync);
 
-/// The deepest penetration δ = e − c \[m\] a clearance joint may reach before the run stops:
-/// the larger of the clearance and 5 % of the journal radius. Hertzian contact laws assume a
-/// contact patch small against the radii; a journal driven deeper than this has left the
-/// model (a locked-up mechanism, a pose it cannot pass, a far too soft law) and would otherwise
-/// run on with meaningless forces (docs: "Failures").
-pub fn max_penetration(clearance: f64, journal_radius: f64) -> f64 {
-    clearance.max(0.05 * journal_radius)
-}
-
 
 /// What to run.
 #[derive(Debug, Clone, PartialEq)]

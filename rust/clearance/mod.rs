@@ -52,6 +52,15 @@ pub fn grazing(a: &JointKinematics, b: &JointKinematics, gap_resolution: f64, sp
     a.delta.abs() <= gap_resolution && b.delta.abs() <= gap_resolution && a.delta_dot.abs() <= speed_floor && b.delta_dot.abs() <= speed_floor
 }
 
+/// The deepest penetration δ = e − c \[m\] a clearance joint may reach before the run stops:
+/// the larger of the clearance and 5 % of the journal radius. Hertzian contact laws assume a
+/// contact patch small against the radii; a journal driven deeper than this has left the
+/// model (a locked-up mechanism, a pose it cannot pass, a far too soft law) and would otherwise
+/// run on with meaningless forces (docs: "Failures").
+pub fn max_penetration(clearance: f64, journal_radius: f64) -> f64 {
+    clearance.max(0.05 * journal_radius)
+}
+
 /// Parameters of the film part of a lubricated joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Film {

@@ -168,10 +168,10 @@ fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, P
     Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
 }
 
-fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
+fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let rec = &out.recording;
-    let n = 3 * model.n_bodies();
+    let n = rec.coordinates;
     let ch = rec.channels.unwrap_or_default();
     d.set_item("t", PyArray1::from_slice(py, &rec.t))?;
     if ch.states {
@@ -182,10 +182,10 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
         d.set_item("qdd", array2(py, &rec.qdd, n)?)?;
     }
     if ch.reactions {
-        d.set_item("lambda", array2(py, &rec.lambda, model.rows)?)?;
+        d.set_item("lambda", array2(py, &rec.lambda, rec.constraint_rows)?)?;
     }
     if ch.joints {
-        let nj = model.clearance.len();
+        let nj = rec.clearance_joints;
         let w = JOINT_COLUMNS.len();
         let rows = rec.t.len();
         d.set_item("joints", PyArray1::from_slice(py, &rec.joints).reshape([rows, nj, w])?)?;
@@ -406,7 +406,7 @@ impl CompiledModel {
         let model = &self.model;
         let stop = make_stop(py, progress);
         let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
-        output_to_dict(py, model, &out)
+        output_to_dict(py, &out)
     }
 
     /// The ideal counterpart: every clearance joint made a revolute joint.
@@ -465,12 +465,9 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, sett
     let stop = make_stop(py, None);
     let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
-    for (d, o) in descs.iter().zip(outs) {
+    for o in outs {
         match o {
-            Ok(out) => {
-                let model = Model::compile(d).map_err(|e| to_pyerr(py, &e))?;
-                res.push(output_to_dict(py, &model, &out)?.into_any());
-            }
+            Ok(out) => res.push(output_to_dict(py, &out)?.into_any()),
             Err(e) => res.push(to_pyerr(py, &e).value(py).clone().into_any()),
         }
     }
@@ -503,7 +500,7 @@ fn film_force(py: Python<'_>, film: &str, viscosity: f64, journal_radius: f64, c
         }
     }
     if model == FilmModel::Finite {
-        crate::model::check_finite_bearing_ratio("film", length / (2.0 * journal_radius)).map_err(|e| to_pyerr(py, &e))?;
+        crate::compile::check_finite_bearing_ratio("film", length / (2.0 * journal_radius)).map_err(|e| to_pyerr(py, &e))?;
     }
     let g = BearingGeometry { viscosity, journal_radius, clearance, length };
     Ok(py.detach(|| crate::laws::film_force(model, &g, FilmState { eps, eps_dot, wedge }, None)))
