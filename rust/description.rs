@@ -107,7 +107,7 @@ pub struct WearDesc {
     #[cfg_attr(feature = "serde", serde(default))]
     pub feedback: bool,
     /// Depth \[m\] already worn at the start of the run, in the 1° bins of
-    /// [`crate::wear::WEAR_BINS`] around the bearing and around the journal (each body's frame);
+    /// [`crate::clearance::wear::WEAR_BINS`] around the bearing and around the journal (each body's frame);
     /// empty: unworn. Lets a run start from the worn state of an earlier one (reliability over life).
     #[cfg_attr(feature = "serde", serde(default))]
     pub initial_bearing: Vec<f64>,

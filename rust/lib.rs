@@ -26,7 +26,6 @@ pub mod record;
 pub mod settings;
 pub mod simulate;
 pub mod system;
-pub mod wear;
 
 #[cfg(feature = "python")]
 mod python;

@@ -8,7 +8,7 @@ use crate::clearance::{grazing, ClearanceJoint, ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::error::{Error, Result};
 use crate::energy::{EnergyBook, Powers};
-use crate::wear::{WearBook, WearRate};
+use crate::clearance::wear::{WearBook, WearRate};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Settings, Stats};
 use crate::model::Model;
 use crate::monitor::{golden_section, Monitor, MonitorResult, MonitorSpec, Quantity};
@@ -38,7 +38,7 @@ pub struct RunSettings {
     /// Outputs tracked between the output samples ([`crate::monitor`]).
     pub monitors: Vec<MonitorSpec>,
     /// A time \[s\] in [t0, t_end] at which the wear books are also read
-    /// ([`crate::wear::WearBook::at_mark`]): what wears after it is the difference.
+    /// ([`crate::clearance::wear::WearBook::at_mark`]): what wears after it is the difference.
     pub wear_mark: Option<f64>,
 }
 

@@ -1,9 +1,12 @@
-//! Revolute clearance joints (docs/physics.md §2–§4): the journal's kinematics inside the bearing, the
-//! force law (dry, or lubricated with the transition to dry), and its generalised forces.
-//! The joint's two constraint equations are removed; the journal gains 2 DOF (docs/physics.md §2).
+//! Clearance joints (docs/physics.md §2–§4, §11): a journal in its bearing, or a slider end in
+//! its guide. This file: the compiled joint, its force law (dry, or lubricated with the
+//! transition to dry), its generalised forces and how deep it may penetrate; `kinematics.rs`
+//! the journal's motion inside the bearing, `memory.rs` the impact memory, `wear.rs` the wear
+//! books. The joint's two constraint equations are removed; the journal gains 2 DOF.
 
 pub mod kinematics;
 pub mod memory;
+pub mod wear;
 
 pub use kinematics::JointKinematics;
 pub use memory::ImpactMemory;
@@ -97,7 +100,7 @@ pub struct ClearanceJoint {
     /// Penetration \[m\] beyond which the run stops ([`crate::error::Error::PenetrationTooDeep`]).
     pub penetration_limit: f64,
     /// Archard wear, when asked for (docs/physics.md §12).
-    pub wear: Option<crate::wear::Archard>,
+    pub wear: Option<crate::laws::wear::Archard>,
 }
 
 /// What the joint's law produced at one instant.

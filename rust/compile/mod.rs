@@ -174,7 +174,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
         film,
         guide_normal: None,
         penetration_limit: max_penetration(c.clearance, c.journal_radius),
-        wear: dry.wear.as_ref().map(|w| crate::wear::Archard { k_over_h: w.coefficient / w.hardness, length: w.length, feedback: w.feedback }),
+        wear: dry.wear.as_ref().map(|w| crate::laws::wear::Archard { k_over_h: w.coefficient / w.hardness, length: w.length, feedback: w.feedback }),
     })
 }
 

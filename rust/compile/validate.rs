@@ -104,7 +104,7 @@ pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
         positive(&format!("{f}.wear.hardness"), w.hardness)?;
         positive(&format!("{f}.wear.length"), w.length)?;
         for (name, depths) in [("initial_bearing", &w.initial_bearing), ("initial_journal", &w.initial_journal)] {
-            let n = crate::wear::WEAR_BINS;
+            let n = crate::clearance::wear::WEAR_BINS;
             if !depths.is_empty() && depths.len() != n {
                 return Err(Error::invalid(format!("{f}.wear.{name}"), format!("{} depths", depths.len()), format!("must hold {n} depths (1° bins) or none")));
             }

@@ -1,4 +1,4 @@
-//! Force laws of clearance joints (docs/physics.md §3–§4): pure functions of kinematic inputs and parameters.
+//! The laws of clearance joints (docs/physics.md §3–§4, §12): pure functions of kinematic inputs and parameters.
 //!
 //! - [`contact`]: normal impact force (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores) and
 //!   contact stiffness (docs/physics.md §3, P3–P4).
@@ -8,6 +8,7 @@
 //! - [`bearing_short`]: short (Ocvirk) bearing, Gümbel condition (docs/physics.md §4).
 //! - [`transition`]: small-eccentricity scaling (P15–P16) and film-to-contact blend (P18).
 //! - [`quadrature`]: Gauss–Legendre rules.
+//! - [`wear`]: Archard's wear law (docs/physics.md §12).
 //!
 //! Film-force convention everywhere: `(F_ξ, F_η)` is the force ON THE JOURNAL along `n`
 //! (bearing centre → journal centre) and along `t` = `n` turned +90°.
@@ -20,6 +21,7 @@ pub mod film;
 pub mod friction;
 pub mod quadrature;
 pub mod transition;
+pub mod wear;
 
 pub use bearing_long::{long_bearing_centre_limit, long_bearing_force, long_bearing_force_quadrature, long_bearing_paper_closed_form, long_bearing_pressure};
 pub use bearing_short::{short_bearing_force, short_bearing_pressure, short_bearing_pressure_integrated};
