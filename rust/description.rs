@@ -4,6 +4,7 @@
 
 use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
+use crate::laws::geometry::FilmSupply;
 
 /// A rigid body: reference point at the centroid (docs/physics.md §1, P19).
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
@@ -82,6 +83,9 @@ pub struct DryDesc {
     pub stiffness: Option<f64>,
     /// Use the paper's printed stiffness (R_b + R_j in the denominator of P4) instead.
     pub stiffness_paper_printed: bool,
+    /// Pin length L \[m\] of a line contact (`Dry(stiffness_form="cylindrical")`, Johnson's
+    /// cylinders, docs/physics.md §3) instead of the point-contact stiffness; `None`: point contact.
+    pub cylinder_length: Option<f64>,
     /// Sliding friction coefficient c_f (≥ 0).
     pub friction: f64,
     /// Modified-Coulomb speed limits v0 < v1 [m/s].
@@ -121,6 +125,10 @@ pub struct WearDesc {
 pub struct LubricatedDesc {
     #[cfg_attr(feature = "serde", serde(default))]
     pub film: FilmModel,
+    /// Where the finite film's pressure is ambient (`film = "finite"` only; docs/physics.md §4):
+    /// on the line of the widest gap (default) or nowhere (a periodic film).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub supply: FilmSupply,
     /// Dynamic viscosity μ [Pa s].
     pub viscosity: f64,
     /// Bearing length L \[m\].
@@ -425,6 +433,7 @@ impl DryDesc {
             exponent: 1.5,
             stiffness: None,
             stiffness_paper_printed: false,
+            cylinder_length: None,
             friction: 0.1,
             v0: 1e-4,
             v1: 1e-2,

@@ -68,7 +68,7 @@ fn film_model() -> impl Strategy<Value = FilmModel> {
 /// The finite bearing's table for every random geometry (one table: building one per random L/D
 /// would take seconds each; the table's evaluation is what is fuzzed).
 fn table() -> Option<&'static clearsim::laws::bearing_finite::FiniteBearingTable> {
-    Some(clearsim::laws::bearing_finite::table_for(0.4))
+    Some(clearsim::laws::bearing_finite_cache::table_for(0.4, clearsim::laws::FilmSupply::WidestGap))
 }
 
 fn geometry() -> impl Strategy<Value = BearingGeometry> {
@@ -88,7 +88,7 @@ proptest! {
         law in normal_law(), k in pos(3, 12), n in 1.0f64..3.0, ce in 0.01f64..=1.0, floor in pos(-9, 0),
         delta in rate(), delta_dot in rate(), impact in wide(),
     ) {
-        let c = ContactLaw { law, stiffness: k, exponent: n, restitution: ce, impact_speed_floor: floor };
+        let c = ContactLaw { line: None, law, stiffness: k, exponent: n, restitution: ce, impact_speed_floor: floor };
         let f = c.normal_force(delta, delta_dot, impact);
         prop_assert!(f.is_finite(), "F_N = {f}");
         prop_assert!(f >= 0.0, "contact pulls: {f}");
@@ -164,7 +164,7 @@ fn joint(lubricated: bool, law: NormalLaw, film: FilmModel, c: f64, r_j: f64, ce
         journal_radius: r_j,
         bearing_radius: r_j + c,
         clearance: c,
-        contact: ContactLaw { law, stiffness: k, exponent: 1.5, restitution: ce, impact_speed_floor: 1e-3 },
+        contact: ContactLaw { line: None, law, stiffness: k, exponent: 1.5, restitution: ce, impact_speed_floor: 1e-3 },
         friction: ModifiedCoulomb { friction_coefficient: cf, v0: 1e-4, v1: 1e-2 },
         film: lubricated.then_some(Film {
             model: film,
@@ -273,6 +273,7 @@ fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> M
     let model = if lubricated {
         ClearanceModelDesc::Lubricated(LubricatedDesc {
             film: FilmModel::LongBearing,
+            supply: clearsim::laws::FilmSupply::WidestGap,
             viscosity: 0.04,
             length: 0.04,
             eps0: 2e-6,

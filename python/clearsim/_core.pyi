@@ -78,7 +78,9 @@ class CompiledModel:
     @property
     def dof(self) -> int: ...
     @property
-    def contact_stiffness(self) -> List[float]: ...
+    def contact_stiffness(self) -> List[float]:
+        """K [N/m^n] of each revolute clearance joint's K δⁿ; for Dry(stiffness_form="cylindrical")
+        the scale π E* L [N/m] of its line-contact law (docs/physics.md §3)."""
     def initial_state(self, t0: float) -> npt.NDArray[np.float64]: ...
     def rhs(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def jacobian(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
@@ -97,7 +99,19 @@ def run_batch(
 run_batch_py = run_batch
 
 def film_force(
-    film: str, viscosity: float, journal_radius: float, clearance: float, length: float, eps: float, eps_dot: float, wedge: float
+    film: str,
+    viscosity: float,
+    journal_radius: float,
+    clearance: float,
+    length: float,
+    eps: float,
+    eps_dot: float,
+    wedge: float,
+    supply: str = "widest_gap",
 ) -> Tuple[float, float]:
     """Film force (F_ξ, F_η) [N] on the journal (docs/physics.md §4); film one of long, short,
-    long_paper, finite; SI units, ε̇ [1/s], wedge speed [rad/s]."""
+    long_paper, finite; SI units, ε̇ [1/s], wedge speed [rad/s]; supply (finite film) widest_gap
+    or none."""
+
+def finite_table_counts() -> Tuple[int, int]:
+    """Finite-bearing tables (solved, loaded from the disk cache) by this process so far."""

@@ -196,7 +196,7 @@ def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
                 ax.set_ylabel(f"{quantity.capitalize()} {component} [{_unit(quantity, component).replace('^2', '²')}]")
             axes[-1].set_xlabel("Time [s]")
             axes[0].legend(loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=len(series))
-            fig.suptitle(f"{title}: {body}")
+            plots.suptitle(fig, f"{title}: {body}")
         return plots.save(fig, out_dir / f"{body}_{component}.png")
 
     def error(body: str, component: str, errors: Dict[str, np.ndarray]) -> Path:

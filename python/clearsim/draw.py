@@ -295,7 +295,7 @@ class Drawing:
                 return _point(q, c["bearing_body"], c["bearing_point"])
 
             def magnified(q: np.ndarray, c: Dict[str, Any] = c, bearing: Any = bearing, journal: Any = journal, label: Any = label) -> None:
-                b = centre(q)
+                b = _point(q, c["bearing_body"], c["bearing_point"])  # this joint's (not the loop's last ``centre``)
                 e = _point(q, c["journal_body"], c["journal_point"]) - b
                 bearing.set_center(tuple(b))
                 journal.set_center(tuple(b + mag * e))

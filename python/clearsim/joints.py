@@ -12,6 +12,8 @@ from typing import Any, Dict, Optional, Tuple
 from .errors import InputError, check_choice, check_finite, check_positive
 
 NORMAL_LAWS = ("lankarani_nikravesh", "hertz", "hunt_crossley", "flores")
+#: Dry contact stiffness forms (docs/physics.md §3): point contacts, or a pin as a line contact.
+STIFFNESS_FORMS = ("internal", "paper_printed", "cylindrical")
 
 
 def _check_range(field: str, value: Any, lo: float, hi: float, lo_open: bool, hi_open: bool) -> float:
@@ -29,6 +31,8 @@ def _check_non_negative(field: str, value: Any) -> float:
         raise InputError(f"invalid {field} = {value!r}: must not be negative", field=field, value=value)
     return v
 FILM_MODELS = ("long", "short", "long_paper", "finite")
+#: Where the finite film's pressure is ambient (docs/physics.md §4, finite bearing).
+FILM_SUPPLIES = ("widest_gap", "none")
 #: R_j/c from which a lubricated joint counts as a µm film: a long-bearing film there can crawl in
 #: a whirl near the centre, and a journal released at rest against the wall can stall at once
 #: (measured at R_j = 9.5 mm: docs/hard_cases.md, *µm films*).
@@ -126,8 +130,14 @@ class Dry:
     stiffness:
         Contact stiffness K [N/m^n]; ``None`` computes it from the materials (P4).
     stiffness_form:
-        ``"internal"`` (default: R_b R_j / (R_b − R_j), journal inside bearing, docs/physics.md erratum)
-        or ``"paper_printed"`` (R_b R_j / (R_b + R_j), as printed in the paper's Eq. 4).
+        ``"internal"`` (default: a point contact of effective radius R_b R_j / (R_b − R_j), journal
+        inside bearing, docs/physics.md erratum), ``"paper_printed"`` (R_b R_j / (R_b + R_j), as
+        printed in the paper's Eq. 4) or ``"cylindrical"`` (a pin of ``length`` L in its bore as a
+        line contact, Johnson's law for cylinders, docs/physics.md §3: the penetration falls
+        nearly as 1/L; revolute clearance joints only, with ``stiffness=None`` and
+        ``exponent=1.5``).
+    length:
+        Pin (contact) length L [m] of ``stiffness_form="cylindrical"``; ``None`` otherwise.
     friction:
         Sliding friction coefficient c_f [-].
     v0, v1:
@@ -152,16 +162,22 @@ class Dry:
     v1: float = 1e-2
     impact_speed_floor: float = 1e-3
     wear: Optional[Archard] = None
+    length: Optional[float] = None
 
     def __post_init__(self) -> None:
         if self.wear is not None and not isinstance(self.wear, Archard):
             raise InputError(f"invalid wear = {self.wear!r}: must be clearsim.Archard(...) or None", field="wear", value=self.wear)
         check_choice("normal_law", self.normal_law, NORMAL_LAWS)
-        if self.stiffness_form not in ("internal", "paper_printed"):
+        check_choice("stiffness_form", self.stiffness_form, STIFFNESS_FORMS)
+        if self.stiffness_form == "cylindrical":
+            if self.length is None:
+                raise InputError("stiffness_form = 'cylindrical' needs the pin length: Dry(..., length=L) [m]", field="length", value=None)
+            check_positive("length", self.length)
+        elif self.length is not None:
             raise InputError(
-                f"invalid stiffness_form = {self.stiffness_form!r}: must be 'internal' or 'paper_printed'",
-                field="stiffness_form",
-                value=self.stiffness_form,
+                f"invalid length = {self.length!r}: a pin length is used only with stiffness_form = 'cylindrical'",
+                field="length",
+                value=self.length,
             )
         check_positive("youngs_modulus", self.youngs_modulus)
         _check_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, True, True)
@@ -194,6 +210,7 @@ class Dry:
             "exponent": self.exponent,
             "stiffness": self.stiffness,
             "stiffness_paper_printed": self.stiffness_form == "paper_printed",
+            "cylinder_length": None if self.length is None else float(self.length),
             "friction": self.friction,
             "v0": self.v0,
             "v1": self.v1,
@@ -216,16 +233,18 @@ class Lubricated:
         ``"long"`` (default: Pinkus–Sternlicht long bearing, Gümbel condition, quadrature of the
         positive pressure; the paper's model), ``"short"`` (Ocvirk short bearing), ``"finite"``
         (any 1/16 ≤ L/D ≤ 16: the Reynolds equation with the Reynolds cavitation condition, solved
-        once per L/D into a table; checked against Butenschön's tables) or ``"long_paper"`` (the
-        paper's printed closed forms P13–P14, wrong for a receding journal; for comparison only,
-        and they can stall the integrator). Neither closed form is accurate between L/D ≈ 1/2
-        and 8: use ``"finite"`` there (how far each is off, measured against the finite bearing
-        across L/D and ε: docs/physics.md §4, *Validity of the closed forms*). Also for
-        clearances of a few µm: a journal whirling at half the shaft speed sees a negative
-        squeeze damping in the long bearing's half-Sommerfeld film and the run can crawl, where
-        the finite film damps; and a journal released at rest against the wall with the drive at
+        once per L/D into a table, a few seconds the first time on a machine, then read from the
+        user cache directory; within 1 % of Butenschön's tables, see ``supply``) or
+        ``"long_paper"`` (the paper's printed closed forms P13–P14, wrong for a receding journal;
+        for comparison only, and they can stall the integrator). Neither closed form is accurate
+        between L/D ≈ 1/2 and 8: use ``"finite"`` there (how far each is off, measured against the
+        finite bearing across L/D and ε: docs/physics.md §4, *Validity of the closed forms*).
+        Also for clearances of a few µm: a journal whirling at half the shaft speed meets a
+        negative squeeze damping in the long bearing's half-Sommerfeld film, and in the finite film
+        with its supply line, and the run can crawl, where the periodic finite film
+        (``supply="none"``) damps; a journal released at rest against the wall with the drive at
         speed leaves it at default settings only above a clearance that depends on the film
-        (docs/hard_cases.md, *µm films*): start µm films centred.
+        (measured: docs/hard_cases.md, *µm films*): start µm films centred.
     eps0, m:
         Below ε0 both film components are scaled by (ε/ε0)^m (P15–P16, made continuous at
         ε0: docs/physics.md §4).
@@ -235,6 +254,12 @@ class Lubricated:
         The film is evaluated at min(ε, ε_max) inside the band (it is singular at ε = 1).
     dry:
         The dry law that takes over beyond e = c.
+    supply:
+        Where the finite film's pressure is ambient (``film="finite"`` only):
+        ``"widest_gap"`` (default: on the axial line of the widest gap, where a bearing is fed, as
+        Butenschön's rotation table, the Raimondi–Boyd charts, DIN 31652 and the paper's
+        long-bearing pressure P12 take it) or ``"none"`` (a film periodic around the bearing,
+        ambient only at its ends, as Butenschön's squeeze table). docs/physics.md §4 compares both.
     """
 
     viscosity: float = 0.4
@@ -245,9 +270,11 @@ class Lubricated:
     e0: Optional[float] = None
     eps_max: float = 0.99
     dry: Dry = field(default_factory=Dry)
+    supply: str = "widest_gap"
 
     def __post_init__(self) -> None:
         check_choice("film", self.film, FILM_MODELS)
+        check_choice("supply", self.supply, FILM_SUPPLIES)
         check_positive("viscosity", self.viscosity)
         check_positive("length", self.length)
         _check_range("eps0", self.eps0, 0.0, 1.0, False, True)
@@ -262,6 +289,7 @@ class Lubricated:
         d = {
             "kind": "lubricated",
             "film": self.film,
+            "supply": self.supply,
             "viscosity": self.viscosity,
             "length": self.length,
             "eps0": self.eps0,

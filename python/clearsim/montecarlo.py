@@ -345,12 +345,19 @@ def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, A
     left = np.zeros((n_s, n_bins), dtype=bool)
     for k in range(n_time_bins):
         left[:, fold[k]] |= exceed_bins[:, k]
-    n_in = np.full(n_bins, n_s + failed)
+    # Bins the analysed window never reaches (cycles < 1) hold no sample: NaN, not R = 1.
+    seen = np.zeros(n_bins, dtype=bool)
+    for mon in monitored:
+        seen[fold[np.asarray(mon["bin_time"], dtype=float)[:n_time_bins] > 0.0]] = True
+    n_in = np.where(seen, n_s + failed, 0)
     k_ok = (~left).sum(axis=0)
     b.n_samples = n_in
-    b.reliability = k_ok / n_in
-    lo, hi = wilson_interval(k_ok, n_in, confidence)
-    b.lo, b.hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    b.reliability = np.full(n_bins, np.nan)
+    b.lo, b.hi = np.full(n_bins, np.nan), np.full(n_bins, np.nan)
+    if np.any(seen):
+        b.reliability[seen] = k_ok[seen] / n_in[seen]
+        lo, hi = wilson_interval(k_ok[seen], n_in[seen], confidence)
+        b.lo[seen], b.hi[seen] = lo, hi
     old = b.fosm
     b.fosm = fosm_from_monitors(monitored, fold, old.bin_starts, old.bin_centres, old.cycle, old.mu_S, old.sigma_S, old.bin_width)
 

@@ -30,6 +30,9 @@ DRY_CLEARANCE_RATIO = 0.25
 #: multiple of it, is more likely millimetres than metres.
 JOURNAL_SPAN_RATIO = 0.5
 LENGTH_SPAN_RATIO = 2.0
+#: A body's inertia below this fraction of a uniform bar's, m d²/12 over its joint points d apart,
+#: is more likely coordinates in mm with the inertia in kg m² (a ratio of about 1e-6).
+BAR_INERTIA_RATIO = 1e-3
 #: A finding: the field (``clearance joint 'pin'.viscosity``) and the message.
 Finding = Tuple[str, str]
 
@@ -99,13 +102,42 @@ def span(desc: Dict[str, Any]) -> float:
     return math.hypot(max(xs) - min(xs), max(ys) - min(ys)) if pts else 0.0
 
 
+def _point_spread(desc: Dict[str, Any]) -> List[float]:
+    """Per body, the largest distance between two of its points that joints, clearance joints
+    and springs attach to [m] (body frame)."""
+    points: List[List[Tuple[float, float]]] = [[] for _ in desc["bodies"]]
+    pairs = [("body_a", "point_a"), ("body_b", "point_b")]
+    for j in desc["joints"]:
+        for body, point in pairs:
+            if j[body] is not None:
+                points[j[body]].append(tuple(j[point]))
+    for j in desc["clearance_joints"]:
+        for body, point in (("bearing_body", "bearing_point"), ("journal_body", "journal_point")):
+            if j[body] is not None:
+                points[j[body]].append(tuple(j[point]))
+    for f in desc.get("forces", []):
+        if f["kind"] == "spring_damper":
+            for body, point in pairs:
+                if f[body] is not None:
+                    points[f[body]].append(tuple(f[point]))
+    return [max((math.dist(a, b) for a in ps for b in ps), default=0.0) for ps in points]
+
+
 def mechanism_findings(desc: Dict[str, Any]) -> List[Finding]:
     """What looks wrong against the mechanism's size: a journal radius or a bearing length of
-    the order of the whole mechanism (a resolved description)."""
+    the order of the whole mechanism, a body far lighter in inertia than a bar between its joint
+    points (lengths in mm, inertia in kg m²) (a resolved description)."""
+    out: List[Finding] = []
+    for b, d in zip(desc["bodies"], _point_spread(desc)):
+        bar = float(b["mass"]) * d * d / 12.0
+        if bar > 0.0 and float(b["inertia"]) < BAR_INERTIA_RATIO * bar:
+            i_b = f"body '{b['name']}'.inertia"
+            out.append((i_b, f"{i_b} = {float(b['inertia']):g} kg m² is {float(b['inertia']) / bar:.1g} × a uniform bar's of its mass "
+                        f"{float(b['mass']):g} kg between its joint points {d:.3g} m apart (m d²/12 = {bar:.3g} kg m²): are the points "
+                        "and positions in mm? clearsim takes metres (and kg m²)"))  # fmt: skip
     size = span(desc)
     if not size > 0.0:
-        return []
-    out: List[Finding] = []
+        return out
     for cj in desc["clearance_joints"]:
         j = f"clearance joint '{cj['name']}'"
         r_j = float(cj["journal_radius"])

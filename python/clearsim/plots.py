@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import textwrap
 from pathlib import Path
 from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Sequence, Tuple, Union, cast
 
@@ -43,6 +44,7 @@ __all__ = [
     "save",
     "series_style",
     "style",
+    "suptitle",
 ]
 
 #: Okabe & Ito (2008) colour-blind-safe palette.
@@ -133,6 +135,16 @@ def series_style(labels: Iterable[str]) -> Dict[str, Dict[str, Any]]:
 
 def _new_figure(width: float, height: float) -> Figure:
     return Figure(figsize=(width, height), layout="constrained")
+
+
+def suptitle(fig: Figure, title: str) -> None:
+    """``fig.suptitle(title)`` on as many lines as it takes to fit the figure's width (a scene's
+    long name would otherwise be cut off at both edges). Call inside :func:`style`."""
+    from matplotlib.font_manager import FontProperties
+
+    points = FontProperties(size=mpl.rcParams["figure.titlesize"]).get_size_in_points()
+    chars = max(16, int(fig.get_figwidth() * 72.0 / (0.6 * points)))  # ~0.6 em a character
+    fig.suptitle(textwrap.fill(title, chars))
 
 
 def _legend_above(ax: Axes, handles: Optional[Sequence[Any]] = None, labels: Optional[Sequence[str]] = None, ncol: Optional[int] = None) -> None:
@@ -249,7 +261,7 @@ def plot_error_histories(
         hmap = dict(zip(labels, handles))
         _legend_above(axes[0], [hmap[lab] for lab in order_labels], order_labels, ncol=2 if len(order_labels) > 3 else len(order_labels))
         if title:
-            fig.suptitle(title)
+            suptitle(fig, title)
     return fig
 
 
@@ -333,9 +345,10 @@ def plot_journal_orbits(
         if transition_band is not None:
             handles.insert(1, Line2D([], [], color="0.45", linewidth=0.9, linestyle="--"))
             names.insert(1, "transition band e = c + e0")
-        fig.legend(handles, names, loc="outside lower center" if _outside_ok() else "lower center", ncol=len(names))
+        # One panel is narrow: the legend in two columns there.
+        fig.legend(handles, names, loc="outside lower center" if _outside_ok() else "lower center", ncol=len(names) if ncols > 1 else 2)
         if title:
-            fig.suptitle(title)
+            suptitle(fig, title)
     return fig
 
 
@@ -464,7 +477,7 @@ def plot_reliability(curves: Mapping[str, Any], quantity: str = "displacement", 
         items = _reliability_axes(ax, curves, quantity, annotate)
         ax.legend([h for h, _ in items], [t for _, t in items], loc="lower center", bbox_to_anchor=(0.5, 1.01), ncol=1 if len(items) > 2 else len(items))
         if title:
-            fig.suptitle(title)
+            suptitle(fig, title)
     return fig
 
 
@@ -489,7 +502,7 @@ def plot_reliability_panels(
         loc: Any = f"outside {where} center" if _outside_ok() else f"{where} center"  # a literal of the stubs
         fig.legend(handles, list(styles), loc=loc, ncol=min(len(handles), 4))
         if title:
-            fig.suptitle(title)
+            suptitle(fig, title)
     return fig
 
 
@@ -587,7 +600,7 @@ def plot_fosm_vs_mc(
         if np.any(~seen):
             axf.legend(loc="best")
         if title:
-            fig.suptitle(title)
+            suptitle(fig, title)
     return fig
 
 
@@ -656,7 +669,7 @@ def plot_work_precision(
         ax.set_ylabel(f"{y_label} [{y_unit}]")
         _legend_above(ax, ncol=min(len(groups), 4))
         if title:
-            fig.suptitle(title)
+            suptitle(fig, title)
     return fig
 
 

@@ -365,10 +365,12 @@ class Running:
         key = json.dumps(desc, sort_keys=True, default=_plain) + f"|{grid[0]!r}|{grid[-1]!r}|{len(grid)}"
         return key, desc, ideal.run_settings(float(grid[-1]), **options)
 
-    def simulate_with_ideal(self, t_end: float, **kwargs: Unpack[RunOptions]) -> Tuple[Result, Result]:
+    def simulate_with_ideal(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Tuple[Result, Result]:
         """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
         settings on the same output grid, in parallel in the Rust core. Returns
-        ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (docs/physics.md §5)."""
+        ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (docs/physics.md §5).
+        The options are :meth:`simulate`'s; ``progress`` is accepted as there, but the pair runs
+        as one batch in the core, which shows no bar."""
         settings = self.run_settings(t_end, **kwargs)
         self._checked_assembly(settings["t0"])
         ideal = self.idealized()

@@ -526,6 +526,16 @@ def load_scene_file(path: PathLike) -> Scene:
     src, data = read_toml(path)
     top = Table(src, (), data, _TOP_KEYS)
     builder = _Builder(src, top)
+
+    def emit(caught: List[warnings.WarningMessage]) -> None:
+        for w in caught:  # a plausibility warning located in the file, like an error
+            if isinstance(w.message, PlausibilityWarning):
+                where = builder.relocate(InputError(str(w.message), field=getattr(w.message, "field", "")), None)
+                warnings.warn(PlausibilityWarning(str(where)), stacklevel=3)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+
+    failed: Optional[InputError] = None
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         mech = builder.build()
@@ -534,13 +544,12 @@ def load_scene_file(path: PathLike) -> Scene:
             # model would make Mechanism.idealized() (a deepcopy) fail.
             _core.compile(mech.description())
         except InputError as err:
-            raise builder.relocate(err, None) from None
-    for w in caught:  # a plausibility warning located in the file, like an error
-        if isinstance(w.message, PlausibilityWarning):
-            where = builder.relocate(InputError(str(w.message), field=getattr(w.message, "field", "")), None)
-            warnings.warn(PlausibilityWarning(str(where)), stacklevel=2)
-        else:
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+            failed = err
+    # The warnings first: a unit slip they name (a journal radius in mm) is often the cause
+    # of the error that follows (an L/D outside the finite film's table).
+    emit(caught)
+    if failed is not None:
+        raise builder.relocate(failed, None) from None
     name = builder.mechanism_table.string("name", path.stem)
     description = builder.mechanism_table.string("description", "")
     outputs = _outputs(builder, mech)

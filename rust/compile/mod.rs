@@ -113,11 +113,16 @@ impl Model {
 
 fn contact_law(c: &ClearanceJointDesc, dry: &DryDesc) -> ContactLaw {
     let r_b = c.journal_radius + c.clearance;
-    let k = dry.stiffness.unwrap_or_else(|| {
-        let f = if dry.stiffness_paper_printed { stiffness_paper_printed } else { stiffness_internal };
-        f(r_b, c.journal_radius, dry.youngs_bearing, dry.poisson_bearing, dry.youngs_journal, dry.poisson_journal)
-    });
+    let line = dry.cylinder_length.map(|l| crate::laws::contact_line::LineContact::pin_in_bore(r_b, c.journal_radius, l, dry.youngs_bearing, dry.poisson_bearing, dry.youngs_journal, dry.poisson_journal));
+    let k = match &line {
+        Some(l) => l.force_scale(),
+        None => dry.stiffness.unwrap_or_else(|| {
+            let f = if dry.stiffness_paper_printed { stiffness_paper_printed } else { stiffness_internal };
+            f(r_b, c.journal_radius, dry.youngs_bearing, dry.poisson_bearing, dry.youngs_journal, dry.poisson_journal)
+        }),
+    };
     ContactLaw {
+        line,
         law: dry.normal_law,
         stiffness: k,
         exponent: dry.exponent,
@@ -142,7 +147,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
             &l.dry,
             Some(Film {
                 model: l.film,
-                table: (l.film == crate::laws::FilmModel::Finite).then(|| crate::laws::bearing_finite::table_for(2.0 * c.journal_radius / l.length)),
+                table: (l.film == crate::laws::FilmModel::Finite).then(|| crate::laws::bearing_finite_cache::table_for(2.0 * c.journal_radius / l.length, l.supply)),
                 geometry: BearingGeometry {
                     viscosity: l.viscosity,
                     journal_radius: c.journal_radius,
@@ -243,7 +248,7 @@ fn compile_prismatic_clearance(p: &PrismaticClearanceDesc, desc: &MechanismDesc)
     let u_s = V2::new(c * u.x - s * u.y, s * u.x + c * u.y);
     let d = &p.model;
     let k = d.stiffness.unwrap_or_else(|| crate::laws::contact::stiffness_sphere_plane(p.corner_radius, d.youngs_bearing, d.poisson_bearing, d.youngs_journal, d.poisson_journal));
-    let contact = ContactLaw { law: d.normal_law, stiffness: k, exponent: d.exponent, restitution: d.restitution, impact_speed_floor: d.impact_speed_floor };
+    let contact = ContactLaw { line: None, law: d.normal_law, stiffness: k, exponent: d.exponent, restitution: d.restitution, impact_speed_floor: d.impact_speed_floor };
     let half = 0.5 * p.clearance;
     let end = |sign: f64, label: &str| ClearanceJoint {
         name: format!("{} {label}", p.name),

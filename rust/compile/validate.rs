@@ -92,6 +92,19 @@ pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
     if let Some(k) = d.stiffness {
         positive(&format!("{f}.stiffness"), k)?;
     }
+    if let Some(l) = d.cylinder_length {
+        positive(&format!("{f}.length"), l)?;
+        // The line law is a whole force–penetration relation: a K or an n would be ignored.
+        if let Some(k) = d.stiffness {
+            return Err(Error::invalid(format!("{f}.stiffness"), num(k), "give either a stiffness or stiffness_form = \"cylindrical\", not both (the line contact computes its own force)"));
+        }
+        if d.stiffness_paper_printed {
+            return Err(Error::invalid(format!("{f}.stiffness_form"), "paper_printed", "cannot be combined with a cylinder length"));
+        }
+        if d.exponent != 1.5 {
+            return Err(Error::invalid(format!("{f}.exponent"), num(d.exponent), "is not used by stiffness_form = \"cylindrical\" (Johnson's line contact has its own force–penetration law): leave it at 1.5"));
+        }
+    }
     non_negative(&format!("{f}.friction"), d.friction)?;
     non_negative(&format!("{f}.v0"), d.v0)?;
     positive(&format!("{f}.v1"), d.v1)?;
@@ -246,6 +259,12 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 positive(&format!("{f}.length"), l.length)?;
                 if l.film == crate::laws::FilmModel::Finite {
                     check_finite_bearing_ratio(&format!("{f}.film"), l.length / (2.0 * c.journal_radius))?;
+                } else if l.supply != crate::laws::FilmSupply::WidestGap {
+                    return Err(Error::invalid(
+                        format!("{f}.supply"),
+                        "none",
+                        "applies to film = \"finite\" only: the long films' pressure is referred to the widest gap (P12) and the short film has no flow around the bearing",
+                    ));
                 }
                 within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;
                 within(&format!("{f}.m"), l.m, 0.0, 1.0, true, true)?;
@@ -273,6 +292,9 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
         positive(&format!("{f}.slider_length"), p.slider_length)?;
         positive(&format!("{f}.corner_radius"), p.corner_radius)?;
         validate_dry(&f, &p.model)?;
+        if p.model.cylinder_length.is_some() {
+            return Err(Error::invalid(format!("{f}.stiffness_form"), "cylindrical", "is for revolute clearance joints (a pin in a bore); a slider's ends use the rounded-corner contact"));
+        }
         if p.model.wear.is_some() {
             return Err(Error::invalid(format!("{f}.wear"), "Archard(...)", "wear is modelled for revolute clearance joints only"));
         }

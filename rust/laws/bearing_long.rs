@@ -36,7 +36,7 @@
 //! GL, since a single Gauss–Legendre rule would need ~60+ nodes at ε = 0.99 for 1e-6 (p has
 //! poles at θ = π ± i·acosh(1/ε)).
 
-use super::film::{BearingGeometry, FilmState};
+use super::geometry::{BearingGeometry, FilmState};
 use super::quadrature::{GL16, GL8};
 use std::f64::consts::{PI, TAU};
 

@@ -19,7 +19,7 @@
 //! - `∫ cos²θ/v³ dθ = (ψ(1/2 + ε²) + sinψ cosψ/2 − 2ε sinψ)/β⁵`,
 //! - `∫ sinθ cosθ/v³ dθ = (sin²ψ/2 + ε cosψ)/β⁴`.
 
-use super::film::{BearingGeometry, FilmState};
+use super::geometry::{BearingGeometry, FilmState};
 use std::f64::consts::TAU;
 
 /// Axially integrated short-bearing pressure P(θ) = ∫ p dz [Pa·m] before the Gümbel cut,
@@ -83,7 +83,7 @@ pub fn short_bearing_force(g: &BearingGeometry, s: FilmState) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::laws::film::attitude_angle;
+    use crate::laws::geometry::attitude_angle;
     use crate::laws::quadrature::GL16;
     use std::f64::consts::PI;
 

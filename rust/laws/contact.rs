@@ -65,6 +65,9 @@ pub fn stiffness_paper_printed(r_bearing: f64, r_journal: f64, e_bearing: f64, n
 /// Parameters of the normal contact force of one clearance joint.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactLaw {
+    /// A line contact (a pin of given length, [`super::contact_line`]) instead of `K δⁿ`; its
+    /// elastic force takes the place of `K δⁿ` in Eq. (3), `stiffness` and `exponent` are unused.
+    pub line: Option<super::contact_line::LineContact>,
     /// Which hysteresis factor.
     pub law: NormalLaw,
     /// Generalized stiffness `K` [N/m^n].
@@ -84,7 +87,8 @@ impl ContactLaw {
     }
 
     /// Normal contact force `F_N` \[N\] (magnitude, pushing the bodies apart), paper Eq. (3):
-    /// `F_N = K δⁿ (1 + D δ̇ / δ̇⁽⁻⁾)` for `δ > 0`, else 0.
+    /// `F_N = K δⁿ (1 + D δ̇ / δ̇⁽⁻⁾)` for `δ > 0`, else 0 (with a line contact its elastic force
+    /// in place of `K δⁿ`).
     ///
     /// - `delta` \[m\]: penetration `e − c`; `delta_dot` [m/s]: its rate (positive approaching).
     /// - `impact_speed` [m/s]: `δ̇⁽⁻⁾` recorded at the onset of this impact; its magnitude is
@@ -96,9 +100,11 @@ impl ContactLaw {
         if delta.is_nan() || delta <= 0.0 {
             return 0.0;
         }
-        // Hertz's n = 1.5 (the default) as δ·√δ: a square root instead of a `powf`.
-        let power = if self.exponent == 1.5 { delta * delta.sqrt() } else { delta.powf(self.exponent) };
-        let elastic = self.stiffness * power;
+        let elastic = match &self.line {
+            Some(line) => line.force(delta),
+            // Hertz's n = 1.5 (the default) as δ·√δ: a square root instead of a `powf`.
+            None => self.stiffness * if self.exponent == 1.5 { delta * delta.sqrt() } else { delta.powf(self.exponent) },
+        };
         let v_ref = impact_speed.abs().max(self.impact_speed_floor);
         let damping = if v_ref > 0.0 { self.hysteresis_factor() * delta_dot / v_ref } else { 0.0 };
         (elastic * (1.0 + damping)).max(0.0)
@@ -120,7 +126,7 @@ mod tests {
     const K_INTERNAL: f64 = 6.949401e10;
 
     fn law(l: NormalLaw) -> ContactLaw {
-        ContactLaw { law: l, stiffness: K_INTERNAL, exponent: 1.5, restitution: 0.9, impact_speed_floor: 1e-4 }
+        ContactLaw { line: None, law: l, stiffness: K_INTERNAL, exponent: 1.5, restitution: 0.9, impact_speed_floor: 1e-4 }
     }
 
     #[test]

@@ -1,4 +1,5 @@
-//! Shared oil-film types and the film-model dispatch (docs/physics.md §4).
+//! The film-model dispatch (docs/physics.md §4): which film law a lubricated joint uses and its
+//! force. The types the film laws share live in [`super::geometry`] (re-exported here).
 //!
 //! Convention (all film models): the returned pair `(F_ξ, F_η)` \[N\] is the force of the film ON
 //! THE JOURNAL along `n` (unit eccentricity vector, bearing centre → journal centre) and along
@@ -10,46 +11,7 @@
 
 use super::bearing_finite::{finite_bearing_force, FiniteBearingTable};
 use super::{bearing_long, bearing_short};
-
-/// Largest eccentricity ratio at which the film formulas are evaluated (they are singular at
-/// ε = 1). Inputs above it are clamped so that every film function stays finite; the simulator
-/// itself evaluates the film at `min(ε, ε_max)` (see [`super::transition::film_eps`]).
-pub const FILM_EPS_CEILING: f64 = 1.0 - 1e-9;
-
-/// Geometry and lubricant of a journal bearing.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BearingGeometry {
-    /// Dynamic viscosity μ [Pa·s].
-    pub viscosity: f64,
-    /// Journal radius R \[m\].
-    pub journal_radius: f64,
-    /// Radial clearance c = R_b − R_j \[m\].
-    pub clearance: f64,
-    /// Bearing length L \[m\].
-    pub length: f64,
-}
-
-/// Kinematic state of the film.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FilmState {
-    /// Eccentricity ratio ε = e/c (clamped to [0, [`FILM_EPS_CEILING`]] by the film functions).
-    pub eps: f64,
-    /// ε̇ [1/s]; > 0 approaching the bearing wall (squeeze), < 0 receding.
-    pub eps_dot: f64,
-    /// Wedge speed θ̇_j + θ̇_i − 2γ̇ [rad/s] (docs/physics.md §4): sum of both surfaces' angular speeds
-    /// minus twice the whirl rate of the line of centres.
-    pub wedge: f64,
-}
-
-impl FilmState {
-    /// ε clamped to the range where the film formulas are finite.
-    pub fn clamped_eps(&self) -> f64 {
-        if self.eps.is_nan() {
-            return self.eps;
-        }
-        self.eps.clamp(0.0, FILM_EPS_CEILING)
-    }
-}
+pub use super::geometry::{attitude_angle, BearingGeometry, FilmState, FilmSupply, FILM_EPS_CEILING};
 
 /// Which hydrodynamic film model a lubricated joint uses.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -67,14 +29,16 @@ pub enum FilmModel {
     #[cfg_attr(feature = "serde", serde(rename = "long_paper"))]
     LongBearingPaperClosedForm,
     /// Finite length: the Reynolds equation with the Reynolds (Swift–Stieber) cavitation
-    /// condition solved once per L/D into a table ([`super::bearing_finite`]); any L/D.
+    /// condition solved once per L/D and supply convention ([`FilmSupply`]) into a table
+    /// ([`super::bearing_finite`]); 1/16 ≤ L/D ≤ 16.
     #[cfg_attr(feature = "serde", serde(rename = "finite"))]
     Finite,
 }
 
 /// Film force `(F_ξ, F_η)` \[N\] on the journal for `model` (see the module doc for the frame).
 /// `table` is the bearing's finite-length table (`FilmModel::Finite` only; without it the
-/// finite model falls back to building or fetching it from the process cache).
+/// finite model takes the default supply convention's table from the cache,
+/// [`super::bearing_finite_cache::table_for`]).
 pub fn film_force(model: FilmModel, g: &BearingGeometry, s: FilmState, table: Option<&FiniteBearingTable>) -> (f64, f64) {
     match model {
         FilmModel::LongBearing => bearing_long::long_bearing_force(g, s),
@@ -82,17 +46,9 @@ pub fn film_force(model: FilmModel, g: &BearingGeometry, s: FilmState, table: Op
         FilmModel::LongBearingPaperClosedForm => bearing_long::long_bearing_paper_closed_form(g, s),
         FilmModel::Finite => match table {
             Some(t) => finite_bearing_force(g, s, t),
-            None => finite_bearing_force(g, s, super::bearing_finite::table_for(2.0 * g.journal_radius / g.length)),
+            None => finite_bearing_force(g, s, super::bearing_finite_cache::table_for(2.0 * g.journal_radius / g.length, FilmSupply::default())),
         },
     }
-}
-
-/// Attitude angle \[rad\] in [0, π]: the angle between the external load carried by the film
-/// (`−F`) and the eccentricity direction `n`, `atan2(|F_η|, −F_ξ)`. Under a steady load a journal
-/// turning counter-clockwise sits with `n` turned from the load line by this angle in the
-/// direction of rotation (this is the β of Butenschön's tables).
-pub fn attitude_angle(force: (f64, f64)) -> f64 {
-    force.1.abs().atan2(-force.0)
 }
 
 #[cfg(test)]

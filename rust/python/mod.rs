@@ -476,18 +476,24 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, sett
 
 /// Film force `(F_ξ, F_η)` [N] on the journal of a lubricated joint (docs/physics.md §4): `film`
 /// one of long, short, long_paper, finite; the geometry in SI; ε, ε̇ [1/s], wedge speed [rad/s].
-/// For studying the film laws; a finite bearing builds its table on first use.
+/// For studying the film laws; a finite bearing takes its table from the cache (or builds it),
+/// with `supply` "widest_gap" (default) or "none" (docs/physics.md §4).
 #[pyfunction]
-#[pyo3(signature = (film, viscosity, journal_radius, clearance, length, eps, eps_dot, wedge))]
+#[pyo3(signature = (film, viscosity, journal_radius, clearance, length, eps, eps_dot, wedge, supply = "widest_gap"))]
 #[allow(clippy::too_many_arguments)]
-fn film_force(py: Python<'_>, film: &str, viscosity: f64, journal_radius: f64, clearance: f64, length: f64, eps: f64, eps_dot: f64, wedge: f64) -> PyResult<(f64, f64)> {
-    use crate::laws::{BearingGeometry, FilmModel, FilmState};
+fn film_force(py: Python<'_>, film: &str, viscosity: f64, journal_radius: f64, clearance: f64, length: f64, eps: f64, eps_dot: f64, wedge: f64, supply: &str) -> PyResult<(f64, f64)> {
+    use crate::laws::{BearingGeometry, FilmModel, FilmState, FilmSupply};
     let model = match film {
         "long" => FilmModel::LongBearing,
         "short" => FilmModel::ShortBearing,
         "long_paper" => FilmModel::LongBearingPaperClosedForm,
         "finite" => FilmModel::Finite,
         other => return Err(input_error(py, "film", other, "must be one of long, short, long_paper, finite")),
+    };
+    let supply = match supply {
+        "widest_gap" => FilmSupply::WidestGap,
+        "none" => FilmSupply::None,
+        other => return Err(input_error(py, "supply", other, "must be one of widest_gap, none")),
     };
     for (name, v) in [("viscosity", viscosity), ("journal_radius", journal_radius), ("clearance", clearance), ("length", length)] {
         if !(v.is_finite() && v > 0.0) {
@@ -503,7 +509,16 @@ fn film_force(py: Python<'_>, film: &str, viscosity: f64, journal_radius: f64, c
         crate::compile::check_finite_bearing_ratio("film", length / (2.0 * journal_radius)).map_err(|e| to_pyerr(py, &e))?;
     }
     let g = BearingGeometry { viscosity, journal_radius, clearance, length };
-    Ok(py.detach(|| crate::laws::film_force(model, &g, FilmState { eps, eps_dot, wedge }, None)))
+    Ok(py.detach(|| {
+        let table = (model == FilmModel::Finite).then(|| crate::laws::bearing_finite_cache::table_for(2.0 * journal_radius / length, supply));
+        crate::laws::film_force(model, &g, FilmState { eps, eps_dot, wedge }, table)
+    }))
+}
+
+/// Finite-bearing tables solved and loaded from the disk cache by this process (for tests).
+#[pyfunction]
+fn finite_table_counts() -> (usize, usize) {
+    crate::laws::bearing_finite_cache::table_counts()
 }
 
 #[pymodule]
@@ -515,6 +530,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(compile, m)?)?;
     m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;
     m.add_function(wrap_pyfunction!(film_force, m)?)?;
+    m.add_function(wrap_pyfunction!(finite_table_counts, m)?)?;
     m.add("run_batch", m.getattr("run_batch_py")?)?;
     Ok(())
 }

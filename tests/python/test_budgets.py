@@ -32,13 +32,22 @@ def _stalling() -> clearsim.Mechanism:
     return nine_bar("lubricated", clearance=0.6e-3, omega=-5 * math.pi, lubricated=film)
 
 
-def _hold_gil_for(seconds: float) -> float:
-    """Hold the GIL for about ``seconds`` in one C call (a backtracking regular expression never
-    releases it); returns how long it held."""
-    t = time.perf_counter()
-    re.match(r"(a+)+$", "a" * 18 + "b")  # each a more doubles the time
-    t18 = max(time.perf_counter() - t, 1e-4)
-    n = 18 + max(0, round(math.log2(seconds / t18)))
+def _gil_holding_length(seconds: float) -> int:
+    """The length n of a backtracking regular expression match (one C call that never releases
+    the GIL) that takes at least ``seconds``: grown until one call takes that long, then one more
+    (each a more doubles the time), so a machine that was busy while measuring still holds long
+    enough (a single short calibration under load once gave 0.37 s for 0.8 s asked)."""
+    n = 16
+    while True:
+        t = time.perf_counter()
+        re.match(r"(a+)+$", "a" * n + "b")
+        if time.perf_counter() - t >= seconds:
+            return n + 1
+        n += 1
+
+
+def _hold_gil(n: int) -> float:
+    """Hold the GIL for one match of length ``n``; returns how long it held [s]."""
     t = time.perf_counter()
     re.match(r"(a+)+$", "a" * n + "b")
     return time.perf_counter() - t
@@ -46,10 +55,11 @@ def _hold_gil_for(seconds: float) -> float:
 
 def _while_gil_held(work: Callable[[], Any]) -> Any:
     """Run ``work`` in a worker thread while this thread holds the GIL for about 4 budgets."""
+    n = _gil_holding_length(2 * BUDGET)  # measured before the run starts: the run's budget is short
     with ThreadPoolExecutor(1) as pool:
         fut = pool.submit(work)
         time.sleep(0.05)  # let the run start
-        held = _hold_gil_for(4 * BUDGET)
+        held = _hold_gil(n)
         out = fut.result()
     assert held > LIMIT + 0.1, f"the GIL was held for {held:.3f} s only: the test proves nothing"
     return out

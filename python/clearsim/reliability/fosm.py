@@ -405,5 +405,11 @@ def fosm_from_monitors(
     with np.errstate(invalid="ignore", divide="ignore"):
         mu_s = integral[0] / integral[2]
         sigma_s = np.sqrt(np.maximum(integral[1] / integral[2] - mu_s**2, 0.0))
-    beta = np.asarray(reliability_index(mu_S, sigma_S, mu_s, sigma_s), dtype=float)
-    return FosmResult(np.asarray(bin_starts, dtype=float), np.asarray(bin_centres, dtype=float), np.asarray(cycle), count, mu_s, sigma_s, beta, np.asarray(normal_cdf(beta), dtype=float), mu_S, sigma_S, width)
+    # A window shorter than a turn leaves bins no run saw: NaN there, as fosm() leaves empty bins.
+    seen = integral[2] > 0.0
+    beta = np.full(n_bins, np.nan)
+    rel = np.full(n_bins, np.nan)
+    if np.any(seen):
+        beta[seen] = np.asarray(reliability_index(mu_S, sigma_S, mu_s[seen], sigma_s[seen]), dtype=float)
+        rel[seen] = normal_cdf(beta[seen])
+    return FosmResult(np.asarray(bin_starts, dtype=float), np.asarray(bin_centres, dtype=float), np.asarray(cycle), count, mu_s, sigma_s, beta, rel, mu_S, sigma_S, width)

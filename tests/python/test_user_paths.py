@@ -1,0 +1,380 @@
+"""The user-path matrix (issue 28 item 2): every shipped model and example scene, started at
+t0 ∈ {0, T/4, 2.5 T}, through every public path — ``simulate``, ``simulate_with_ideal``,
+``Study.monte_carlo`` (and ``clearsim.monte_carlo``) skipping the same start-up, ``clearsim run``
+and ``clearsim reliability`` on its scene — with every joint kind (ideal, dry, lubricated, and dry
++ lubricated in one mechanism). Each cell runs, or fails with the clearsim error and the reason
+written in :data:`EXPECTED_FAILURES`. A failure names its cell in the test id, e.g.
+``test_scene_path[compressor-mixed-T/4-clearsim run]``.
+
+The defects of issue 28 this class of test catches: a start after t = 0 failing the assembly
+(every path at T/4 and 2.5 T), ``clearsim run`` dying in a figure with a dry and a lubricated
+joint (the mixed cells, figures drawn at T/4), a ``[study] skip_cycles`` scene failing in
+``clearsim reliability``, and a Monte Carlo or FOSM window shorter than a turn failing on its
+empty crank-angle bins (``cycles`` = 0.05 here).
+
+Kept fast: each run covers 5 % of a turn at loose tolerances, the studies run 2 samples, figures
+are drawn only at t0 = T/4 for each scene as shipped and each mixed variant (:func:`drawn`; the
+t0 = 0 figures of every scene are drawn by test_examples.py).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import re
+import sys
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+import pytest
+
+import clearsim
+from clearsim import models
+from clearsim.cli import main
+from clearsim.reliability import Normal, Output, Study
+from clearsim.reliability.scene import scene_study
+from clearsim.scene import load_scene_file
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
+T0_TURNS = {"0": 0.0, "T/4": 0.25, "2.5T": 2.5}
+SPAN = 0.05  # turns simulated (and analysed by the studies) after t0
+LOOSE = dict(rtol=1e-5, atol=1e-8)
+PYTHON_PATHS = ("simulate", "simulate_with_ideal", "Study.monte_carlo", "clearsim.monte_carlo")
+SCENE_PATHS = ("simulate", "simulate_with_ideal", "Study.monte_carlo", "clearsim run", "clearsim reliability")
+KINDS = ("ideal", "dry", "lubricated", "mixed")
+
+#: model → (turn T [s], drive speed ω [rad/s], analysed body, component)
+MODELS: Dict[str, Tuple[float, float, str, str]] = {
+    "slider_crank": (60.0 / 5000.0, 5000.0 * 2 * math.pi / 60.0, "slider", "x"),
+    "nine_bar": (0.4, -5.0 * math.pi, "slider9", "y"),
+}
+#: scene → (turn T [s], driver whose angle at t0 is checked or None, analysed body, component)
+#: for scenes without a [study] of their own, the study this test adds. The engine has no
+#: driver: its motor's no-load speed 314.16 rad/s sets its nominal turn.
+SCENE_TABLE: Dict[str, Tuple[float, Optional[str], str, str]] = {
+    "compressor": (0.04, "motor", "piston", "x"),
+    "engine": (2 * math.pi / 314.16, None, "slider", "x"),
+    "four_bar_spring": (0.5, "drive", "rocker", "theta"),
+    "nine_bar": (0.4, "drive1", "slider9", "y"),
+    "nine_bar_lubricated": (0.4, "drive1", "slider9", "y"),
+    "nine_bar_reliability": (0.4, "drive1", "slider9", "y"),
+    "press_workpiece": (0.4, "drive1", "slider9", "y"),
+    "slider_crank": (60.0 / 5000.0, "crank-drive", "slider", "x"),
+    "slider_crank_guide_clearance": (0.03, "crank-drive", "slider", "y"),
+}
+#: The nine-bar scenes with a [study] or a film of their own are the nine-bar with other joint
+#: kinds, which scenes/nine_bar.toml's variants cover: they run as shipped only.
+SHIPPED_ONLY = {"nine_bar_lubricated", "nine_bar_reliability"}
+
+#: Cells that must fail, with the named error, words of its message and the documented reason.
+#: (subject, kind, path) with "*" for any path. On the command line the error is one line on
+#: stderr, ``clearsim: error: ...``, and exit code 2 (a clearsim error, no traceback).
+EXPECTED_FAILURES: Dict[Tuple[str, str, str], Tuple[type, str, str]] = {
+    ("slider_crank_guide_clearance", "lubricated", "*"): (
+        clearsim.InputError,
+        r"clearance_joint\[0\]\.model = 'lubricated': must be one of dry",
+        "a prismatic clearance joint is dry only (docs/physics.md §11; pydoc clearsim.scene: [clearance_joint.dry])",
+    ),
+}
+EXIT_ERROR = 2  # clearsim.cli.EXIT_ERROR: a clearsim error, one line on stderr
+
+
+class CommandFailed(Exception):
+    """A ``clearsim`` command that exited non-zero: its exit code and stderr."""
+
+    def __init__(self, code: int, err: str) -> None:
+        super().__init__(f"exit {code}: {err}")
+        self.code, self.err = code, err
+
+
+# ---------------------------------------------------------------------- scene variants
+def _toml_value(v: Any) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    raise TypeError(f"no TOML for {v!r}")
+
+
+def _toml_table(path: List[str], table: Dict[str, Any], lines: List[str], array: bool = False) -> None:
+    def is_tables(v: Any) -> bool:
+        return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)
+
+    if path:
+        lines.append(f"[[{'.'.join(path)}]]" if array else f"[{'.'.join(path)}]")
+    nested = {k: v for k, v in table.items() if isinstance(v, dict) or is_tables(v)}
+    lines += [f"{json.dumps(k)} = {_toml_value(v)}" for k, v in table.items() if k not in nested]
+    for k, v in nested.items():
+        for item in [v] if isinstance(v, dict) else v:
+            _toml_table(path + [k], item, lines, array=not isinstance(v, dict))
+
+
+def to_toml(data: Dict[str, Any]) -> str:
+    """TOML text of a scene's tables (inline tables written as sub-tables: the same data)."""
+    lines: List[str] = []
+    _toml_table([], data, lines)
+    return "\n".join(lines) + "\n"
+
+
+def test_the_toml_writer_gives_back_every_scene():
+    for path in sorted(SCENES.glob("*.toml")):
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        assert tomllib.loads(to_toml(data)) == data, path.name
+
+
+def _lubricated_table(cj: Dict[str, Any]) -> Dict[str, Any]:
+    # Ocvirk's short bearing at L/D = 0.6: no finite-film table to build on a first run.
+    table = dict(cj.get("lubricated") or {"viscosity": 0.05, "length": 1.2 * cj["journal_radius"], "film": "short"})
+    if "dry" in cj:
+        table["dry"] = cj["dry"]
+    return table
+
+
+def _dry_table(cj: Dict[str, Any]) -> Optional[Dict[str, Any]]:
+    return cj.get("dry") or (cj.get("lubricated") or {}).get("dry")
+
+
+def scene_kind(data: Dict[str, Any]) -> str:
+    """ideal, dry, lubricated or mixed: the models of a scene's clearance joints."""
+    kinds = {cj.get("model", "dry") for cj in data.get("clearance_joint", [])}
+    return "ideal" if not kinds else "mixed" if len(kinds) > 1 else kinds.pop()
+
+
+def variant(data: Dict[str, Any], kind: str) -> Optional[Dict[str, Any]]:
+    """The scene with its clearance joints made ``kind`` (None if the scene cannot have it: a
+    mixed one needs two revolute clearance joints). ``ideal`` turns them into ideal joints, as
+    Mechanism.idealized() does, and drops what needs a clearance ([reliability], joint outputs)."""
+    d = copy.deepcopy(data)
+    joints = d.get("clearance_joint", [])
+    revolute = [cj for cj in joints if cj.get("type", "revolute") == "revolute"]
+    if kind == scene_kind(data):
+        return d
+    if kind == "ideal":
+        for cj in joints:
+            if cj.get("type", "revolute") == "revolute":
+                ideal = {"type": "revolute", "name": cj["name"], "bodies": [cj["bearing_body"], cj["journal_body"]],
+                         "points": [cj["bearing_point"], cj["journal_point"]]}  # fmt: skip
+            else:
+                ideal = {"type": "prismatic", "name": cj["name"], "bodies": [cj["guide_body"], cj["slider_body"]],
+                         "points": [cj["guide_point"], [0.0, 0.0]], "axis": cj["axis"]}  # fmt: skip
+            d.setdefault("joint", []).append(ideal)
+        d.pop("clearance_joint", None)
+        d.pop("reliability", None)
+        for key in ("joints", "joint_quantities", "ideal"):
+            d.get("outputs", {}).pop(key, None)
+        return d
+    if kind == "mixed" and len(revolute) < 2:
+        return None
+    # A film is stiff: RK45 crawls through it (100× the steps of RADAU5 on the short film here).
+    d["simulation"]["integrator"] = "auto"
+    for k, cj in enumerate(joints):
+        model = kind if kind != "mixed" else ("dry" if k == 0 else "lubricated")
+        if cj.get("type", "revolute") == "prismatic":
+            cj["model"] = model  # a prismatic clearance is dry only: lubricated is the documented error
+            continue
+        dry, lub = _dry_table(cj), _lubricated_table(cj)
+        cj.pop("dry", None)
+        cj.pop("lubricated", None)
+        cj["model"] = model
+        if model == "dry" and dry is not None:
+            cj["dry"] = dry
+        elif model == "lubricated":
+            cj["lubricated"] = lub
+    return d
+
+
+def short_scene(name: str, kind: str, t0_turns: float) -> Optional[Dict[str, Any]]:
+    """Scene ``name`` with joints of ``kind``, run from t0 = t0_turns · T for SPAN turns at loose
+    tolerances, with a two-sample Monte Carlo [study] (and FOSM) skipping t0_turns turns."""
+    turn, _, body, component = SCENE_TABLE[name]
+    data = variant(tomllib.loads((SCENES / f"{name}.toml").read_text(encoding="utf-8")), kind)
+    if data is None:
+        return None
+    sim = data["simulation"]
+    for key in ("cycles", "period", "t_end"):
+        sim.pop(key, None)
+    sim.update(t0=t0_turns * turn, t_end=(t0_turns + SPAN) * turn, outputs=["states"], **LOOSE)
+    study = data.get("study")
+    if study is None or kind == "ideal":
+        # An ideal mechanism has no clearance to vary: a mass in its place (the error against
+        # the ideal counterpart, itself, is then zero).
+        first = (data.get("clearance_joint") or [None])[0]
+        random = (
+            {"path": f"{first['name']}.clearance", "mean": first["clearance"], "std": 0.05 * first["clearance"]}
+            if first is not None
+            else {"path": f"{body}.mass", "mean": 0.5, "std": 0.01}
+        )
+        study = data["study"] = {"body": body, "component": component, "quantity": "displacement", "limit": 1.0,
+                                 "input": [dict(random, distribution="normal")]}  # fmt: skip
+        if name == "engine":
+            study["omega"] = 314.16
+    study.pop("tolerance", None)
+    study.update(skip_cycles=t0_turns, cycles=SPAN, methods=["monte_carlo", "fosm"], samples=2)
+    return data
+
+
+# ---------------------------------------------------------------------- the cells
+def drawn(name: str, kind: str) -> bool:
+    """Whether the cell's ``clearsim run`` / ``clearsim reliability`` at T/4 draws its figures
+    (about 2 s each): each scene as shipped and every mixed variant, where a figure met a dry
+    and a lubricated joint together (issue 28: KeyError in plot_journal_orbits)."""
+    return kind == "mixed" or name in SHIPPED_ONLY or kind == scene_kind(tomllib.loads((SCENES / f"{name}.toml").read_text(encoding="utf-8")))
+
+
+def _expected(subject: str, kind: str, path: str) -> Optional[Tuple[type, str, str]]:
+    return EXPECTED_FAILURES.get((subject, kind, path)) or EXPECTED_FAILURES.get((subject, kind, "*"))
+
+
+def _scene_cells() -> List[Any]:
+    cells = []
+    for name in SCENE_TABLE:
+        data = tomllib.loads((SCENES / f"{name}.toml").read_text(encoding="utf-8"))
+        kinds = [scene_kind(data)] if name in SHIPPED_ONLY else [k for k in KINDS if variant(data, k) is not None]
+        for kind in kinds:
+            for t0 in T0_TURNS:
+                for path in SCENE_PATHS:
+                    cells.append(pytest.param(name, kind, t0, path, id=f"{name}-{kind}-{t0}-{path}"))
+    return cells
+
+
+def _check_result(res: Any, t0: float, t_end: float) -> None:
+    # The dt_out grid ends at its last point ≤ t_end (the run itself reaches t_end).
+    assert res.completed and res.t[0] == pytest.approx(t0, abs=1e-12) and res.stats["t_reached"] == pytest.approx(t_end)
+    assert t_end - res.t[-1] < max(np.diff(res.t), default=1.0) * (1 + 1e-9)
+    for body in res.body_names:
+        assert np.all(np.isfinite(res.position(body))), body
+
+
+def _driver_angle(scene: Any, driver: str, t: float) -> float:
+    """θ(t) = angle0 + ω t of a constant-speed driver [rad] (the closed form the pose at t0 must meet)."""
+    d = next(d for d in scene.mechanism.description()["drivers"] if d["name"] == driver)
+    law = d["law"]
+    return float(law["angle0"] + law["omega"] * t)
+
+
+def _run_scene_path(tmp_path: Path, capsys: Any, name: str, kind: str, t0: str, path: str) -> None:
+    data = short_scene(name, kind, T0_TURNS[t0])
+    assert data is not None
+    file = tmp_path / f"{name}-{kind}.toml"
+    file.write_text(to_toml(data), encoding="utf-8")
+    turn, driver, body, _ = SCENE_TABLE[name]
+    if path in ("clearsim run", "clearsim reliability"):
+        command = "run" if path == "clearsim run" else "reliability"
+        out = tmp_path / command
+        plots = [] if t0 == "T/4" and drawn(name, kind) else ["--no-plots"]
+        code = main([command, str(file), "-o", str(out), "-q", *plots])
+        err = capsys.readouterr().err
+        if code != 0:
+            raise CommandFailed(code, err.strip())
+        assert err == "", err
+        if command == "run":
+            summary = json.loads((out / "summary.json").read_text())
+            assert summary["run"]["failure"] is None and "not_written" not in summary
+            assert summary["run"]["t_reached"] == pytest.approx(data["simulation"]["t_end"])
+            if not plots and data.get("clearance_joint"):
+                assert (out / "orbits.png").stat().st_size > 10_000
+        else:
+            report = (out / "report.md").read_text(encoding="utf-8")
+            assert "monte_carlo" in report and (out / "samples.csv").is_file() and (out / "fosm.csv").is_file()
+        return
+    scene = load_scene_file(file)
+    sim = scene.simulation
+    if path == "simulate":
+        res = scene.simulate()
+        _check_result(res, sim.t0, sim.t_end)
+        if driver is not None:  # the pose at t0 follows the driver (closed form)
+            desc = scene.mechanism.description()
+            driven = desc["bodies"][next(d["body"] for d in desc["drivers"] if d["name"] == driver)]["name"]
+            theta = res.position(driven)[0, 2]
+            assert math.remainder(theta - _driver_angle(scene, driver, sim.t0), 2 * math.pi) == pytest.approx(0.0, abs=1e-6)
+    elif path == "simulate_with_ideal":
+        res, ideal = scene.mechanism.simulate_with_ideal(sim.t_end, progress=False, **sim.kwargs())
+        _check_result(res, sim.t0, sim.t_end)
+        _check_result(ideal, sim.t0, sim.t_end)
+        if not scene.mechanism.clearance_joint_names:
+            assert np.array_equal(res.position(body), ideal.position(body))  # the ideal counterpart of an ideal mechanism
+    else:  # Study.monte_carlo
+        est = scene_study(scene, progress=False).monte_carlo(2)
+        assert est.n_runs == 2 and not est.failures, est.failures
+        assert np.all(np.isfinite(est.peaks))
+        if not scene.mechanism.clearance_joint_names:  # against itself: zero to the reference's accuracy
+            assert np.all(est.peaks < 1e-4) and est.pf == 0.0  # rtol 1e-5 against a reference at 1e-6
+
+
+@pytest.mark.parametrize("name, kind, t0, path", _scene_cells())
+def test_scene_path(tmp_path, capsys, name, kind, t0, path):
+    expected = _expected(name, kind, path)
+    if expected is None:
+        _run_scene_path(tmp_path, capsys, name, kind, t0, path)
+        return
+    error, words, _reason = expected
+    if path.startswith("clearsim "):
+        with pytest.raises(CommandFailed) as info:
+            _run_scene_path(tmp_path, capsys, name, kind, t0, path)
+        assert info.value.code == EXIT_ERROR and len(info.value.err.splitlines()) == 1, info.value.err
+        assert re.search(words, info.value.err) and info.value.err.startswith("clearsim: error: "), info.value.err
+        return
+    with pytest.raises(error, match=words):
+        _run_scene_path(tmp_path, capsys, name, kind, t0, path)
+
+
+def _model(name: str, kind: str, **kw: Any) -> clearsim.Mechanism:
+    build = getattr(models, name)
+    return build(kind, **kw) if kind != "ideal" else build("ideal")
+
+
+def _model_cells() -> List[Any]:
+    return [
+        pytest.param(name, kind, t0, path, id=f"{name}-{kind}-{t0}-{path}")
+        for name in MODELS
+        for kind in ("ideal", "dry", "lubricated")
+        for t0 in T0_TURNS
+        for path in PYTHON_PATHS
+    ]
+
+
+@pytest.mark.parametrize("name, kind, t0, path", _model_cells())
+def test_model_path(name, kind, t0, path):
+    """The shipped models (no model mixes kinds: the mixed cells are the scenes' above)."""
+    turn, omega, body, component = MODELS[name]
+    start = T0_TURNS[t0] * turn
+    end = start + SPAN * turn
+    m = _model(name, kind)
+    if path == "simulate":
+        res = m.simulate(end, t0=start, progress=False, **LOOSE)
+        _check_result(res, start, end)
+        driven = "crank" if name == "slider_crank" else "crank1"
+        theta = res.position(driven)[0, 2]
+        assert math.remainder(theta - omega * start, 2 * math.pi) == pytest.approx(0.0, abs=1e-6)
+    elif path == "simulate_with_ideal":
+        res, ideal = m.simulate_with_ideal(end, t0=start, progress=False, **LOOSE)
+        _check_result(res, start, end)
+        _check_result(ideal, start, end)
+    elif path == "Study.monte_carlo":
+        inputs: Dict[str, Any] = {"c": Normal(0.5e-3, 0.02e-3)}
+        study = Study(lambda c: _model(name, kind, clearance=c), inputs, Output(body=body, component=component, quantity="displacement"),
+                      1.0, omega=omega, cycles=SPAN, skip_cycles=T0_TURNS[t0], progress=False, **LOOSE)  # fmt: skip
+        est = study.monte_carlo(2)
+        assert est.n_runs == 2 and not est.failures and np.all(np.isfinite(est.peaks))
+        assert (est.pf == 0.0) if kind == "ideal" else True
+    else:  # clearsim.monte_carlo: per-bin reliability and FOSM over a window shorter than a turn
+        mc = clearsim.monte_carlo(lambda c: _model(name, kind, clearance=c), {"c": Normal(0.5e-3, 0.02e-3)}, 2, omega=omega,
+                                  cycles=SPAN, skip_cycles=T0_TURNS[t0], body=body, component=component,
+                                  allowable={"displacement": (0.0, 1.0)}, progress=False, **LOOSE)  # fmt: skip
+        assert mc.completed == 2 if hasattr(mc, "completed") else not mc.failures
+        bins = mc.bins["displacement"]
+        seen = np.isfinite(bins.reliability)
+        # the window covers SPAN × 360° = 18°: one bin of 18° (two if it straddles an edge)
+        assert 1 <= seen.sum() <= 2 and np.all(bins.reliability[seen] == 1.0)
+        assert np.isfinite(bins.fosm.min_reliability)

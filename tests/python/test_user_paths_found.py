@@ -1,0 +1,154 @@
+"""Defects found by walking a user's paths (issue 28 item 2 and the walk of a mechanism of our
+own, docs/examples.md): each is a focused test here, and its cell in the user-path matrix
+(test_user_paths.py) covers its class."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+import clearsim
+from clearsim import models
+from clearsim.reliability import Normal, Output, Study
+
+OMEGA = 5000 * 2 * math.pi / 60  # [rad/s] the slider-crank model's crank
+
+
+def _dry(clearance: float) -> clearsim.Mechanism:
+    return models.slider_crank("dry", clearance=clearance)
+
+
+@pytest.mark.parametrize("cycles", [0.1, 0.5])
+def test_a_window_shorter_than_a_turn_leaves_its_unseen_bins_empty(cycles):
+    """clearsim.monte_carlo and Study.fosm over less than a turn: the crank-angle bins the window
+    never reaches hold no sample (NaN, as fosm() leaves empty bins), the others are analysed.
+    Before: ``InputError: invalid mu_s = nan: must be a number`` (the unseen bins' 0/0 mean
+    reached the reliability index), and the per-bin Monte Carlo reliability said R = 1 there."""
+    mc = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, omega=OMEGA, cycles=cycles, body="slider",
+                              component="x", allowable={"displacement": (0.0, 1e-3)}, progress=False)  # fmt: skip
+    bins = mc.bins["displacement"]
+    n_seen = int(round(cycles * 360 / 18))
+    assert np.all(np.isfinite(bins.reliability[:n_seen])) and np.all(np.isnan(bins.reliability[n_seen:]))
+    assert np.all(bins.n_samples[n_seen:] == 0) and np.all(bins.n_samples[:n_seen] == 2)
+    assert np.all(np.isfinite(bins.fosm.beta[:n_seen])) and np.all(np.isnan(bins.fosm.beta[n_seen:]))
+    assert bins.fosm.min_angle < cycles * 360
+    study = Study(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3,
+                  omega=OMEGA, cycles=cycles, progress=False)  # fmt: skip
+    fosm = study.fosm()
+    assert np.all(np.isfinite(fosm.reliability[:n_seen])) and np.all(np.isnan(fosm.reliability[n_seen:]))
+
+
+def test_simulate_with_ideal_takes_the_options_of_simulate():
+    """``progress=False``, which every ``simulate`` call in a script carries, is accepted by
+    ``simulate_with_ideal`` too. Before: ``TypeError: Running.run_settings() got an unexpected
+    keyword argument 'progress'``."""
+    m = _dry(0.5e-3)
+    res, ideal = m.simulate_with_ideal(0.002, progress=False, dt_out=1e-4)
+    assert res.completed and ideal.completed and len(res.t) == len(ideal.t) == 21
+
+
+def test_each_clearance_joint_is_drawn_at_its_own_bearing():
+    """A drawing of a mechanism with two revolute clearance joints (the nine-bar's A and B, at
+    t = 0 and mid-run) puts each joint's magnified bearing at its own bearing point and its
+    journal inside it. Before: every joint's bearing was drawn at the last joint's (the update
+    closure looked up the loop's last ``centre``), the others' journals metres away."""
+    from matplotlib.patches import Circle
+
+    m = models.nine_bar("dry", clearance=0.5e-3)
+    res = m.simulate(0.05, dt_out=0.01, progress=False)
+    desc = m.description()
+    names = [b["name"] for b in desc["bodies"]]
+    for t in (0.0, 0.05):
+        fig = res.plot_mechanism(t, magnify=10)
+        circles = [p for p in fig.axes[0].patches if isinstance(p, Circle)]
+        for c in desc["clearance_joints"]:
+            body = names[c["bearing_body"]]
+            q = res.position(body)[np.searchsorted(res.t, t)]
+            rot = np.array([[math.cos(q[2]), -math.sin(q[2])], [math.sin(q[2]), math.cos(q[2])]])
+            centre = q[:2] + rot @ np.asarray(c["bearing_point"])
+            label = next(x for x in fig.axes[0].texts if x.get_text().startswith(f"{c['name']} (c ="))
+            assert np.allclose(label.xy, centre, atol=1e-9), c["name"]
+            bearing = [p for p in circles if np.allclose(p.center, centre, atol=1e-9) and p.zorder == 4]
+            journal = [p for p in circles if p.zorder == 5 and np.hypot(*(np.asarray(p.center) - centre)) <= 10 * c["clearance"] * 1.01]
+            assert len(bearing) == 1 and len(journal) == 1, c["name"]
+
+
+def test_a_scene_name_as_title_fits_its_figure():
+    """``clearsim run`` titles its figures with the scene's name: the shipped slider-crank's
+    (56 characters) on its one-joint orbit figure, and a 90-character title on an error figure,
+    are wrapped inside the figure, and so is the orbit legend. Before: cut off at both edges."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from clearsim import plots
+
+    t = np.linspace(0.0, 1.0, 50)
+    figs = [
+        plots.plot_journal_orbits({"rod-slider (dry)": (1e-4 * np.cos(t), 1e-4 * np.sin(t))}, 5e-4,
+                                  title="slider-crank, dry clearance joint rod-slider, c = 0.5 mm"),  # fmt: skip
+        plots.plot_error_histories(t, {"dry": {"displacement": 1e-4 * t}}, quantities=["displacement"], title="x" * 45 + " " + "y" * 44),
+    ]
+    for fig in figs:
+        FigureCanvasAgg(fig).draw()
+        renderer = fig.canvas.get_renderer()
+        width = fig.bbox.width
+        boxes = [fig._suptitle.get_window_extent(renderer)] + [leg.get_window_extent(renderer) for leg in fig.legends]
+        for box in boxes:
+            assert box.x0 >= 0.0 and box.x1 <= width, (box, width)
+
+
+def test_a_scene_error_comes_after_the_unit_slip_that_caused_it(tmp_path, capsys):
+    """The compressor's crank pin given as ``journal_radius = 10`` (mm as m): the finite film's
+    L/D = 0.0006 stops the scene, and the warning that names the real cause (a journal radius of
+    the order of the mechanism: mm?) is printed before that error. Before: the warning, caught
+    while the file was read, was dropped with the error, which advises another film model."""
+    from pathlib import Path
+
+    from clearsim.cli import main
+
+    text = (Path(__file__).resolve().parents[2] / "scenes" / "compressor.toml").read_text(encoding="utf-8")
+    assert text.count("journal_radius = 10e-3 ") == 1
+    path = tmp_path / "mm.toml"
+    path.write_text(text.replace("journal_radius = 10e-3 ", "journal_radius = 10 "), encoding="utf-8")
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")  # conftest makes a PlausibilityWarning an error
+        assert main(["run", str(path), "-o", str(tmp_path / "out"), "-q", "--no-plots"]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    mm = next(k for k, line in enumerate(lines) if "journal_radius = 10 m" in line and "did you give mm?" in line)
+    assert lines[mm].startswith(f"clearsim: warning: {path}:") and lines[-1].startswith("clearsim: error: ") and mm < len(lines) - 1
+    assert "L/D" in lines[-1]
+
+
+def _crank_rod_slider(scale: float, inertia_scale: float = 1.0) -> clearsim.Mechanism:
+    """An offset slider-crank (crank 0.1 m, rod 0.3 m) with every coordinate × ``scale`` and the
+    inertias × ``inertia_scale``."""
+    s = scale
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("crank", mass=2.0, inertia=1.67e-3 * inertia_scale, ends=((0.0, 0.3 * s), (0.1 * s, 0.3 * s)))
+    m.add_body("rod", mass=1.0, inertia=7.5e-3 * inertia_scale, ends=((0.1 * s, 0.3 * s), (0.4 * s, 0.3 * s)))
+    m.add_body("slider", mass=1.0, inertia=1e-3 * inertia_scale, position=(0.4 * s, 0.3 * s))
+    m.revolute("ground", (0.0, 0.3 * s), "crank", (-0.05 * s, 0.0))
+    m.revolute("crank", (0.05 * s, 0.0), "rod", (-0.15 * s, 0.0))
+    m.revolute("rod", (0.15 * s, 0.0), "slider", (0.0, 0.0))
+    m.prismatic("ground", (0.0, 0.3 * s), "slider", (0.0, 0.0))
+    m.driver("crank", omega=9.42)
+    return m
+
+
+def test_coordinates_in_mm_with_inertias_in_kg_m2_are_named():
+    """A mechanism drawn in mm (crank 100, rod 300) with its inertias in kg m² ran without a word
+    as a 400 m machine. Now each link whose inertia is ~1e-6 of a bar's of its mass between its
+    joint points is a PlausibilityWarning naming the body, the inertia, the distance and the
+    unit; the same mechanism in metres (or with a flywheel's large inertia) is silent."""
+    with pytest.warns(clearsim.PlausibilityWarning) as caught:
+        _crank_rod_slider(1000.0).description()
+    text = [str(w.message) for w in caught]
+    assert any(t.startswith("body 'rod'.inertia = 0.0075 kg m² is 1e-06 × a uniform bar's") and "300 m apart" in t and "in mm?" in t for t in text)
+    assert any(t.startswith("body 'crank'.inertia") for t in text) and not any("'slider'" in t for t in text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", clearsim.PlausibilityWarning)
+        _crank_rod_slider(1.0).description()
+        _crank_rod_slider(1.0, inertia_scale=1e3).description()
+        _crank_rod_slider(1000.0, inertia_scale=1e6).description()  # all in mm and kg mm²: nothing tells
