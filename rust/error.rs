@@ -1,4 +1,4 @@
-//! The one error type of the crate. `rust/python.rs` maps each variant to a Python exception;
+//! The one error type of the crate. `rust/python/mod.rs` maps each variant to a Python exception;
 //! nothing else in the crate knows about Python.
 
 /// Everything that can go wrong while describing, assembling or simulating a mechanism.

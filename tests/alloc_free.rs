@@ -1,5 +1,5 @@
-//! The hot path allocates nothing per step (DESIGN.md: "the workspace is allocated once per run;
-//! a step allocates nothing"): a counting global allocator sees the same number of allocations
+//! The hot path allocates nothing per step (rust/system.rs: the workspace is allocated once per
+//! run; a step allocates nothing): a counting global allocator sees the same number of allocations
 //! for N and 2N right-hand sides / steps of the nine-bar with dry and lubricated joints.
 
 mod common;

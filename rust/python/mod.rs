@@ -459,9 +459,6 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, sett
         }
         list.iter().map(|d| read_settings(d.as_any())).collect::<PyResult<Vec<_>>>()?
     };
-    for rs in &settings {
-        rs.validate().map_err(|e| to_pyerr(py, &e))?;
-    }
     let stop = make_stop(py, None);
     let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
