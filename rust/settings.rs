@@ -129,7 +129,7 @@ pub enum IntegratorName {
 #[serde(deny_unknown_fields)]
 pub struct RunSettingsDesc {
     pub integrator: IntegratorName,
-    /// Fixed step of `rk4` [s].
+    /// Fixed step of `rk4` \[s\].
     #[serde(default)]
     pub step: Option<f64>,
     #[serde(default)]
@@ -153,7 +153,7 @@ pub struct RunSettingsDesc {
     /// Which outputs to store (`None`: [`Channels::default`]).
     #[serde(default)]
     pub outputs: Option<Channels>,
-    /// Wall-time budget of the run [s].
+    /// Wall-time budget of the run \[s\].
     #[serde(default)]
     pub max_seconds: Option<f64>,
     #[serde(default)]
@@ -168,10 +168,10 @@ impl RunSettingsDesc {
     /// The settings the core runs with, validated ([`RunSettings::validate`]).
     pub fn into_settings(self) -> Result<RunSettings> {
         let method = match self.integrator {
-            IntegratorName::Rk45 => Method::Dopri5,
+            IntegratorName::Rk45 => Method::Rk45,
             IntegratorName::Dop853 => Method::Dop853,
             IntegratorName::Rodas4 => Method::Rodas4,
-            IntegratorName::Radau => Method::Radau5,
+            IntegratorName::Radau => Method::Radau,
             IntegratorName::Rk4 => Method::Rk4 { step: self.step.ok_or_else(|| Error::invalid("step", "None", "the rk4 integrator needs a fixed step [s]"))? },
         };
         let base = Settings::default();
@@ -212,7 +212,7 @@ mod tests {
     #[test]
     fn defaults_and_names() {
         let rs = read(serde_json::json!({"integrator": "radau", "t_end": 0.1})).unwrap();
-        assert_eq!(rs.method, Method::Radau5);
+        assert_eq!(rs.method, Method::Radau);
         assert_eq!(rs.ode, Settings::default());
         assert_eq!(rs.channels, Channels::default());
         let rs = read(serde_json::json!({"integrator": "rk4", "step": 1e-4, "t_end": 0.1, "outputs": {"energy": true},

@@ -1,5 +1,5 @@
 //! From what the user gives to what runs: a [`MechanismDesc`] checked once
-//! ([`validate`]: every bad value named with its field) and compiled into a [`Model`]
+//! (`validate.rs`: every bad value named with its field) and compiled into a [`Model`]
 //! (flat arrays and enums, only the parts the scene uses). The run settings are checked in
 //! [`crate::settings`].
 

@@ -3,7 +3,7 @@
 //! boundary friction on that load.
 //!
 //! Greenwood & Tripp (1970–71, *Proc. IMechE* 185:625–633), two rough surfaces with Gaussian
-//! heights of composite RMS roughness σ, asperity density η [1/m²] and summit radius β [m], a
+//! heights of composite RMS roughness σ, asperity density η [1/m²] and summit radius β \[m\], a
 //! mean gap h and the Hertz composite modulus E' (1/E' = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂, the modulus
 //! of the Hertz law from which the model is built):
 //!

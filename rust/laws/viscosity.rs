@@ -6,7 +6,7 @@
 //! - Energy balance of one joint with an effective oil temperature T (a lumped, isothermal film):
 //!   `C dT/dt = P_loss − hA (T − T_ambient)`, C the heat capacity of the oil and the parts that
 //!   follow its temperature \[J/K\], hA the heat transfer to the ambient \[W/K\], P_loss the film's
-//!   power loss [W] ([`super::film_friction`]) at μ(T). Its steady state solves
+//!   power loss \[W\] ([`super::film_friction`]) at μ(T). Its steady state solves
 //!   `T = T_ambient + P_loss(μ(T))/hA`: [`steady_temperature`].
 
 /// Vogel's viscosity law μ = a exp(b/(T − c)) (module doc).
