@@ -3,7 +3,27 @@
 //! loop), and the triangular solves with it.
 
 use super::ordering::LowerPattern;
-use super::{at, at_mut};
+
+/// `v[i]` without the bounds check, for the hot loops of the numeric factorisation and solves,
+/// whose index lists are built once in [`super::KktSolver::new`] and [`SparseFactor::new`] from the
+/// pattern and never change: every index is below the length of the array it indexes (checked
+/// in debug builds, where the tests run every index list of random mechanisms). On the nine-bar
+/// the bounds checks and the loop set-up of rows of two or three entries cost more than the
+/// arithmetic.
+#[inline(always)]
+pub(super) fn at<T: Copy>(v: &[T], i: usize) -> T {
+    debug_assert!(i < v.len());
+    // SAFETY: `i < v.len()` (the index lists' invariant above).
+    unsafe { *v.get_unchecked(i) }
+}
+
+/// A mutable reference to `v[i]`, as [`at`].
+#[inline(always)]
+pub(super) fn at_mut<T>(v: &mut [T], i: usize) -> &mut T {
+    debug_assert!(i < v.len());
+    // SAFETY: as `at`.
+    unsafe { v.get_unchecked_mut(i) }
+}
 
 /// The numeric factorisation as a list of multiply-subtracts, found once from the pattern: for
 /// each entry `(i, k)` of L, the pairs `(a, b)` of storage indices with `a = (i, t)`,

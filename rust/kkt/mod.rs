@@ -31,30 +31,9 @@ mod factor;
 mod ordering;
 
 use crate::constraints::JacRow;
-use factor::SparseFactor;
+use factor::{at, at_mut, SparseFactor};
 use ordering::minimum_degree_order;
 pub use ordering::LowerPattern;
-
-/// `v[i]` without the bounds check, for the hot loops of the numeric factorisation and solves,
-/// whose index lists are built once in [`KktSolver::new`] and [`SparseFactor::new`] from the
-/// pattern and never change: every index is below the length of the array it indexes (checked
-/// in debug builds, where the tests run every index list of random mechanisms). On the nine-bar
-/// the bounds checks and the loop set-up of rows of two or three entries cost more than the
-/// arithmetic.
-#[inline(always)]
-fn at<T: Copy>(v: &[T], i: usize) -> T {
-    debug_assert!(i < v.len());
-    // SAFETY: `i < v.len()` (the index lists' invariant above).
-    unsafe { *v.get_unchecked(i) }
-}
-
-/// A mutable reference to `v[i]`, as [`at`].
-#[inline(always)]
-fn at_mut<T>(v: &mut [T], i: usize) -> &mut T {
-    debug_assert!(i < v.len());
-    // SAFETY: as `at`.
-    unsafe { v.get_unchecked_mut(i) }
-}
 
 /// Preallocated workspace and static sparsity structure of one model's KKT system.
 pub struct KktSolver {
