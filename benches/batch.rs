@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use clearsim::batch::run_batch;
 use clearsim::integrate::Method;
-use clearsim::model::ClearanceModelDesc;
+use clearsim::description::ClearanceModelDesc;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
 const RUNS: usize = 8;
@@ -28,7 +28,7 @@ fn bench_batch(c: &mut Criterion) {
         })
         .collect();
     let t_end = 0.25 * common::NINE_BAR_CYCLE;
-    let rs = common::bench_run(Method::Dopri5, t_end, 250);
+    let rs = common::bench_run(Method::Rk45, t_end, 250);
     let mut g = c.benchmark_group("batch_nine_bar_lubricated");
     g.sample_size(10).measurement_time(Duration::from_secs(10));
     g.throughput(Throughput::Elements(RUNS as u64));

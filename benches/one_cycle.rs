@@ -24,9 +24,9 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with("--")).collect();
     let name = args.first().map_or("nine_bar_dry", String::as_str);
     let method = match args.get(1).map_or("rk45", String::as_str) {
-        "rk45" => Method::Dopri5,
+        "rk45" => Method::Rk45,
         "dop853" => Method::Dop853,
-        "radau5" => Method::Radau5,
+        "radau5" => Method::Radau,
         other => {
             eprintln!("unknown method {other:?}: rk45, dop853 or radau5");
             std::process::exit(2);

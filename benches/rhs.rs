@@ -35,7 +35,7 @@ fn mid_state(model: &clearsim::model::Model, name: &str) -> (f64, Vec<f64>, Vec<
     let t = 0.1 * common::cycle(name);
     let mut sys = MechanismSystem::new(model, Channels::default(), 0, None);
     let s = Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() };
-    let st = integrate(&mut sys, Method::Dopri5, 0.0, &y0, t, &[], &s).unwrap();
+    let st = integrate(&mut sys, Method::Rk45, 0.0, &y0, t, &[], &s).unwrap();
     (t, sys.last_y.clone(), sys.memory.clone(), t / st.steps_accepted as f64)
 }
 
@@ -68,7 +68,7 @@ fn bench_steps(c: &mut Criterion) {
         g.bench_function(name, |b| {
             b.iter(|| {
                 sys.memory.clone_from(&memory);
-                integrate(&mut sys, Method::Dopri5, t, &y, t + STEPS as f64 * h * (1.0 - 1e-9), &[], &s).unwrap()
+                integrate(&mut sys, Method::Rk45, t, &y, t + STEPS as f64 * h * (1.0 - 1e-9), &[], &s).unwrap()
             })
         });
     }
@@ -95,7 +95,7 @@ fn bench_cycles(c: &mut Criterion, group: &str, method: Method, models: &[&str],
 }
 
 fn bench_cycle(c: &mut Criterion) {
-    bench_cycles(c, "cycle_rk45", Method::Dopri5, &MODELS, 8);
+    bench_cycles(c, "cycle_rk45", Method::Rk45, &MODELS, 8);
 }
 
 /// The lubricated models, whose film makes RADAU5 the method of choice: one cycle at rtol 1e-6
@@ -103,7 +103,7 @@ fn bench_cycle(c: &mut Criterion) {
 /// joints' force derivatives and the mobility columns of their bodies).
 fn bench_radau(c: &mut Criterion) {
     let lubricated = ["nine_bar_lubricated", "nine_bar_lubricated_mu004", "slider_crank_lubricated"];
-    bench_cycles(c, "cycle_radau", Method::Radau5, &lubricated, 5);
+    bench_cycles(c, "cycle_radau", Method::Radau, &lubricated, 5);
     let mut g = c.benchmark_group("newton_matrix");
     for name in lubricated {
         let model = common::model(name);

@@ -3,7 +3,8 @@
 use rayon::prelude::*;
 
 use crate::error::Result;
-use crate::model::{MechanismDesc, Model};
+use crate::description::MechanismDesc;
+use crate::model::Model;
 use crate::simulate::{simulate, RunOutput, RunSettings, StopCheck};
 
 /// Compile and run every description, in parallel on `threads` threads (0: all cores).

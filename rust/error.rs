@@ -1,4 +1,4 @@
-//! The one error type of the crate. `rust/python.rs` maps each variant to a Python exception;
+//! The one error type of the crate. `rust/python/mod.rs` maps each variant to a Python exception;
 //! nothing else in the crate knows about Python.
 
 /// Everything that can go wrong while describing, assembling or simulating a mechanism.
@@ -38,7 +38,7 @@ pub enum Error {
     #[error("maximum number of steps ({max_steps}) reached at t = {t} s")]
     TooManySteps { t: f64, max_steps: usize },
     /// A journal went deeper into its bearing than any contact law can mean
-    /// ([`crate::simulate::max_penetration`], `ClearanceJoint::penetration_limit`): the mechanism locks up or is driven through a pose
+    /// ([`crate::clearance::max_penetration`], `ClearanceJoint::penetration_limit`): the mechanism locks up or is driven through a pose
     /// it cannot pass.
     #[error("clearance joint '{joint}' penetrated {penetration:.3e} m deep (journal into bearing, or slider end into guide) at t = {t} s (limit {limit:.3e} m): the mechanism is locked up, driven through a pose it cannot pass, or its contact law is far too soft")]
     PenetrationTooDeep { t: f64, joint: String, penetration: f64, limit: f64 },

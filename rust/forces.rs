@@ -1,11 +1,11 @@
 //! Force elements and loads (docs/physics.md §10): translational and rotational
 //! spring-dampers, applied forces and torques (constant or tabulated in time or a body's
 //! angle) and motors with a linear speed–torque line. Compiled from
-//! [`crate::model::ForceDesc`]; a model without force elements carries an empty list and
+//! [`crate::description::ForceDesc`]; a model without force elements carries an empty list and
 //! runs none of this code.
 
 use crate::constraints::{BodyKin, V2};
-use crate::model::{Profile, Table, TableArgument};
+use crate::description::{Profile, Table, TableArgument};
 
 /// A piecewise-linear table y(x), x strictly increasing, held at its end values outside
 /// [x₀, x_last]; with a period, x is first wrapped into [x₀, x₀ + period).

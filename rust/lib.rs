@@ -1,15 +1,18 @@
 //! clearsim: planar multibody dynamics with dry and lubricated revolute clearance joints.
 //!
-//! The flow of one run (see `DESIGN.md`): a plain [`model::MechanismDesc`] is compiled into a
-//! [`model::Model`]; [`simulate::simulate`] assembles it, integrates `ẏ = f(t, y)`
-//! ([`system`], [`kkt`], [`clearance`], [`laws`]) with an [`integrate`] method and records the
-//! requested channels ([`record`]). `rust/python.rs` (feature `python`) is the only file that
-//! knows about Python.
+//! The flow of one run (README "Layout"): a plain [`description::MechanismDesc`] is compiled
+//! ([`compile`]) into a [`model::Model`]; [`simulate::simulate`] assembles it, integrates
+//! `ẏ = f(t, y)` ([`system`], [`kkt`], [`clearance`], [`laws`]) with an [`integrate`] method under
+//! the [`settings`] of the run and records the requested channels ([`record`]); [`batch`] runs
+//! many in parallel. `rust/python/` (feature `python`) is the only module that knows about
+//! Python.
 
 pub mod assembly;
 pub mod batch;
 pub mod clearance;
+pub mod compile;
 pub mod constraints;
+pub mod description;
 pub mod energy;
 pub mod error;
 pub mod forces;
@@ -20,11 +23,9 @@ pub mod model;
 pub mod monitor;
 pub mod rank;
 pub mod record;
-#[cfg(feature = "serde")]
 pub mod settings;
 pub mod simulate;
 pub mod system;
-pub mod wear;
 
 #[cfg(feature = "python")]
 mod python;

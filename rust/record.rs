@@ -38,6 +38,12 @@ pub const JOINT_COLUMNS: [&str; 19] = [
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Recording {
     pub channels: Option<Channels>,
+    /// Widths of the rows: coordinates q (3 per body), constraint rows (λ) and clearance joints
+    /// (a row of `joints` holds `JOINT_COLUMNS.len()` per joint), so that the recording can be
+    /// read without its model.
+    pub coordinates: usize,
+    pub constraint_rows: usize,
+    pub clearance_joints: usize,
     pub t: Vec<f64>,
     /// 3 per body.
     pub q: Vec<f64>,
@@ -61,6 +67,9 @@ impl Recording {
         let cap = |on: bool, w: usize| if on { Vec::with_capacity(capacity * w) } else { Vec::new() };
         Recording {
             channels: Some(channels),
+            coordinates: n,
+            constraint_rows: model.rows,
+            clearance_joints: model.clearance.len(),
             t: Vec::with_capacity(capacity),
             q: cap(channels.states, n),
             qd: cap(channels.states, n),

@@ -1,17 +1,114 @@
-//! Run settings as they arrive from Python (a plain dict, through serde like the mechanism
-//! description), and their conversion to [`RunSettings`]. The keys are those
-//! `clearsim.Mechanism.run_settings` writes; an unknown key is an error, not ignored.
-
-use serde::Deserialize;
+//! Run settings: what one run is asked ([`RunSettings`]) and every check of them, in one place:
+//! [`RunSettings::validate`] (once per run or batch, when the settings arrive) and
+//! [`RunSettings::validate_for`] (the monitors against the compiled model, once per run). With
+//! the `serde` feature also the settings as they arrive from Python ([`RunSettingsDesc`]: a plain
+//! dict, through serde like the mechanism description, the keys `clearsim.Mechanism.run_settings`
+//! writes; an unknown key is an error, not ignored) and their conversion.
 
 use crate::error::{Error, Result};
 use crate::integrate::{Method, Settings};
+use crate::model::Model;
 use crate::monitor::MonitorSpec;
 use crate::record::Channels;
-use crate::simulate::RunSettings;
+
+/// What to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSettings {
+    pub method: Method,
+    pub ode: Settings,
+    pub t0: f64,
+    pub t_end: f64,
+    /// Output times (sorted, within [t0, t_end]).
+    pub t_out: Vec<f64>,
+    pub channels: Channels,
+    /// Wall-time budget of the run \[s\] (`None`: none); a run over it stops with
+    /// [`Error::TimeBudget`] and keeps what it computed.
+    pub max_wall_time: Option<f64>,
+    /// Outputs tracked between the output samples ([`crate::monitor`]).
+    pub monitors: Vec<MonitorSpec>,
+    /// A time \[s\] in [t0, t_end] at which the wear books are also read
+    /// ([`crate::clearance::wear::WearBook::at_mark`]): what wears after it is the difference.
+    pub wear_mark: Option<f64>,
+}
+
+impl RunSettings {
+    /// Output grid t0, t0 + dt, … up to t_end (inclusive when it lands on the grid).
+    pub fn grid(t0: f64, t_end: f64, dt_out: f64) -> Vec<f64> {
+        let n = ((t_end - t0) / dt_out * (1.0 + 1e-12)).floor() as usize;
+        (0..=n).map(|k| t0 + k as f64 * dt_out).filter(|t| *t <= t_end * (1.0 + 1e-14) + 1e-300).collect()
+    }
+
+    /// Every check of the settings on their own (times, tolerances, step limits, output times,
+    /// monitor specs): done once, by [`RunSettingsDesc::into_settings`] for what comes from Python;
+    /// a Rust caller that builds [`RunSettings`] itself calls it before [`crate::simulate::simulate`].
+    pub fn validate(&self) -> Result<()> {
+        let fin = |f: &str, v: f64| if v.is_finite() { Ok(()) } else { Err(Error::invalid(f, v, "must be a finite number")) };
+        fin("t0", self.t0)?;
+        fin("t_end", self.t_end)?;
+        if self.t_end <= self.t0 {
+            return Err(Error::invalid("t_end", self.t_end, format!("must be greater than t0 = {}", self.t0)));
+        }
+        if !(self.ode.rtol > 0.0 && self.ode.rtol < 1.0) {
+            return Err(Error::invalid("rtol", self.ode.rtol, "must lie in (0, 1)"));
+        }
+        if !(self.ode.atol > 0.0 && self.ode.atol.is_finite()) {
+            return Err(Error::invalid("atol", self.ode.atol, "must be positive and finite"));
+        }
+        if let Some(b) = self.max_wall_time {
+            if !(b > 0.0) {
+                return Err(Error::invalid("max_seconds", b, "must be a positive number of seconds"));
+            }
+        }
+        if let Some(m) = self.wear_mark {
+            if !(m >= self.t0 && m <= self.t_end) {
+                return Err(Error::invalid("wear_mark", m, format!("must lie in [t0, t_end] = [{}, {}]", self.t0, self.t_end)));
+            }
+        }
+        if self.ode.max_steps == 0 {
+            return Err(Error::invalid("max_steps", self.ode.max_steps, "must be a positive integer"));
+        }
+        if !(self.ode.h_min >= 0.0 && self.ode.h_min.is_finite()) {
+            return Err(Error::invalid("h_min", self.ode.h_min, "must be a finite number ≥ 0"));
+        }
+        if !(self.ode.h_max > 0.0) {
+            return Err(Error::invalid("h_max", self.ode.h_max, "must be positive"));
+        }
+        if let Method::Rk4 { step } = self.method {
+            if !(step > 0.0 && step.is_finite()) {
+                return Err(Error::invalid("step", step, "must be positive and finite"));
+            }
+        }
+        for (k, w) in self.t_out.windows(2).enumerate() {
+            if !(w[1] > w[0]) {
+                return Err(Error::invalid(format!("t_out[{}]", k + 1), w[1], "output times must increase strictly"));
+            }
+        }
+        for (i, m) in self.monitors.iter().enumerate() {
+            m.validate(i)?;
+        }
+        Ok(())
+    }
+
+    /// The monitors against the compiled model: each names a body coordinate (below 3 × bodies)
+    /// or a clearance joint that exists (their own fields are checked by [`Self::validate`]).
+    pub fn validate_for(&self, model: &Model) -> Result<()> {
+        for spec in &self.monitors {
+            if spec.quantity.of_joint() {
+                if spec.coordinate >= model.clearance.len() {
+                    let n = model.clearance.len();
+                    return Err(Error::invalid("monitor.coordinate", spec.coordinate, format!("must be a clearance joint index below {n}")));
+                }
+            } else if spec.coordinate >= 3 * model.n_bodies() {
+                return Err(Error::invalid("monitor.coordinate", spec.coordinate, format!("must be below 3 × bodies = {}", 3 * model.n_bodies())));
+            }
+        }
+        Ok(())
+    }
+}
 
 /// The integrator's name, as the Python API spells it (README "Choosing an integrator").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[cfg(feature = "serde")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum IntegratorName {
     /// Dormand–Prince 5(4).
@@ -27,7 +124,8 @@ pub enum IntegratorName {
 
 /// One run's settings. Times in s; tolerances as in [`Settings`]; absent optional values take
 /// [`Settings::default`]'s.
-#[derive(Debug, Clone, Deserialize)]
+#[cfg(feature = "serde")]
+#[derive(Debug, Clone, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RunSettingsDesc {
     pub integrator: IntegratorName,
@@ -65,14 +163,15 @@ pub struct RunSettingsDesc {
     pub wear_mark: Option<f64>,
 }
 
+#[cfg(feature = "serde")]
 impl RunSettingsDesc {
     /// The settings the core runs with, validated ([`RunSettings::validate`]).
     pub fn into_settings(self) -> Result<RunSettings> {
         let method = match self.integrator {
-            IntegratorName::Rk45 => Method::Dopri5,
+            IntegratorName::Rk45 => Method::Rk45,
             IntegratorName::Dop853 => Method::Dop853,
             IntegratorName::Rodas4 => Method::Rodas4,
-            IntegratorName::Radau => Method::Radau5,
+            IntegratorName::Radau => Method::Radau,
             IntegratorName::Rk4 => Method::Rk4 { step: self.step.ok_or_else(|| Error::invalid("step", "None", "the rk4 integrator needs a fixed step [s]"))? },
         };
         let base = Settings::default();
@@ -100,7 +199,7 @@ impl RunSettingsDesc {
     }
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "serde"))]
 mod tests {
     use super::*;
     use crate::monitor::Quantity;
@@ -113,7 +212,7 @@ mod tests {
     #[test]
     fn defaults_and_names() {
         let rs = read(serde_json::json!({"integrator": "radau", "t_end": 0.1})).unwrap();
-        assert_eq!(rs.method, Method::Radau5);
+        assert_eq!(rs.method, Method::Radau);
         assert_eq!(rs.ode, Settings::default());
         assert_eq!(rs.channels, Channels::default());
         let rs = read(serde_json::json!({"integrator": "rk4", "step": 1e-4, "t_end": 0.1, "outputs": {"energy": true},

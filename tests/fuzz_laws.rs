@@ -10,7 +10,8 @@ use clearsim::clearance::{ClearanceJoint, Film, ImpactMemory, JointKinematics};
 use clearsim::constraints::{BodyKin, JacRow, V2};
 use clearsim::kkt::KktSolver;
 use clearsim::laws::*;
-use clearsim::model::*;
+use clearsim::description::*;
+use clearsim::model::Model;
 use clearsim::system::Workspace;
 use proptest::prelude::*;
 

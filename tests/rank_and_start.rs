@@ -46,7 +46,7 @@ fn sound_poses_of_the_fixtures_stay_far_from_the_lock_up_threshold() {
     // ≥ 0.0195, slider-crank ≥ 0.167).
     for name in ["slider_crank_ideal", "slider_crank_dry", "slider_crank_lubricated", "nine_bar_ideal", "nine_bar_dry", "nine_bar_lubricated"] {
         let model = common::model(name);
-        let out = simulate(&model, &common::bench_run(Method::Dopri5, common::cycle(name), 50), None).unwrap();
+        let out = simulate(&model, &common::bench_run(Method::Rk45, common::cycle(name), 50), None).unwrap();
         assert!(out.error.is_none(), "{name}: {:?}", out.error);
         let n = 3 * model.n_bodies();
         let worst = out.recording.q.chunks(n).map(|q| ratio(&model, q)).fold(f64::INFINITY, f64::min);

@@ -21,7 +21,7 @@ fn compare(name: &str, t: f64) -> (f64, f64, f64) {
     let y0 = common::initial_state(&model);
     let mut sys = MechanismSystem::new(&model, Channels::default(), 0, None);
     let s = Settings { rtol: 1e-8, atol: 1e-11, ..Settings::default() };
-    integrate(&mut sys, Method::Dopri5, 0.0, &y0, t, &[], &s).unwrap();
+    integrate(&mut sys, Method::Rk45, 0.0, &y0, t, &[], &s).unwrap();
     let y = sys.last_y.clone();
     let n = y.len();
     let m = n / 2;
@@ -77,7 +77,7 @@ fn a_micrometre_film_has_no_stiffness_against_common_motion() {
     let y0 = common::initial_state(&model);
     let mut sys = MechanismSystem::new(&model, Channels::default(), 0, None);
     let t = 0.003;
-    integrate(&mut sys, Method::Radau5, 0.0, &y0, t, &[], &Settings::default()).unwrap();
+    integrate(&mut sys, Method::Radau, 0.0, &y0, t, &[], &Settings::default()).unwrap();
     let y = sys.last_y.clone();
     let m = y.len() / 2;
     let (mut w_q, mut w_v) = (vec![0.0; m * m], vec![0.0; m * m]);

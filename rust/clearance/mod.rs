@@ -1,11 +1,14 @@
-//! Revolute clearance joints (docs/physics.md §2–§4): the journal's kinematics inside the bearing, the
-//! force law (dry, or lubricated with the transition to dry), and its generalised forces.
-//! The joint's two constraint equations are removed; the journal gains 2 DOF (docs/physics.md §2).
+//! Clearance joints (docs/physics.md §2–§4, §11): a journal in its bearing, or a slider end in
+//! its guide. This file: the compiled joint, its force law (dry, or lubricated with the
+//! transition to dry), its generalised forces and how deep it may penetrate; `kinematics.rs`
+//! the journal's motion inside the bearing, `memory.rs` the impact memory, `wear.rs` the wear
+//! books. The joint's two constraint equations are removed; the journal gains 2 DOF.
 
 pub mod kinematics;
 pub mod memory;
 pub mod mixed;
 pub mod readings;
+pub mod wear;
 
 pub use kinematics::JointKinematics;
 pub use memory::ImpactMemory;
@@ -55,6 +58,15 @@ pub fn grazing(a: &JointKinematics, b: &JointKinematics, gap_resolution: f64, sp
     a.delta.abs() <= gap_resolution && b.delta.abs() <= gap_resolution && a.delta_dot.abs() <= speed_floor && b.delta_dot.abs() <= speed_floor
 }
 
+/// The deepest penetration δ = e − c \[m\] a clearance joint may reach before the run stops:
+/// the larger of the clearance and 5 % of the journal radius. Hertzian contact laws assume a
+/// contact patch small against the radii; a journal driven deeper than this has left the
+/// model (a locked-up mechanism, a pose it cannot pass, a far too soft law) and would otherwise
+/// run on with meaningless forces (docs: "Failures").
+pub fn max_penetration(clearance: f64, journal_radius: f64) -> f64 {
+    clearance.max(0.05 * journal_radius)
+}
+
 /// Parameters of the film part of a lubricated joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Film {
@@ -94,7 +106,7 @@ pub struct ClearanceJoint {
     /// Penetration \[m\] beyond which the run stops ([`crate::error::Error::PenetrationTooDeep`]).
     pub penetration_limit: f64,
     /// Archard wear, when asked for (docs/physics.md §12).
-    pub wear: Option<crate::wear::Archard>,
+    pub wear: Option<crate::laws::wear::Archard>,
 }
 
 /// What the joint's law produced at one instant.

@@ -1,7 +1,7 @@
 //! Prescribed angle laws θ(t) of driving constraints, with their first two time derivatives.
 
 use crate::error::{Error, Result};
-use crate::model::description::AngleLaw;
+use crate::description::AngleLaw;
 
 /// A driver law ready for evaluation: θ(t), θ'(t), θ''(t).
 #[derive(Debug, Clone, PartialEq)]

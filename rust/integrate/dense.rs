@@ -340,7 +340,7 @@ mod tests {
         // 8 for DOP853 (Hairer I, §II.6).
         for (method, p, h) in [
             (Method::Rk4 { step: 0.0 }, 4.0, 0.04),
-            (Method::Dopri5, 5.0, 0.04),
+            (Method::Rk45, 5.0, 0.04),
             (Method::Dop853, 8.0, 0.08),
         ] {
             let (e1, x1) = one_step_error(method, h);

@@ -370,7 +370,7 @@ mod tests {
         const KEPLER_E02: [f64; 4] = [0.8, 0.0, 0.0, 1.224744871391589];
         for (method, p, n, y0) in [
             (Method::Rk4 { step: 0.0 }, 4.0, 400, KEPLER_Y0),
-            (Method::Dopri5, 5.0, 200, KEPLER_Y0),
+            (Method::Rk45, 5.0, 200, KEPLER_Y0),
             (Method::Dop853, 8.0, 50, KEPLER_E02),
         ] {
             let e1 = dist(&fixed_step_end(method, kepler, &y0, TWO_PI, n), &y0);
@@ -412,7 +412,7 @@ mod tests {
 
     #[test]
     fn arenstorf_orbit_closes_dopri5() {
-        let (st, y) = arenstorf_run(Method::Dopri5, 1e-9);
+        let (st, y) = arenstorf_run(Method::Rk45, 1e-9);
         let pos_err = dist(&y[..2], &ARENSTORF_Y0[..2]);
         assert!(pos_err < 1e-4, "position error {pos_err:e}");
         // scipy's RK45 (same tableau, I-controller) needs 501 steps here.
@@ -420,7 +420,7 @@ mod tests {
         assert!(st.steps_rejected < st.steps_accepted / 3, "{st:?}");
         assert_eq!(st.rhs_evals, 2 + 6 * (st.steps_accepted + st.steps_rejected));
         // Tightening the tolerance shrinks the error (error ∝ tol^(5/6) roughly).
-        let (_, y_tight) = arenstorf_run(Method::Dopri5, 1e-11);
+        let (_, y_tight) = arenstorf_run(Method::Rk45, 1e-11);
         assert!(dist(&y_tight[..2], &ARENSTORF_Y0[..2]) < pos_err / 10.0);
     }
 
@@ -428,7 +428,7 @@ mod tests {
     fn dense_outputs_match_exact_and_do_not_change_steps() {
         let grid: Vec<f64> = (0..=200).map(|i| i as f64 * 0.05).collect(); // [0, 10]
         let y0 = forced_exact(0.0);
-        for method in [Method::Rk4 { step: 0.01 }, Method::Dopri5, Method::Dop853] {
+        for method in [Method::Rk4 { step: 0.01 }, Method::Rk45, Method::Dop853] {
             let s = Settings {
                 rtol: 1e-8,
                 atol: 1e-10,
@@ -466,7 +466,7 @@ mod tests {
         let mut sys = Sys::new(3, forced);
         let st = integrate(
             &mut sys,
-            Method::Dopri5,
+            Method::Rk45,
             0.0,
             &y0,
             1.0,
@@ -485,7 +485,7 @@ mod tests {
 
     #[test]
     fn h_max_is_respected_and_stats_are_consistent() {
-        for method in [Method::Dopri5, Method::Dop853] {
+        for method in [Method::Rk45, Method::Dop853] {
             let mut sys = Sys::new(4, kepler);
             let s = Settings {
                 h_max: 0.01,
@@ -558,7 +558,7 @@ mod tests {
 
     #[test]
     fn step_accepted_true_forces_reevaluation() {
-        for method in [Method::Rk4 { step: 0.07 }, Method::Dopri5, Method::Dop853] {
+        for method in [Method::Rk4 { step: 0.07 }, Method::Rk45, Method::Dop853] {
             let mut sys = Switch {
                 c: 0.0,
                 t_switch: f64::NAN,
@@ -620,7 +620,7 @@ mod tests {
 
     #[test]
     fn nan_rhs_gives_non_finite_before_it() {
-        for method in [Method::Rk4 { step: 0.01 }, Method::Dopri5, Method::Dop853] {
+        for method in [Method::Rk4 { step: 0.01 }, Method::Rk45, Method::Dop853] {
             let mut sys = Sys::new(3, nan_after_1_5);
             let grid: Vec<f64> = (0..=30).map(|i| i as f64 * 0.1).collect();
             let (e, st) = integrate(
@@ -658,7 +658,7 @@ mod tests {
 
     #[test]
     fn step_size_underflow_when_h_min_is_large() {
-        for method in [Method::Dopri5, Method::Dop853] {
+        for method in [Method::Rk45, Method::Dop853] {
             let s = Settings {
                 h_min: 1e-4,
                 ..Settings::default()
@@ -689,7 +689,7 @@ mod tests {
 
     #[test]
     fn too_many_steps() {
-        for method in [Method::Rk4 { step: 0.01 }, Method::Dopri5, Method::Dop853] {
+        for method in [Method::Rk4 { step: 0.01 }, Method::Rk45, Method::Dop853] {
             let mut sys = Sys::new(4, kepler);
             let s = Settings {
                 max_steps: 7,
@@ -711,7 +711,7 @@ mod tests {
     #[test]
     fn callback_errors_propagate_unchanged() {
         let grid: Vec<f64> = (0..=10).map(|i| i as f64 * 0.1).collect();
-        for method in [Method::Rk4 { step: 0.05 }, Method::Dopri5, Method::Dop853] {
+        for method in [Method::Rk4 { step: 0.05 }, Method::Rk45, Method::Dop853] {
             let run = |sys: &mut Sys| integrate(sys, method, 0.0, &forced_exact(0.0), 1.0, &grid, &Settings::default()).unwrap_err();
             // output
             let mut sys = Sys::new(3, forced);
@@ -784,7 +784,7 @@ mod tests {
         let energy = |y: &[f64]| 0.5 * y[1] * y[1] + 9.81 * y[0] + 1e8 * (-y[0]).max(0.0).powf(2.5) / 2.5;
         let e0 = energy(&[0.1, 0.0]);
         let t_out: Vec<f64> = (1..=40).map(|i| i as f64 * 0.05).collect(); // 2 s: ~7 bounces
-        for method in [Method::Dopri5, Method::Dop853, Method::Radau5] {
+        for method in [Method::Rk45, Method::Dop853, Method::Radau] {
             let s = Settings { rtol: 1e-10, atol: 1e-13, ..Settings::default() };
             let mut drift = [0.0; 2];
             for (i, hook) in [false, true].into_iter().enumerate() {
@@ -810,15 +810,15 @@ mod tests {
             integrate(&mut Sys::new(3, forced), method, 0.0, y0, t_end, t_out, s)
         };
         let bad = |r: Result<Stats, (Error, Stats)>| matches!(r, Err((Error::InvalidInput { .. }, _)));
-        assert!(bad(run(Method::Dopri5, &y0[..2], 1.0, &[], &s)), "state of the wrong length");
-        assert!(bad(run(Method::Dopri5, &y0, -1.0, &[], &s)), "t_end before t0");
-        assert!(bad(run(Method::Dopri5, &y0, 1.0, &[0.5, 0.2], &s)), "decreasing outputs");
+        assert!(bad(run(Method::Rk45, &y0[..2], 1.0, &[], &s)), "state of the wrong length");
+        assert!(bad(run(Method::Rk45, &y0, -1.0, &[], &s)), "t_end before t0");
+        assert!(bad(run(Method::Rk45, &y0, 1.0, &[0.5, 0.2], &s)), "decreasing outputs");
         assert!(bad(run(Method::Rk4 { step: 0.0 }, &y0, 1.0, &[], &s)), "zero RK4 step");
         assert!(bad(run(Method::Dop853, &y0, 1.0, &[], &Settings { rtol: -1.0, ..s })), "negative rtol");
         assert!(bad(run(Method::Dop853, &y0, 1.0, &[], &Settings { h0: Some(0.0), ..s })), "zero first step");
         let s_bad = Settings { h_min: 1.0, h_max: 0.1, ..s };
         assert!(bad(run(Method::Dop853, &y0, 1.0, &[], &s_bad)), "h_min above h_max");
-        let r = run(Method::Dopri5, &[f64::NAN, 0.0, 0.0], 1.0, &[], &s);
+        let r = run(Method::Rk45, &[f64::NAN, 0.0, 0.0], 1.0, &[], &s);
         assert!(matches!(r, Err((Error::NonFinite { .. }, _))));
     }
 }

@@ -4,21 +4,23 @@
 
 use crate::error::Error;
 
-/// Which method to integrate with.
+/// Which method to integrate with; each variant is named as the Python API, the CLI and scene
+/// files name it (`rk4`, `rk45`, `dop853`, `rodas4`, `radau`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Method {
     /// Classic 4th-order Runge–Kutta with a fixed step `step` \[s\]; cubic Hermite dense output.
     Rk4 { step: f64 },
-    /// Dormand–Prince 5(4) with PI step control and 4th-order dense output (Hairer's DOPRI5).
-    Dopri5,
+    /// `rk45`: Dormand–Prince 5(4) with PI step control and 4th-order dense output (Hairer's
+    /// DOPRI5).
+    Rk45,
     /// Dormand–Prince 8(5,3) with 7th-order dense output (Hairer's DOP853).
     Dop853,
     /// RODAS4: L-stable, stiffly accurate Rosenbrock 4(3) with 3rd-order dense output and a
     /// finite-difference Jacobian (Hairer–Wanner's RODAS), for stiff phases (`rodas4.rs`).
     Rodas4,
-    /// RADAU5: 3-stage Radau IIA of order 5 (L-stable, stiffly accurate) with simplified Newton
-    /// iterations and the collocation polynomial as dense output (`radau.rs`).
-    Radau5,
+    /// `radau`: RADAU5, the 3-stage Radau IIA of order 5 (L-stable, stiffly accurate) with
+    /// simplified Newton iterations and the collocation polynomial as dense output (`radau.rs`).
+    Radau,
 }
 
 /// Tolerances and limits for adaptive methods (ignored by RK4 except `max_steps`).
@@ -97,7 +99,7 @@ impl Span<'_> {
                     return Err(Error::invalid("step", step, "must be finite and > 0"));
                 }
             }
-            Method::Dopri5 | Method::Dop853 | Method::Rodas4 | Method::Radau5 => {
+            Method::Rk45 | Method::Dop853 | Method::Rodas4 | Method::Radau => {
                 if !(s.rtol.is_finite() && s.rtol > 0.0) {
                     return Err(Error::invalid("rtol", s.rtol, "must be finite and > 0"));
                 }

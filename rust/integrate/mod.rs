@@ -53,10 +53,10 @@ pub fn integrate<S: OdeSystem>(
     let n = y0.len();
     let res = span.validate(sys.dim(), method, settings).and_then(|()| match method {
         Method::Rk4 { step } => drive(sys, &mut explicit_rk::Rk4::new(n, step), span, settings, &mut stats),
-        Method::Dopri5 => drive(sys, &mut explicit_rk::ExplicitRk::new(n, false), span, settings, &mut stats),
+        Method::Rk45 => drive(sys, &mut explicit_rk::ExplicitRk::new(n, false), span, settings, &mut stats),
         Method::Dop853 => drive(sys, &mut explicit_rk::ExplicitRk::new(n, true), span, settings, &mut stats),
         Method::Rodas4 => drive(sys, &mut rodas4::Rodas4::new(n), span, settings, &mut stats),
-        Method::Radau5 => drive(sys, &mut radau::Radau5Stepper::new(n, settings), span, settings, &mut stats),
+        Method::Radau => drive(sys, &mut radau::Radau5Stepper::new(n, settings), span, settings, &mut stats),
     });
     match res {
         Ok(()) => Ok(stats),

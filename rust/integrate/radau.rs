@@ -627,7 +627,7 @@ mod tests {
                     let h = 4.0 / steps as f64;
                     let s = Settings { rtol: 1e-3, atol: 1e6, h0: Some(h), h_max: h, ..Settings::default() };
                     let mut sys = Sys { f: forced, outputs: vec![], w_scale: w, jac };
-                    let st = integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 0.0], 4.0, &[4.0], &s).unwrap();
+                    let st = integrate(&mut sys, Method::Radau, 0.0, &[1.0, 0.0], 4.0, &[4.0], &s).unwrap();
                     assert_eq!(st.steps_accepted, steps);
                     let y = &sys.outputs[0].1;
                     ((y[0] - ex[0]).powi(2) + (y[1] - ex[1]).powi(2)).sqrt()
@@ -647,7 +647,7 @@ mod tests {
         for w in [Some(1.0), Some(0.5), None] {
             let s = Settings { rtol: 1e-9, atol: 1e-9, ..Settings::default() };
             let mut sys = Sys { f: vdp1, outputs: vec![], w_scale: w, jac: Some(vdp1_jac) };
-            integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], 3.0, &[3.0], &s).unwrap();
+            integrate(&mut sys, Method::Radau, 0.0, &[2.0, 0.0], 3.0, &[3.0], &s).unwrap();
             let y = &sys.outputs[0].1;
             assert!((y[0] - ex[0]).abs() < 1e-7 && (y[1] - ex[1]).abs() < 1e-7, "W = {w:?}: {y:?} vs {ex:?}");
         }
@@ -660,7 +660,7 @@ mod tests {
         let s = Settings { rtol: 1e-7, atol: 1e-7, ..Settings::default() };
         for (w, jac) in [(Some(1.0), Some(vdp1000_jac as fn(&[f64]) -> [[f64; 2]; 2])), (None, None)] {
             let mut sys = Sys { f: vdp1000, outputs: vec![], w_scale: w, jac };
-            let st = integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], t_end, &[t_end], &s).unwrap();
+            let st = integrate(&mut sys, Method::Radau, 0.0, &[2.0, 0.0], t_end, &[t_end], &s).unwrap();
             let yr = &sys.outputs[0].1;
             assert!((yr[0] - yd[0]).abs() < 1e-4 * yd[0].abs().max(1.0), "{yr:?} vs {yd:?}");
             // Hairer–Wanner report a few hundred steps for this problem; an explicit method
@@ -678,7 +678,7 @@ mod tests {
         let yd = reference(vdp1000, &[2.0, 0.0], t_end);
         let s = Settings { rtol: 1e-7, atol: 1e-7, max_steps: 20_000, ..Settings::default() };
         let mut sys = Sys { f: vdp1000, outputs: vec![], w_scale: Some(0.0), jac: Some(vdp1000_jac) };
-        let st = integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], t_end, &[t_end], &s).unwrap();
+        let st = integrate(&mut sys, Method::Radau, 0.0, &[2.0, 0.0], t_end, &[t_end], &s).unwrap();
         let yr = &sys.outputs[0].1;
         assert!((yr[0] - yd[0]).abs() < 1e-4 * yd[0].abs().max(1.0), "{yr:?} vs {yd:?}");
         assert!(st.steps_accepted < 3000 && st.jacobians > st.steps_accepted, "{st:?}");
@@ -689,7 +689,7 @@ mod tests {
         let s = Settings { rtol: 1e-8, atol: 1e-10, ..Settings::default() };
         let mut sys = Sys { f: oscillator, outputs: vec![], w_scale: None, jac: None };
         let ts: Vec<f64> = (0..=200).map(|k| 0.05 * k as f64).collect();
-        integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 0.0], 10.0, &ts, &s).unwrap();
+        integrate(&mut sys, Method::Radau, 0.0, &[1.0, 0.0], 10.0, &ts, &s).unwrap();
         assert_eq!(sys.outputs.len(), ts.len());
         let worst = sys.outputs.iter().map(|(t, y)| (y[0] - t.cos()).abs().max((y[1] + t.sin()).abs())).fold(0.0, f64::max);
         assert!(worst < 1e-6, "worst dense error {worst}");
@@ -720,7 +720,7 @@ mod tests {
         let lit = [0.7158270687193605, 9.185534764529569e-06, 0.2841637457458749];
         let s = Settings { rtol: 1e-7, atol: 1e-12, ..Settings::default() };
         let mut sys = Robertson(vec![]);
-        let st = integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 0.0, 0.0], 40.0, &[40.0], &s).unwrap();
+        let st = integrate(&mut sys, Method::Radau, 0.0, &[1.0, 0.0, 0.0], 40.0, &[40.0], &s).unwrap();
         let y = &sys.0;
         assert!((y[0] - lit[0]).abs() < 1e-6 && (y[2] - lit[2]).abs() < 1e-6, "{y:?}");
         assert!((y[1] / lit[1] - 1.0).abs() < 1e-4, "{y:?}");
@@ -735,11 +735,11 @@ mod tests {
     #[test]
     fn errors_follow_the_contract() {
         let mut sys = Sys { f: blow_up, outputs: vec![], w_scale: None, jac: None };
-        let (e, _) = integrate(&mut sys, Method::Radau5, 0.0, &[1.0, 1.0], 10.0, &[], &Settings::default()).unwrap_err();
+        let (e, _) = integrate(&mut sys, Method::Radau, 0.0, &[1.0, 1.0], 10.0, &[], &Settings::default()).unwrap_err();
         assert!(matches!(e, Error::StepSizeUnderflow { .. } | Error::NonFinite { .. }), "{e:?}");
         let mut sys = Sys { f: vdp1, outputs: vec![], w_scale: None, jac: None };
         let s = Settings { max_steps: 5, ..Settings::default() };
-        let (e, st) = integrate(&mut sys, Method::Radau5, 0.0, &[2.0, 0.0], 100.0, &[], &s).unwrap_err();
+        let (e, st) = integrate(&mut sys, Method::Radau, 0.0, &[2.0, 0.0], 100.0, &[], &s).unwrap_err();
         assert!(matches!(e, Error::TooManySteps { max_steps: 5, .. }), "{e:?}");
         assert_eq!(st.steps_accepted + st.steps_rejected, 5);
     }

@@ -1,4 +1,4 @@
-//! Force laws of clearance joints (docs/physics.md §3–§4): pure functions of kinematic inputs and parameters.
+//! The laws of clearance joints (docs/physics.md §3–§4, §12): pure functions of kinematic inputs and parameters.
 //!
 //! - [`contact`]: normal impact force (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores) and
 //!   contact stiffness (docs/physics.md §3, P3–P4); [`contact_line`]: a pin as a line contact.
@@ -14,6 +14,7 @@
 //! - [`asperity`]: Greenwood–Tripp asperity pressure and load (rough surfaces).
 //! - [`transition`]: small-eccentricity scaling (P15–P16) and film-to-contact blend (P18).
 //! - [`quadrature`]: Gauss–Legendre rules.
+//! - [`wear`]: Archard's wear law (docs/physics.md §12).
 //!
 //! Imports run downward: the film laws import [`geometry`] (and [`quadrature`]) only; [`film`]
 //! imports them. Film-force convention everywhere: `(F_ξ, F_η)` is the force ON THE JOURNAL
@@ -33,6 +34,7 @@ pub mod geometry;
 pub mod quadrature;
 pub mod transition;
 pub mod viscosity;
+pub mod wear;
 
 pub use bearing_long::{long_bearing_centre_limit, long_bearing_force, long_bearing_force_quadrature, long_bearing_paper_closed_form, long_bearing_pressure};
 pub use bearing_short::{short_bearing_force, short_bearing_pressure, short_bearing_pressure_integrated};

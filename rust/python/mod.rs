@@ -18,7 +18,8 @@ use crate::batch::run_batch;
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
 use crate::integrate::OdeSystem;
-use crate::model::*;
+use crate::description::{MechanismDesc, ELEMENTS};
+use crate::model::Model;
 use crate::record::{Channels, JOINT_COLUMNS};
 use crate::settings::RunSettingsDesc;
 use crate::simulate::{simulate, MechanismSystem, RunOutput, RunSettings};
@@ -90,14 +91,14 @@ fn read_settings(d: &Bound<'_, PyAny>) -> PyResult<RunSettings> {
 }
 
 /// A description from Python: a JSON string, or plain data (dicts, lists, numbers, strings).
-/// Either way it enters the core through serde ([`crate::model::from_value`]), the one path.
+/// Either way it enters the core through serde ([`crate::description::from_value`]), the one path.
 fn read_description(d: &Bound<'_, PyAny>) -> PyResult<MechanismDesc> {
     let py = d.py();
     let v = match d.extract::<String>() {
-        Ok(text) => return crate::model::from_json(&text).map_err(|e| to_pyerr(py, &e)),
+        Ok(text) => return crate::description::from_json(&text).map_err(|e| to_pyerr(py, &e)),
         Err(_) => plain_value(d, "", true)?,
     };
-    crate::model::from_value(&v).map_err(|e| to_pyerr(py, &e))
+    crate::description::from_value(&v).map_err(|e| to_pyerr(py, &e))
 }
 
 /// Python plain data as a JSON value. A number that is not finite (JSON has no NaN) is an
@@ -129,7 +130,7 @@ fn plain_value(obj: &Bound<'_, PyAny>, field: &str, top: bool) -> PyResult<serde
         let mut map = serde_json::Map::with_capacity(d.len());
         for (k, v) in d.iter() {
             let k: String = k.extract().map_err(|_| input_error(py, field, &k, "keys must be strings"))?;
-            let list_of = if top { crate::model::ELEMENTS.iter().find(|(l, _)| *l == k).map(|(_, what)| *what) } else { None };
+            let list_of = if top { ELEMENTS.iter().find(|(l, _)| *l == k).map(|(_, what)| *what) } else { None };
             let value = match list_of {
                 Some(what) => {
                     let mut items = Vec::new();
@@ -167,10 +168,10 @@ fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, P
     Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
 }
 
-fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
+fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let rec = &out.recording;
-    let n = 3 * model.n_bodies();
+    let n = rec.coordinates;
     let ch = rec.channels.unwrap_or_default();
     d.set_item("t", PyArray1::from_slice(py, &rec.t))?;
     if ch.states {
@@ -181,10 +182,10 @@ fn output_to_dict<'py>(py: Python<'py>, model: &Model, out: &RunOutput) -> PyRes
         d.set_item("qdd", array2(py, &rec.qdd, n)?)?;
     }
     if ch.reactions {
-        d.set_item("lambda", array2(py, &rec.lambda, model.rows)?)?;
+        d.set_item("lambda", array2(py, &rec.lambda, rec.constraint_rows)?)?;
     }
     if ch.joints {
-        let nj = model.clearance.len();
+        let nj = rec.clearance_joints;
         let w = JOINT_COLUMNS.len();
         let rows = rec.t.len();
         d.set_item("joints", PyArray1::from_slice(py, &rec.joints).reshape([rows, nj, w])?)?;
@@ -405,7 +406,7 @@ impl CompiledModel {
         let model = &self.model;
         let stop = make_stop(py, progress);
         let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
-        output_to_dict(py, model, &out)
+        output_to_dict(py, &out)
     }
 
     /// The ideal counterpart: every clearance joint made a revolute joint.
@@ -458,18 +459,12 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, sett
         }
         list.iter().map(|d| read_settings(d.as_any())).collect::<PyResult<Vec<_>>>()?
     };
-    for rs in &settings {
-        rs.validate().map_err(|e| to_pyerr(py, &e))?;
-    }
     let stop = make_stop(py, None);
     let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
-    for (d, o) in descs.iter().zip(outs) {
+    for o in outs {
         match o {
-            Ok(out) => {
-                let model = Model::compile(d).map_err(|e| to_pyerr(py, &e))?;
-                res.push(output_to_dict(py, &model, &out)?.into_any());
-            }
+            Ok(out) => res.push(output_to_dict(py, &out)?.into_any()),
             Err(e) => res.push(to_pyerr(py, &e).value(py).clone().into_any()),
         }
     }
@@ -508,7 +503,7 @@ fn film_force(py: Python<'_>, film: &str, viscosity: f64, journal_radius: f64, c
         }
     }
     if model == FilmModel::Finite {
-        crate::model::check_finite_bearing_ratio("film", length / (2.0 * journal_radius)).map_err(|e| to_pyerr(py, &e))?;
+        crate::compile::check_finite_bearing_ratio("film", length / (2.0 * journal_radius)).map_err(|e| to_pyerr(py, &e))?;
     }
     let g = BearingGeometry { viscosity, journal_radius, clearance, length };
     Ok(py.detach(|| {

@@ -7,7 +7,8 @@
 use std::path::PathBuf;
 
 use clearsim::assembly::assemble;
-use clearsim::model::{MechanismDesc, Model};
+use clearsim::description::MechanismDesc;
+use clearsim::model::Model;
 
 /// One crank cycle of the nine-bar at ω = −5π rad/s [s].
 pub const NINE_BAR_CYCLE: f64 = 0.4;
@@ -44,7 +45,7 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
 pub fn description(name: &str) -> MechanismDesc {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(format!("{name}.json"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e} (run python benches/fixtures.py)", path.display()));
-    clearsim::model::from_json(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    clearsim::description::from_json(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// The compiled model of fixture `name`.
@@ -65,7 +66,7 @@ pub fn initial_state(model: &Model) -> Vec<f64> {
 /// given a dry clearance (0.1 mm on a 5 mm pin) instead of an ideal revolute: the scaling model of
 /// `benches/chain.rs` (2 constraint rows per ideal joint).
 pub fn chain(n: usize, clearance_at: &[usize]) -> MechanismDesc {
-    use clearsim::model::{BodyDesc, ClearanceJointDesc, ClearanceModelDesc, DryDesc, JointDesc};
+    use clearsim::description::{BodyDesc, ClearanceJointDesc, ClearanceModelDesc, DryDesc, JointDesc};
     let (l, angle) = (0.1, -std::f64::consts::FRAC_PI_6);
     let (dx, dy) = (l * angle.cos(), l * angle.sin());
     let bodies = (0..n)

@@ -42,7 +42,7 @@ stats = lazy("scipy.stats")
 
 __all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "LifeModel", "StudyBlocks", "life", "study_life", "MAX_GROWTH", "WEAR_BINS"]
 
-#: Bins around each worn surface (rust/wear.rs WEAR_BINS).
+#: Bins around each worn surface (rust/clearance/wear.rs WEAR_BINS).
 WEAR_BINS = 360
 #: Default growth of the deepest-wearing bin per jump, as a fraction of the clearance: on the
 #: 200-cycle check (docs/reliability.md, "Reliability over life") 2 % keeps the peak and the worn volume within 3 %.

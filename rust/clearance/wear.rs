@@ -1,27 +1,21 @@
-//! Archard wear at dry clearance contacts (docs/physics.md §12): the worn volume grows as
-//! dV = (k/H) F_N |v_slip| dt (k the dimensionless wear coefficient, H the hardness \[Pa\]) and
-//! is laid down where the contact is, as a depth around the bearing and around the journal,
-//! dh = dV / (L R Δφ) in bins of Δφ = 2π/[`WEAR_BINS`] (L the bearing length, R the radius of
-//! the worn surface). Integrated along every accepted step (Simpson's rule, with the step's
-//! midpoint from the dense output), so the depth does not depend on the output grid.
+//! The wear books of a revolute clearance joint (docs/physics.md §12): the volume that
+//! Archard's law ([`crate::laws::wear`]) wears is laid down where the contact is, as a depth
+//! around the bearing and around the journal, dh = dV / (L R Δφ) in bins of
+//! Δφ = 2π/[`WEAR_BINS`] (L the bearing length, R the radius of the worn surface). Integrated
+//! along every accepted step (Simpson's rule, with the step's midpoint from the dense output), so
+//! the depth does not depend on the output grid.
+//!
 //! A run may start from depths worn before it (`initial_bearing`, `initial_journal` of the
-//! description); with `feedback` the contact law sees the worn surfaces.
+//! description). With [`Archard::feedback`] the wear is fed back: after every accepted step the
+//! depth worn at the contact direction ([`WearBook::depth_at`]) becomes the joint's
+//! `ImpactMemory::wear_offset`, and the contact law measures the penetration from the worn
+//! surfaces (from the first step when the run starts worn).
 
-use crate::clearance::{ClearanceJoint, JointForce, JointKinematics};
+use super::{ClearanceJoint, JointForce, JointKinematics};
+use crate::laws::wear::Archard;
 
 /// Bins around each worn surface (1° each).
 pub const WEAR_BINS: usize = 360;
-
-/// Archard's law for one joint.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Archard {
-    /// Wear coefficient k over hardness H [1/Pa].
-    pub k_over_h: f64,
-    /// Bearing (contact) length L \[m\].
-    pub length: f64,
-    /// Feed the worn depth back into the contact: the clearance grows where it wears.
-    pub feedback: bool,
-}
 
 /// What a contact wears at one instant: the volume rate [m³/s] and the contact's angle on the
 /// bearing and on the journal \[rad\], counter-clockwise from each body's x axis.
@@ -38,7 +32,7 @@ impl WearRate {
     pub fn new(law: &Archard, k: &JointKinematics, f: &JointForce, theta_bearing: f64, theta_journal: f64) -> Self {
         let direction = k.n.y.atan2(k.n.x);
         WearRate {
-            volume_rate: law.k_over_h * (f.w_dry * f.normal).max(0.0) * k.slip.abs(),
+            volume_rate: law.volume_rate((f.w_dry * f.normal).max(0.0), k.slip.abs()),
             angle_bearing: direction - theta_bearing,
             angle_journal: direction - theta_journal,
         }

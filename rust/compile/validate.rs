@@ -2,7 +2,7 @@
 
 use std::collections::HashSet;
 
-use super::description::*;
+use crate::description::*;
 use crate::error::{Error, Result};
 
 /// A number as it appears in a message: plain for ordinary magnitudes, scientific for very
@@ -117,7 +117,7 @@ pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
         positive(&format!("{f}.wear.hardness"), w.hardness)?;
         positive(&format!("{f}.wear.length"), w.length)?;
         for (name, depths) in [("initial_bearing", &w.initial_bearing), ("initial_journal", &w.initial_journal)] {
-            let n = crate::wear::WEAR_BINS;
+            let n = crate::clearance::wear::WEAR_BINS;
             if !depths.is_empty() && depths.len() != n {
                 return Err(Error::invalid(format!("{f}.wear.{name}"), format!("{} depths", depths.len()), format!("must hold {n} depths (1° bins) or none")));
             }
@@ -258,7 +258,7 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 positive(&format!("{f}.viscosity"), l.viscosity)?;
                 positive(&format!("{f}.length"), l.length)?;
                 if l.film == crate::laws::FilmModel::Finite {
-                    super::check_finite_bearing_ratio(&format!("{f}.film"), l.length / (2.0 * c.journal_radius))?;
+                    check_finite_bearing_ratio(&format!("{f}.film"), l.length / (2.0 * c.journal_radius))?;
                 } else if l.supply != crate::laws::FilmSupply::WidestGap {
                     return Err(Error::invalid(
                         format!("{f}.supply"),
@@ -426,6 +426,23 @@ fn validate_force(fd: &ForceDesc, nb: usize) -> Result<()> {
                 return Err(Error::invalid(format!("{f}.no_load_speed"), 0, "must not be zero (its sign is the direction of rotation)"));
             }
         }
+    }
+    Ok(())
+}
+
+/// L/D range of `film = "finite"`: its table is built by a Reynolds solve whose cost grows
+/// beyond it; outside it the short (L/D small) or long (L/D large) closed forms apply.
+pub const FINITE_BEARING_L_OVER_D: (f64, f64) = (1.0 / 16.0, 16.0);
+
+/// An `InputError` unless `l_over_d` lies in [`FINITE_BEARING_L_OVER_D`].
+pub fn check_finite_bearing_ratio(field: &str, l_over_d: f64) -> Result<()> {
+    let (lo, hi) = FINITE_BEARING_L_OVER_D;
+    if !(lo..=hi).contains(&l_over_d) {
+        return Err(Error::invalid(
+            field.to_string(),
+            "finite",
+            format!("the finite bearing covers {lo} ≤ L/D ≤ {hi}, this one has L/D = {l_over_d:.4}: use film = \"short\" (L/D < 1/16) or \"long\" (L/D > 16)"),
+        ));
     }
     Ok(())
 }

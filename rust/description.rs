@@ -1,5 +1,6 @@
-//! The plain-data description of a mechanism, as the Python layer or a scene file gives it.
-//! Validated by [`super::Model::compile`]; nothing here is used in the hot path.
+//! The plain-data description of a mechanism, as the Python layer or a scene file gives it
+//! (through serde), and its ideal counterpart ([`MechanismDesc::idealized`]). Checked and
+//! compiled by [`crate::model::Model::compile`]; nothing here is used in the hot path.
 
 use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
@@ -110,7 +111,7 @@ pub struct WearDesc {
     #[cfg_attr(feature = "serde", serde(default))]
     pub feedback: bool,
     /// Depth \[m\] already worn at the start of the run, in the 1° bins of
-    /// [`crate::wear::WEAR_BINS`] around the bearing and around the journal (each body's frame);
+    /// [`crate::clearance::wear::WEAR_BINS`] around the bearing and around the journal (each body's frame);
     /// empty: unworn. Lets a run start from the worn state of an earlier one (reliability over life).
     #[cfg_attr(feature = "serde", serde(default))]
     pub initial_bearing: Vec<f64>,
@@ -340,6 +341,14 @@ impl ForceDesc {
     }
 }
 
+impl JointDesc {
+    pub fn name(&self) -> &str {
+        match self {
+            JointDesc::Revolute { name, .. } | JointDesc::Prismatic { name, .. } => name,
+        }
+    }
+}
+
 /// Everything needed to compile a model.
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default))]
@@ -371,6 +380,33 @@ impl Default for MechanismDesc {
             gravity: [0.0, -9.81],
             baumgarte: [50.0, 50.0],
         }
+    }
+}
+
+impl MechanismDesc {
+    /// The ideal mechanism (docs/physics.md §5): every revolute clearance joint replaced by a
+    /// revolute joint between its bearing and journal points, every prismatic clearance joint
+    /// by a prismatic joint along its guide; the clearance joints' laws are dropped.
+    ///
+    /// Each new joint goes to its place in name order (after any equal name), so that joints
+    /// sorted by name (as the Python layer writes every description, so that no answer depends
+    /// on the order elements were defined in) stay sorted: the ideal mechanism's equations then
+    /// come in the same order as if it had been built ideal.
+    pub fn idealized(&self) -> MechanismDesc {
+        let mut d = self.clone();
+        let insert = |joints: &mut Vec<JointDesc>, joint: JointDesc| {
+            let k = joints.partition_point(|j| j.name() <= joint.name());
+            joints.insert(k, joint);
+        };
+        for c in d.clearance_joints.drain(..) {
+            let joint = JointDesc::Revolute { name: c.name, body_a: c.bearing_body, point_a: c.bearing_point, body_b: c.journal_body, point_b: c.journal_point };
+            insert(&mut d.joints, joint);
+        }
+        for p in d.prismatic_clearance_joints.drain(..) {
+            let joint = JointDesc::Prismatic { name: p.name, body_a: p.guide_body, point_a: p.guide_point, axis: p.axis, body_b: p.slider_body, point_b: [0.0, 0.0] };
+            insert(&mut d.joints, joint);
+        }
+        d
     }
 }
 

@@ -1,0 +1,283 @@
+//! What a run observes along its accepted steps besides the recorded samples: the monitors'
+//! extremes between the output times (rust/monitor.rs), the work integrals of the energy balance
+//! (rust/energy.rs, docs/physics.md §10.5) and the wear books (rust/clearance/wear.rs, §12).
+
+use super::MechanismSystem;
+use crate::clearance::wear::WearRate;
+use crate::energy::Powers;
+use crate::error::Result;
+use crate::integrate::DenseOutput;
+use crate::monitor::{golden_section, Quantity};
+
+impl MechanismSystem<'_> {
+    /// Feed every monitor its quantity at (t, y): a coordinate of q or q̇, or of q̈ from the
+    /// KKT solve (one solve for all monitors that need it).
+    pub(super) fn observe(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration) {
+            self.ws.evaluate(self.model, &self.memory, t, y)?;
+        }
+        for j in 0..self.monitors.len() {
+            let v = self.monitored_value(j, y);
+            self.monitors[j].observe(t, v);
+        }
+        Ok(())
+    }
+
+    /// Monitor `j`'s quantity at state `y` (accelerations: from the last KKT solve).
+    pub(super) fn monitored_value(&self, j: usize, y: &[f64]) -> f64 {
+        let spec = &self.monitors[j].spec;
+        let c = spec.coordinate;
+        let nq = 3 * self.model.n_bodies();
+        match spec.quantity {
+            Quantity::Displacement => y[c],
+            Quantity::Velocity => y[nq + c],
+            Quantity::Acceleration => self.ws.qdd[c],
+            q => {
+                let k = self.joint_kinematics(c, y);
+                if q == Quantity::Eccentricity {
+                    return k.eps;
+                }
+                let joint = &self.model.clearance[c];
+                let f = joint.force(&k, &self.memory[c]);
+                match q {
+                    Quantity::Force => f.total.norm(),
+                    Quantity::ContactForce => f.normal,
+                    Quantity::FilmForce => f.film_xi.hypot(f.film_eta),
+                    _ => {
+                        let (w_b, w_j) = crate::clearance::body_rates(joint, &y[nq..2 * nq]);
+                        let r = joint.readings(&k, &f, w_b, w_j);
+                        match q {
+                            Quantity::FilmThickness => r.film_thickness,
+                            Quantity::FrictionTorque => r.torque_journal,
+                            _ => r.power_loss,
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Feed the monitors the initial state.
+    pub fn observe_start(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        self.observe(t, y)
+    }
+
+    /// The powers of [`EnergyBook::powers`] at (t, y) (a full evaluation).
+    fn powers(&mut self, t: f64, y: &[f64]) -> Result<Powers> {
+        self.ws.evaluate(self.model, &self.memory, t, y)?;
+        let n = 3 * self.model.n_bodies();
+        let mut book = self.energy.take().unwrap_or_default();
+        let p = book.powers(self.model, &self.ws, &self.memory, t, &y[n..2 * n]);
+        self.energy = Some(book);
+        Ok(p)
+    }
+
+    /// Joint `j`'s wear rate at state `y` (its law; no KKT solve).
+    fn wear_rate(&self, j: usize, y: &[f64]) -> WearRate {
+        let joint = &self.model.clearance[j];
+        let Some(law) = joint.wear else { return WearRate::default() };
+        let k = self.joint_kinematics(j, y);
+        let f = joint.force(&k, &self.memory[j]);
+        let th = |b: Option<u32>| b.map_or(0.0, |i| y[3 * i as usize + 2]);
+        WearRate::new(&law, &k, &f, th(joint.bearing), th(joint.journal))
+    }
+
+    /// The worn depth at joint `j`'s current contact direction, for its contact law (only when
+    /// its wear is fed back; the offset stays 0 otherwise).
+    fn update_wear_offset(&mut self, j: usize, y: &[f64]) {
+        let joint = &self.model.clearance[j];
+        let (Some(book), Some(true)) = (self.wear[j].as_ref(), joint.wear.map(|w| w.feedback)) else { return };
+        let k = self.joint_kinematics(j, y);
+        let th = |b: Option<u32>| b.map_or(0.0, |i| y[3 * i as usize + 2]);
+        self.memory[j].wear_offset = book.depth_at(k.n.y.atan2(k.n.x), th(joint.bearing), th(joint.journal));
+    }
+
+    /// Start the wear books at the initial state (a run that starts worn feeds its depth back
+    /// from the first step).
+    pub fn wear_start(&mut self, t: f64, y: &[f64]) {
+        for j in 0..self.wear.len() {
+            if self.wear[j].is_some() {
+                self.update_wear_offset(j, y);
+                let r = self.wear_rate(j, y);
+                let mark = self.wear_mark.is_some_and(|m| m <= t);
+                if let Some(w) = self.wear[j].as_mut() {
+                    w.start(r);
+                    if mark {
+                        w.at_mark = Some(w.snapshot());
+                    }
+                }
+            }
+        }
+    }
+
+    /// Start the work integrals at the initial state.
+    pub fn energy_start(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        if self.energy.is_some() {
+            let p = self.powers(t, y)?;
+            if let Some(b) = self.energy.as_mut() {
+                b.start(t, p);
+            }
+        }
+        Ok(())
+    }
+
+    /// Feed the monitors `samples_per_step` points of the accepted step (t0, t1], the last at
+    /// t1. Positions and velocities are read off the dense output. Accelerations come from the
+    /// step's own f(t1, y1) when the method has it (else a KKT solve at t1) and, inside the
+    /// step, from the time derivative of the dense velocity (central difference over a quarter
+    /// of the point spacing); the interior point where that estimate deviates most from the
+    /// reference is then solved exactly, so a peak inside a step costs one KKT solve, not one
+    /// per point.
+    fn observe_step(&mut self, t0: f64, t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<()> {
+        let nm = self.monitors.len();
+        let k = self.monitors.iter().map(|m| m.spec.samples_per_step).max().unwrap_or(1).max(1);
+        let nq = 3 * self.model.n_bodies();
+        let h = t1 - t0;
+        let any_acc = self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration);
+        if self.monitor_values.len() < k * nm {
+            self.monitor_values.resize(k * nm, 0.0); // once per run
+        }
+        let mut s = std::mem::take(&mut self.scratch);
+        let at = |i: usize| if i + 1 == k { t1 } else { t0 + h * (i + 1) as f64 / k as f64 };
+        // A joint quantity needs the whole state; body coordinates only their own component.
+        let whole_state = self.monitors.iter().any(|m| m.spec.quantity.of_joint());
+        let d = 0.25 * h / k as f64;
+        for i in 0..k - 1 {
+            let t = at(i);
+            if whole_state {
+                dense.eval(t, &mut s);
+            }
+            for j in 0..nm {
+                let spec = &self.monitors[j].spec;
+                let c = spec.coordinate;
+                self.monitor_values[i * nm + j] = match spec.quantity {
+                    Quantity::Displacement => dense.eval_component(t, c),
+                    Quantity::Velocity => dense.eval_component(t, nq + c),
+                    Quantity::Acceleration => (dense.eval_component(t + d, nq + c) - dense.eval_component(t - d, nq + c)) / (2.0 * d),
+                    _ => self.monitored_value(j, &s),
+                };
+            }
+        }
+        // Refine the largest interior acceleration error of each monitor with a KKT solve.
+        let mut result = Ok(());
+        for j in 0..nm {
+            if self.monitors[j].spec.quantity != Quantity::Acceleration || self.monitors[j].spec.exact || k < 2 {
+                continue;
+            }
+            let m = &self.monitors[j];
+            let (imax, _) = (0..k - 1).fold((usize::MAX, -1.0f64), |best, i| {
+                let e = m.error(at(i), self.monitor_values[i * nm + j]).abs();
+                if e > best.1 { (i, e) } else { best }
+            });
+            if imax == usize::MAX {
+                continue;
+            }
+            dense.eval(at(imax), &mut s);
+            if let Err(e) = self.ws.evaluate(self.model, &self.memory, at(imax), &s) {
+                result = Err(e);
+                break;
+            }
+            for (jj, mm) in self.monitors.iter().enumerate() {
+                if mm.spec.quantity == Quantity::Acceleration {
+                    self.monitor_values[imax * nm + jj] = self.ws.qdd[mm.spec.coordinate];
+                }
+            }
+        }
+        // The acceleration at t1: the explicit methods' last stage f(t1, y1) holds it (same
+        // memory), otherwise one KKT solve — done last, so that the workspace still holds it
+        // when the implicit methods ask for f(t1, y1) next (`Workspace::evaluate_and_keep`).
+        let end_rate = if any_acc { dense.end_rate() } else { None };
+        if any_acc && end_rate.is_none() {
+            result = result.and_then(|()| self.ws.evaluate_and_keep(self.model, &self.memory, t1, y1));
+        }
+        for j in 0..nm {
+            let m = &self.monitors[j].spec;
+            self.monitor_values[(k - 1) * nm + j] = match end_rate {
+                Some(f1) if m.quantity == Quantity::Acceleration => f1[nq + m.coordinate],
+                _ => self.monitored_value(j, y1),
+            };
+        }
+        self.scratch = s;
+        result?;
+        for i in 0..k {
+            for j in 0..nm {
+                let v = self.monitor_values[i * nm + j];
+                self.monitors[j].observe(at(i), v);
+            }
+        }
+        if self.monitors.iter().any(|m| m.spec.exact) {
+            self.search_extremes(dense)?;
+        }
+        Ok(())
+    }
+
+    /// Locate the extremes of the exact monitors between the samples of the step just observed
+    /// (rust/monitor.rs: `Monitor::search_bracket`, `golden_section`).
+    fn search_extremes(&mut self, dense: &dyn DenseOutput) -> Result<()> {
+        let mut s = std::mem::take(&mut self.scratch);
+        let mut result = Ok(());
+        for j in 0..self.monitors.len() {
+            for sign in [1.0, -1.0] {
+                let Some((a, b)) = self.monitors[j].search_bracket(sign) else { continue };
+                let found = golden_section(a, b, |t| {
+                    dense.eval(t, &mut s);
+                    if self.monitors[j].spec.quantity == Quantity::Acceleration {
+                        self.ws.evaluate(self.model, &self.memory, t, &s)?;
+                    }
+                    Ok(sign * self.monitors[j].error(t, self.monitored_value(j, &s)))
+                });
+                match found {
+                    Ok((t, v)) => self.monitors[j].record_extreme(t, sign * v),
+                    Err(e) => result = Err(e),
+                }
+            }
+            self.monitors[j].end_step();
+        }
+        self.scratch = s;
+        result
+    }
+
+    /// Integrate the work and the wear over the accepted step (t0, t1] and feed the monitors its
+    /// points, all with the impact memory the step was integrated with (§10.5, §12).
+    pub(super) fn observe_accepted_step(&mut self, t0: f64, t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<()> {
+        if self.energy.is_some() {
+            // The step's powers with the impact memory it was integrated with (§10.5).
+            let tm = 0.5 * (t0 + t1);
+            let mut s = std::mem::take(&mut self.scratch);
+            dense.eval(tm, &mut s);
+            let pm = self.powers(tm, &s);
+            self.scratch = s;
+            let (pm, p1) = (pm?, self.powers(t1, y1)?);
+            if let Some(b) = self.energy.as_mut() {
+                b.step(t0, t1, pm, p1);
+            }
+        }
+        if self.wear.iter().any(Option::is_some) {
+            // Wear of the step, with the impact memory it was integrated with (§12).
+            let mut s = std::mem::take(&mut self.scratch);
+            dense.eval(0.5 * (t0 + t1), &mut s);
+            for j in 0..self.wear.len() {
+                if self.wear[j].is_some() {
+                    let (mid, end) = (self.wear_rate(j, &s), self.wear_rate(j, y1));
+                    let mark = self.wear_mark.filter(|m| *m > t0 && *m <= t1);
+                    if let Some(w) = self.wear[j].as_mut() {
+                        let before = mark.map(|_| w.snapshot());
+                        w.step(t1 - t0, mid, end);
+                        if let (Some(m), Some(b)) = (mark, before) {
+                            // The books at the mark: linear in time within the step.
+                            w.mark_between(b, (m - t0) / (t1 - t0));
+                        }
+                    }
+                    self.update_wear_offset(j, y1);
+                }
+            }
+            self.scratch = s;
+        }
+        // Monitors and outputs inside the step see the impact memory the step was integrated
+        // with: a contact that ends at t1 still used its δ̇⁽⁻⁾ inside the step (P3).
+        if !self.monitors.is_empty() {
+            self.observe_step(t0, t1, y1, dense)?;
+        }
+        Ok(())
+    }
+}
