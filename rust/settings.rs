@@ -1,7 +1,7 @@
 //! Run settings: what one run is asked ([`RunSettings`]) and every check of them, in one place:
 //! [`RunSettings::validate`] (once per run or batch, when the settings arrive) and
 //! [`RunSettings::validate_for`] (the monitors against the compiled model, once per run). With
-//! the `serde` feature also the settings as they arrive from Python ([`RunSettingsDesc`]: a plain
+//! the `serde` feature also the settings as they arrive from Python (`RunSettingsDesc`: a plain
 //! dict, through serde like the mechanism description, the keys `clearsim.Mechanism.run_settings`
 //! writes; an unknown key is an error, not ignored) and their conversion.
 
@@ -39,7 +39,7 @@ impl RunSettings {
     }
 
     /// Every check of the settings on their own (times, tolerances, step limits, output times,
-    /// monitor specs): done once, by [`RunSettingsDesc::into_settings`] for what comes from Python;
+    /// monitor specs): done once, by `RunSettingsDesc::into_settings` for what comes from Python;
     /// a Rust caller that builds [`RunSettings`] itself calls it before [`crate::simulate::simulate`].
     pub fn validate(&self) -> Result<()> {
         let fin = |f: &str, v: f64| if v.is_finite() { Ok(()) } else { Err(Error::invalid(f, v, "must be a finite number")) };

@@ -56,7 +56,7 @@ pub fn cache_dir() -> Option<PathBuf> {
     std::env::var_os("HOME").filter(|v| !v.is_empty()).map(|h| PathBuf::from(h).join(".cache").join("clearsim"))
 }
 
-/// Tables shipped inside the library, in the disk cache's format ([`encode`]): the paper's
+/// Tables shipped inside the library, in the disk cache's format (`encode`): the paper's
 /// bearing (L/D = 2.5, k = 2R/L as the nine-bar computes it) under both supply conventions, so
 /// that `clearsim paper` solves none on a first run. A test checks them against a fresh solve
 /// (`shipped_tables_match_a_fresh_solve`); after a change of the solver (and of
