@@ -79,6 +79,14 @@ def test_a_constant_viscosity_keeps_the_old_film_and_heats_as_the_closed_form() 
         plain.temperature("pin")
 
 
+def test_the_temperature_does_not_depend_on_the_output_grid() -> None:
+    thermal = clearsim.Thermal(ambient=T_AMB, heat_capacity=0.01, heat_transfer=0.1, initial=320.0)
+    m = rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=thermal))
+    fine, coarse = (m.simulate(0.4, dt_out=dt, progress=False) for dt in (0.01, 0.1))
+    assert fine.temperature("pin")[0] == 320.0
+    assert np.array_equal(fine.temperature("pin")[::10], coarse.temperature("pin"))
+
+
 def test_bad_heat_input_names_its_field() -> None:
     with pytest.raises(clearsim.InputError, match="thermal"):
         clearsim.Lubricated(viscosity=OIL, length=L)  # a Vogel law needs the temperature
@@ -87,6 +95,11 @@ def test_bad_heat_input_names_its_field() -> None:
     cold = clearsim.Thermal(ambient=150.0, heat_capacity=0.01, heat_transfer=0.1)
     with pytest.raises(clearsim.InputError, match="ambient"):
         rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=cold)).simulate(0.01, progress=False)
+    frozen = clearsim.Thermal(ambient=T_AMB, heat_capacity=0.01, heat_transfer=0.1, initial=164.0)
+    with pytest.raises(clearsim.InputError, match=r"'pin'\.thermal\.initial"):
+        rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=frozen)).simulate(0.01, progress=False)
+    with pytest.raises(clearsim.InputError, match="vogel"):
+        clearsim.Lubricated(viscosity=clearsim.Vogel(1e-4, -5.0, 164.0), length=L, thermal=frozen)
 
 
 def test_the_scene_keys(tmp_path: "object") -> None:
