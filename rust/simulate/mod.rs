@@ -187,6 +187,9 @@ impl OdeSystem for MechanismSystem<'_> {
         self.step_memory.copy_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
+        // A viscosity that followed the oil temperature changed f(t1, y1): an explicit method's
+        // last stage is stale (rust/clearance/thermal.rs).
+        let heated = self.memory.iter().zip(&self.step_memory).any(|(a, b)| a.viscosity != b.viscosity);
         self.last_t = t1;
         self.last_y.copy_from_slice(y1);
         self.accepted += 1;
@@ -204,7 +207,7 @@ impl OdeSystem for MechanismSystem<'_> {
                 }
             }
         }
-        Ok(changed)
+        Ok(changed || heated)
     }
 
     /// See newton.rs.
