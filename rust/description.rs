@@ -129,8 +129,8 @@ pub struct LubricatedDesc {
     /// on the line of the widest gap (default) or nowhere (a periodic film).
     #[cfg_attr(feature = "serde", serde(default))]
     pub supply: FilmSupply,
-    /// Dynamic viscosity μ [Pa s].
-    pub viscosity: f64,
+    /// Dynamic viscosity: a constant μ [Pa s] or Vogel's law of the oil temperature (with `thermal`).
+    pub viscosity: ViscosityDesc,
     /// Bearing length L \[m\].
     pub length: f64,
     /// Small-eccentricity threshold ε0 and exponent m (P15–P16); default 2e-6 and 0.5.
@@ -156,6 +156,36 @@ pub struct LubricatedDesc {
     /// law's friction coefficient.
     #[cfg_attr(feature = "serde", serde(default))]
     pub boundary_friction: Option<f64>,
+    /// The oil temperature's heat balance (docs/physics.md §4, *Heat*); `None`: no temperature.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub thermal: Option<ThermalDesc>,
+}
+
+/// The viscosity of a lubricated joint: `0.4` or `{vogel = [a, b, c]}`.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(untagged))]
+#[derive(Debug, Clone, PartialEq)]
+pub enum ViscosityDesc {
+    /// μ [Pa s].
+    Constant(f64),
+    /// Vogel's law μ = a exp(b/(T − c)): a \[Pa s\], b and c \[K\] ([`crate::laws::viscosity::Vogel`]).
+    Vogel { vogel: [f64; 3] },
+}
+
+/// The lumped heat balance C dT/dt = P_loss − hA (T − T_ambient) of a lubricated joint.
+#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThermalDesc {
+    /// Ambient temperature \[K\].
+    pub ambient: f64,
+    /// Heat capacity C \[J/K\].
+    pub heat_capacity: f64,
+    /// Heat transfer hA \[W/K\].
+    pub heat_transfer: f64,
+    /// Oil temperature at the start \[K\]; `None`: the ambient.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub initial: Option<f64>,
 }
 
 #[cfg_attr(feature = "serde", derive(serde::Deserialize))]

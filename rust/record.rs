@@ -57,6 +57,9 @@ pub struct Recording {
     pub violation: Vec<f64>,
     /// `ENERGY_COLUMNS.len()` per output time.
     pub energy: Vec<f64>,
+    /// The oil temperature \[K\] of each clearance joint per output time, when any joint models
+    /// it (rust/clearance/thermal.rs; NaN for the joints that do not); empty otherwise.
+    pub temperature: Vec<f64>,
     /// The clearance joints whose readings the `joints` channel stores (empty without it).
     readers: Vec<crate::clearance::ClearanceJoint>,
 }
@@ -78,6 +81,7 @@ impl Recording {
             joints: cap(channels.joints, JOINT_COLUMNS.len() * model.clearance.len()),
             violation: cap(channels.violation, 2),
             energy: cap(channels.energy, crate::energy::ENERGY_COLUMNS.len()),
+            temperature: Vec::new(),
             readers: if channels.joints { model.clearance.clone() } else { Vec::new() },
         }
     }
@@ -87,8 +91,9 @@ impl Recording {
         self.channels.is_some_and(|c| c.accelerations || c.reactions || c.joints || c.violation || c.energy)
     }
 
-    /// Store one output row from the state and the workspace of its evaluation.
-    pub fn push(&mut self, t: f64, y: &[f64], ws: &Workspace) {
+    /// Store one output row from the state and the workspace of its evaluation (with the joints'
+    /// `memory` it was evaluated with).
+    pub fn push(&mut self, t: f64, y: &[f64], ws: &Workspace, memory: &[crate::clearance::ImpactMemory]) {
         let ch = self.channels.unwrap_or_default();
         let n = ws.qdd.len();
         self.t.push(t);
@@ -103,7 +108,7 @@ impl Recording {
             self.lambda.extend_from_slice(&ws.lambda);
         }
         if ch.joints {
-            for ((k, f), joint) in ws.joint_kin.iter().zip(&ws.joint_force).zip(&self.readers) {
+            for (((k, f), joint), mem) in ws.joint_kin.iter().zip(&ws.joint_force).zip(&self.readers).zip(memory) {
                 self.joints.extend_from_slice(&[
                     k.e_vec.x,
                     k.e_vec.y,
@@ -119,7 +124,7 @@ impl Recording {
                     f.state as f64,
                 ]);
                 let (w_b, w_j) = crate::clearance::body_rates(joint, &y[n..2 * n]);
-                self.joints.extend_from_slice(&joint.readings(k, f, w_b, w_j).columns());
+                self.joints.extend_from_slice(&joint.readings(k, f, mem, w_b, w_j).columns());
             }
         }
         if ch.violation {

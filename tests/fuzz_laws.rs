@@ -175,6 +175,7 @@ fn joint(lubricated: bool, law: NormalLaw, film: FilmModel, c: f64, r_j: f64, ce
             e0: 0.05 * c,
             eps_max: 0.99,
             mixed: None,
+            heat: None,
         }),
         guide_normal: None,
         penetration_limit: c.max(0.05 * r_j),
@@ -205,7 +206,7 @@ proptest! {
         let kin = [bearing, journal];
         let k: JointKinematics = j.kinematics(&kin);
         prop_assert!(k.eps.is_finite() && k.eps_dot.is_finite() && k.wedge.is_finite() && k.slip.is_finite(), "{k:?}");
-        let mem = ImpactMemory { in_contact, impact_speed: impact.abs(), impacts: 0, wear_offset: 0.0 };
+        let mem = ImpactMemory { in_contact, impact_speed: impact.abs(), impacts: 0, wear_offset: 0.0, viscosity: 0.0 };
         let f = j.force(&k, &mem);
         prop_assert!(f.total.x.is_finite() && f.total.y.is_finite(), "force {f:?} at {k:?}");
         prop_assert!(f.normal >= 0.0 && (0.0..=1.0).contains(&f.w_dry));
@@ -275,7 +276,7 @@ fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> M
         ClearanceModelDesc::Lubricated(LubricatedDesc {
             film: FilmModel::LongBearing,
             supply: clearsim::laws::FilmSupply::WidestGap,
-            viscosity: 0.04,
+            viscosity: ViscosityDesc::Constant(0.04),
             length: 0.04,
             eps0: 2e-6,
             m: 0.5,
@@ -284,6 +285,7 @@ fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> M
             dry,
             roughness: None,
             boundary_friction: None,
+            thermal: None,
         })
     } else {
         ClearanceModelDesc::Dry(dry)
@@ -338,7 +340,7 @@ proptest! {
         let mut y = model.q_guess.clone();
         for (v, d) in y.iter_mut().zip(&dq) { *v += d; }
         y.extend_from_slice(&qd);
-        let mem = vec![ImpactMemory { in_contact, impact_speed: impact, impacts: 0, wear_offset: 0.0 }; model.clearance.len()];
+        let mem = vec![ImpactMemory { in_contact, impact_speed: impact, impacts: 0, wear_offset: 0.0, viscosity: 0.0 }; model.clearance.len()];
         match ws.evaluate(&model, &mem, t, &y) {
             Ok(()) => {
                 prop_assert!(ws.qdd.iter().all(|v| v.is_finite()), "q̈ = {:?}", ws.qdd);
@@ -377,7 +379,7 @@ fn invalid_descriptions_are_errors_not_panics() {
         ("initial_eccentricity", Finite, |d, v| d.clearance_joints[0].initial_eccentricity[1] = v),
         ("gravity", Finite, |d, v| d.gravity[1] = v),
         ("baumgarte", Finite, |d, v| d.baumgarte[0] = v),
-        ("viscosity", Positive, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.viscosity = v }),
+        ("viscosity", Positive, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.viscosity = ViscosityDesc::Constant(v) }),
         ("eps0", NonNegative, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.eps0 = v }),
         ("restitution", NonNegative, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.dry.restitution = v }),
         ("v1", Positive, |d, v| if let ClearanceModelDesc::Lubricated(l) = &mut d.clearance_joints[0].model { l.dry.v1 = v }),

@@ -6,7 +6,7 @@ analyses the results. SI units throughout.
 
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, ReliabilityError, SimulationError
-from .joints import Archard, Dry, Lubricated
+from .joints import Archard, Dry, Lubricated, Thermal, Vogel
 from .mechanism import GROUND, Mechanism
 from .result import Result
 from . import models, reliability
@@ -35,4 +35,6 @@ __all__ = [
     "monte_carlo",
     "reliability",
     "set_progress",
+    "Thermal",
+    "Vogel",
 ]

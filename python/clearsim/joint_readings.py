@@ -14,7 +14,7 @@ from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 
-from .errors import check_choice
+from .errors import InputError, check_choice
 
 #: The summary's tracked quantities of every lubricated joint (rust/monitor.rs, ``Quantity``).
 FILM_MONITORED = ("film_thickness", "power_loss")
@@ -86,6 +86,25 @@ class JointReadings:
         a joint with ``Lubricated(roughness=σ)``: Greenwood & Tripp's pressure where the film is
         thinner than 4σ (docs/physics.md §4, *Roughness and mixed lubrication*); 0 without roughness."""
         return self._reading(joint, "asperity_force")
+
+    def temperature(self, joint: str) -> np.ndarray:
+        """(N,) effective oil temperature T [K] of a lubricated joint with
+        ``Lubricated(thermal=clearsim.Thermal(...))`` at each output time: C dT/dt = P_loss −
+        hA (T − T_ambient), advanced along every integration step (docs/physics.md §4, *Heat*)."""
+        if joint not in self.joint_names:
+            known = ", ".join(self.joint_names) or "none"
+            raise InputError(f"invalid joint = {joint!r}: no such clearance joint (known: {known})", field="joint", value=joint)
+        k = self.joint_names.index(joint)
+        temps = self._raw.get("temperature")
+        if temps is None or (self.description is not None and not self._has_thermal(joint)) or not np.isfinite(temps[:, k]).all():
+            raise InputError(f"invalid joint = {joint!r}: it models no oil temperature (give Lubricated(thermal=clearsim.Thermal(...)))", field="joint", value=joint)
+        return np.asarray(temps[:, k])
+
+    def _has_thermal(self, joint: str) -> bool:
+        for cj in (self.description or {}).get("clearance_joints", []):
+            if cj.get("name") == joint:
+                return bool(cj.get("model", {}).get("thermal"))
+        return False
 
     def _tracked(self, j: int, quantity: str) -> Optional[Dict[str, Any]]:
         results = self._raw.get("monitors") or []

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple, Union
 
 from .errors import InputError, check_choice, check_finite, check_positive
 
@@ -220,13 +220,86 @@ class Dry:
 
 
 @dataclass(frozen=True)
+class Vogel:
+    """Vogel's viscosity law of the oil temperature, μ(T) = a·exp(b/(T − c)) (Vogel 1921; the
+    core's ``rust/laws/viscosity.rs``, docs/physics.md §4, *Heat*), for ``Lubricated(viscosity=…)``
+    with ``thermal``. Valid for T > c.
+
+    Parameters
+    ----------
+    a:
+        Viscosity scale [Pa s] (> 0): μ as T → ∞.
+    b:
+        Temperature scale [K] (≥ 0).
+    c:
+        Temperature [K] at which the law's viscosity becomes infinite (below the oil's).
+    """
+
+    a: float
+    b: float
+    c: float
+
+    def __post_init__(self) -> None:
+        check_positive("viscosity.vogel.a", self.a)
+        _check_non_negative("viscosity.vogel.b", self.b)
+        check_finite("viscosity.vogel.c", self.c)
+
+    def viscosity(self, temperature: float) -> float:
+        """μ [Pa s] at ``temperature`` [K] (> c)."""
+        t = check_finite("temperature", temperature)
+        if t <= self.c:
+            raise InputError(f"invalid temperature = {temperature!r}: Vogel's law holds above c = {self.c:g} K", field="temperature", value=temperature)
+        return float(self.a * math.exp(self.b / (t - self.c)))
+
+
+@dataclass(frozen=True)
+class Thermal:
+    """One effective oil temperature T per lubricated joint (docs/physics.md §4, *Heat*):
+    C dT/dt = P_loss − hA (T − T_ambient), the film's power loss heating the oil and the parts
+    that follow its temperature, the ambient cooling them; with ``Lubricated(viscosity=Vogel(…))``
+    the film is evaluated at μ(T). Read back with :meth:`Result.temperature`.
+
+    Parameters
+    ----------
+    ambient:
+        Ambient temperature T_ambient [K].
+    heat_capacity:
+        Heat capacity C [J/K] of the oil and the parts at its temperature.
+    heat_transfer:
+        Heat transfer coefficient times area hA [W/K] to the ambient. The time constant C/hA [s]
+        sets how fast the oil settles.
+    initial:
+        Oil temperature at the start [K]; ``None`` (default): the ambient.
+    """
+
+    ambient: float
+    heat_capacity: float
+    heat_transfer: float
+    initial: Optional[float] = None
+
+    def __post_init__(self) -> None:
+        check_positive("thermal.ambient", self.ambient)
+        check_positive("thermal.heat_capacity", self.heat_capacity)
+        check_positive("thermal.heat_transfer", self.heat_transfer)
+        if self.initial is not None:
+            check_positive("thermal.initial", self.initial)
+
+    def _as_dict(self) -> Dict[str, Any]:
+        d: Dict[str, Any] = {"ambient": float(self.ambient), "heat_capacity": float(self.heat_capacity), "heat_transfer": float(self.heat_transfer)}
+        if self.initial is not None:
+            d["initial"] = float(self.initial)
+        return d
+
+
+@dataclass(frozen=True)
 class Lubricated:
     """Lubricated clearance: a hydrodynamic journal bearing with the transition to dry contact.
 
     Parameters
     ----------
     viscosity:
-        Dynamic viscosity μ [Pa s].
+        Dynamic viscosity μ [Pa s], or :class:`Vogel`'s law μ(T) of the oil temperature (with
+        ``thermal``: the film is evaluated at μ(T) along the run).
     length:
         Bearing length L [m].
     film:
@@ -270,9 +343,13 @@ class Lubricated:
     boundary_friction:
         Friction coefficient μ_b on the asperity load (with ``roughness``; default: the ``dry``
         law's ``friction``).
+    thermal:
+        :class:`Thermal`: the joint's effective oil temperature, heated by its power loss and
+        cooled to the ambient (docs/physics.md §4, *Heat*; :meth:`Result.temperature`). Needed by
+        a :class:`Vogel` viscosity; with a constant one the temperature is an output only.
     """
 
-    viscosity: float = 0.4
+    viscosity: Union[float, Vogel] = 0.4
     length: float = 0.05
     film: str = "long"
     eps0: float = 2e-6
@@ -283,11 +360,22 @@ class Lubricated:
     supply: str = "widest_gap"
     roughness: Optional[float] = None
     boundary_friction: Optional[float] = None
+    thermal: Optional[Thermal] = None
 
     def __post_init__(self) -> None:
         check_choice("film", self.film, FILM_MODELS)
         check_choice("supply", self.supply, FILM_SUPPLIES)
-        check_positive("viscosity", self.viscosity)
+        if self.thermal is not None and not isinstance(self.thermal, Thermal):
+            raise InputError(f"invalid thermal = {self.thermal!r}: must be clearsim.Thermal(...) or None", field="thermal", value=self.thermal)
+        if isinstance(self.viscosity, Vogel):
+            if self.thermal is None:
+                raise InputError(
+                    "invalid thermal = None: a Vogel viscosity needs the oil temperature: give thermal=clearsim.Thermal(ambient, heat_capacity, heat_transfer)",
+                    field="thermal",
+                    value=None,
+                )
+        else:
+            check_positive("viscosity", self.viscosity)
         check_positive("length", self.length)
         _check_range("eps0", self.eps0, 0.0, 1.0, False, True)
         _check_range("m", self.m, 0.0, 1.0, True, True)
@@ -312,7 +400,7 @@ class Lubricated:
             "kind": "lubricated",
             "film": self.film,
             "supply": self.supply,
-            "viscosity": self.viscosity,
+            "viscosity": {"vogel": [float(self.viscosity.a), float(self.viscosity.b), float(self.viscosity.c)]} if isinstance(self.viscosity, Vogel) else self.viscosity,
             "length": self.length,
             "eps0": self.eps0,
             "m": self.m,
@@ -325,4 +413,6 @@ class Lubricated:
             d["roughness"] = self.roughness
         if self.boundary_friction is not None:
             d["boundary_friction"] = self.boundary_friction
+        if self.thermal is not None:
+            d["thermal"] = self.thermal._as_dict()
         return d

@@ -47,7 +47,8 @@ def joint_findings(name: str, r_j: float, c: float, model: Dict[str, Any]) -> Li
             out.append((f"{j}.clearance", f"{j}.clearance = {c:g} m is {c / r_j:.3g} × the journal radius {r_j:g} m (machine bearings have "
                         "c/R_j ≈ 0.001): is it given in metres? clearsim takes the radial clearance in metres"))  # fmt: skip
         return out
-    mu = float(model["viscosity"])
+    # A Vogel law ({"vogel": [a, b, c]}) is checked in the core (T > c); a constant here.
+    mu = math.nan if isinstance(model["viscosity"], dict) else float(model["viscosity"])
     lo, hi = VISCOSITY_RANGE
     if mu > hi:
         out.append((f"{j}.viscosity", f"{j}.viscosity = {mu:g} Pa·s is above {hi:g} Pa·s, thicker than lubricating oils at their working "

@@ -66,6 +66,13 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
     # roughness = 0.5e-6             # m, composite RMS σ: Greenwood–Tripp asperities where
     # boundary_friction = 0.12       #   h < 4σ with friction μ_b, in place of the band e0
+    # viscosity = {vogel = [6.4e-5, 900.0, 164.0]}  # or Vogel's μ = a exp(b/(T − c)) [Pa s, K, K]
+    #                                #   of the oil temperature, which needs:
+    # [clearance_joint.lubricated.thermal]  # C dT/dt = P_loss − hA (T − T_ambient), docs/physics.md §4
+    # ambient = 313.15               # K
+    # heat_capacity = 50.0           # J/K, C
+    # heat_transfer = 1.0            # W/K, hA
+    # initial = 313.15               # K (default: ambient); read back as Result.temperature
 
     [[force]]                        # force elements and loads (docs/physics.md §10); type =
     type = "spring"                  #   spring | rotational_spring | force | torque | motor

@@ -9,7 +9,7 @@ import re
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from .errors import InputError
-from .joints import Archard, Dry, Lubricated
+from .joints import Archard, Dry, Lubricated, Thermal, Vogel
 from .mechanism import Mechanism
 from .toml_reader import REQUIRED, Source, Table, dotted_key
 
@@ -56,6 +56,20 @@ def _read_model(table: Table, cls: type) -> Any:
             assert sub is not None
             try:
                 kwargs["wear"] = Archard(sub.number("coefficient"), sub.number("hardness"), sub.number("length"), sub.boolean("feedback", False))
+            except InputError as err:
+                raise sub.error((err.field or "").split(".")[-1] or None, err.reason, err.value) from None
+        elif f.name == "viscosity" and isinstance(table.data.get("viscosity"), dict):
+            sub = table.table("viscosity", ("vogel",))
+            assert sub is not None
+            try:
+                kwargs["viscosity"] = Vogel(*sub.numbers("vogel", length=3))
+            except InputError as err:
+                raise sub.error("vogel", err.reason, err.value) from None
+        elif f.name == "thermal":
+            sub = table.table("thermal", _model_fields(Thermal))
+            assert sub is not None
+            try:
+                kwargs["thermal"] = Thermal(sub.number("ambient"), sub.number("heat_capacity"), sub.number("heat_transfer"), sub.number("initial", None))
             except InputError as err:
                 raise sub.error((err.field or "").split(".")[-1] or None, err.reason, err.value) from None
         elif isinstance(f.default, str):

@@ -13,11 +13,14 @@ pub struct ImpactMemory {
     /// Worn depth \[m\] at the contact direction, added to the clearance of the contact law when
     /// the joint's wear is fed back (updated after every accepted step; docs/physics.md §12).
     pub wear_offset: f64,
+    /// The film's viscosity \[Pa s\] when it follows the joint's oil temperature (updated after
+    /// every accepted step, rust/clearance/thermal.rs); 0: the film's constant viscosity.
+    pub viscosity: f64,
 }
 
 impl Default for ImpactMemory {
     fn default() -> Self {
-        ImpactMemory { in_contact: false, impact_speed: 0.0, impacts: 0, wear_offset: 0.0 }
+        ImpactMemory { in_contact: false, impact_speed: 0.0, impacts: 0, wear_offset: 0.0, viscosity: 0.0 }
     }
 }
 

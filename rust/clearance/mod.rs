@@ -8,6 +8,7 @@ pub mod kinematics;
 pub mod memory;
 pub mod mixed;
 pub mod readings;
+pub mod thermal;
 pub mod wear;
 
 pub use kinematics::JointKinematics;
@@ -81,6 +82,22 @@ pub struct Film {
     /// Rough surfaces (`Lubricated(roughness=σ)`): asperity load and boundary friction in
     /// place of the transition band ([`mixed`]); `None`: the band (P18).
     pub mixed: Option<mixed::Mixed>,
+    /// The oil temperature's balance and viscosity law (`Lubricated(thermal=…)`,
+    /// [`thermal`]); `None`: a constant viscosity and no temperature.
+    pub heat: Option<thermal::Heat>,
+}
+
+impl Film {
+    /// The bearing geometry with the viscosity the joint's `memory` holds (a temperature-
+    /// dependent one, [`ImpactMemory::viscosity`]), else the film's constant one.
+    #[inline]
+    pub fn geometry_at(&self, memory: &ImpactMemory) -> BearingGeometry {
+        if memory.viscosity > 0.0 {
+            BearingGeometry { viscosity: memory.viscosity, ..self.geometry }
+        } else {
+            self.geometry
+        }
+    }
 }
 
 /// A compiled clearance joint. The dry law is always present: for a lubricated joint it acts
@@ -187,12 +204,12 @@ impl ClearanceJoint {
         if let (Some(f), true) = (&self.film, w_film > 0.0) {
             let eps = film_eps(k.eps, f.eps_max);
             let s = FilmState { eps, eps_dot: k.eps_dot, wedge: k.wedge };
-            let (mut xi, mut eta) = film_force(f.model, &f.geometry, s, f.table);
+            let (mut xi, mut eta) = film_force(f.model, &f.geometry_at(memory), s, f.table);
             let w = centre_weight(f.model, k.eps);
             if w > 0.0 {
                 // Near the centre the long bearing's force depends on which side n points (its
                 // ambient-pressure point flips there): blend into its smooth first-order limit.
-                let (xc, ec) = crate::laws::long_bearing_centre_limit(&f.geometry, s);
+                let (xc, ec) = crate::laws::long_bearing_centre_limit(&f.geometry_at(memory), s);
                 xi = (1.0 - w) * xi + w * xc;
                 eta = (1.0 - w) * eta + w * ec;
             }
@@ -364,7 +381,7 @@ mod tests {
             clearance: c,
             contact: ContactLaw { line: None, law: NormalLaw::LankaraniNikravesh, stiffness: 1e10, exponent: 1.5, restitution: 0.9, impact_speed_floor: 1e-4 },
             friction: ModifiedCoulomb { friction_coefficient: 0.1, v0: 1e-4, v1: 1e-3 },
-            film: Some(Film { model, table: None, geometry, eps0: 2e-6, m: 0.5, e0: 0.05 * c, eps_max: 0.99, mixed: None }),
+            film: Some(Film { model, table: None, geometry, eps0: 2e-6, m: 0.5, e0: 0.05 * c, eps_max: 0.99, mixed: None, heat: None }),
             guide_normal: None,
             penetration_limit: c,
             wear: None,

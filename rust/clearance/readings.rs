@@ -4,7 +4,7 @@
 //! not applied to the bodies (the film's force acts through the centres, §4). One implementation
 //! for the recorded channels ([`crate::record`]) and the monitors ([`crate::monitor`]).
 
-use super::{ClearanceJoint, JointForce, JointKinematics};
+use super::{ClearanceJoint, ImpactMemory, JointForce, JointKinematics};
 use crate::laws::film_friction::{dry_friction_torque, film_friction};
 use crate::laws::transition::film_eps;
 use crate::laws::FilmState;
@@ -52,10 +52,11 @@ pub fn body_rates(joint: &ClearanceJoint, qd: &[f64]) -> (f64, f64) {
 impl ClearanceJoint {
     /// The readings of the joint in the kinematic state `k` under the force `f` the law gave
     /// there ([`ClearanceJoint::force`]), its bearing and journal turning at `w_bearing`,
-    /// `w_journal` [rad/s]. The film's torques come from [`film_friction`] at the ε the film
+    /// `w_journal` [rad/s], with the viscosity the joint's `memory` holds ([`super::Film::geometry_at`]).
+    /// The film's torques come from [`film_friction`] at the ε the film
     /// force was evaluated at (min(ε, ε_max)) with the film force as recorded (small-ε scale
     /// included); the dry friction's from [`dry_friction_torque`].
-    pub fn readings(&self, k: &JointKinematics, f: &JointForce, w_bearing: f64, w_journal: f64) -> Readings {
+    pub fn readings(&self, k: &JointKinematics, f: &JointForce, memory: &ImpactMemory, w_bearing: f64, w_journal: f64) -> Readings {
         // The friction force at the contact points: the dry law's by its weight, plus the
         // asperities' boundary friction on a rough joint (which has no band: the film in full).
         let friction = f.friction();
@@ -76,7 +77,7 @@ impl ClearanceJoint {
         };
         if let (Some(film), true) = (&self.film, w_film > 0.0) {
             let s = FilmState { eps: film_eps(k.eps, film.eps_max), eps_dot: k.eps_dot, wedge: k.wedge };
-            let t = film_friction(&film.geometry, s, w_journal, w_bearing, (f.film_xi, f.film_eta));
+            let t = film_friction(&film.geometry_at(memory), s, w_journal, w_bearing, (f.film_xi, f.film_eta));
             out.couette = w_film * t.couette;
             out.poiseuille = w_film * t.poiseuille;
             out.torque_journal += w_film * t.journal;
@@ -90,7 +91,7 @@ impl ClearanceJoint {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::clearance::{Film, ImpactMemory};
+    use crate::clearance::Film;
     use crate::constraints::{BodyKin, V2};
     use crate::laws::contact::{ContactLaw, NormalLaw};
     use crate::laws::film::{BearingGeometry, FilmModel};
@@ -118,6 +119,7 @@ mod tests {
                 e0: 0.05 * c,
                 eps_max: 0.99,
                 mixed: None,
+                heat: None,
             }),
             guide_normal: None,
             penetration_limit: c,
@@ -138,7 +140,7 @@ mod tests {
         for model in [FilmModel::LongBearing, FilmModel::ShortBearing, FilmModel::Finite] {
             let j = joint(Some(model));
             let (k, f) = state(&j, 0.0, omega);
-            let r = j.readings(&k, &f, 0.0, omega);
+            let r = j.readings(&k, &f, &ImpactMemory::default(), 0.0, omega);
             let g = j.film.unwrap().geometry;
             let petroff = crate::laws::film_friction::petroff_torque(&g, omega);
             assert!((r.torque_journal / -petroff - 1.0).abs() < 1e-12, "{model:?}: {} vs {petroff}", r.torque_journal);
@@ -150,7 +152,7 @@ mod tests {
         let e = j.clearance * 1.1;
         let (k, f) = state(&j, e, omega);
         assert_eq!(f.w_dry, 1.0);
-        let r = j.readings(&k, &f, 0.0, omega);
+        let r = j.readings(&k, &f, &ImpactMemory::default(), 0.0, omega);
         assert!((r.torque_journal - j.journal_radius * f.tangential).abs() < 1e-12 * f.normal);
         assert!((r.torque_bearing + j.bearing_radius * f.tangential).abs() < 1e-12 * f.normal);
         assert!((r.power_loss + f.tangential * k.slip).abs() < 1e-12 * r.power_loss && r.power_loss > 0.0);
@@ -158,7 +160,7 @@ mod tests {
         // A dry joint in free flight reads its gap and no friction.
         let j = joint(None);
         let (k, f) = state(&j, 0.5 * j.clearance, omega);
-        let r = j.readings(&k, &f, 0.0, omega);
+        let r = j.readings(&k, &f, &ImpactMemory::default(), 0.0, omega);
         assert_eq!((r.torque_journal, r.power_loss), (0.0, 0.0));
         assert!((r.film_thickness - 0.5 * j.clearance).abs() < 1e-18);
     }

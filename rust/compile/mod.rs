@@ -140,6 +140,26 @@ fn initial_wear(c: &ClearanceJointDesc) -> (Vec<f64>, Vec<f64>) {
     dry.wear.as_ref().map_or((Vec::new(), Vec::new()), |w| (w.initial_bearing.clone(), w.initial_journal.clone()))
 }
 
+/// The heat balance and viscosity law of a lubricated joint (validated), if it has one.
+fn heat(l: &LubricatedDesc) -> Option<crate::clearance::thermal::Heat> {
+    let th = l.thermal?;
+    let vogel = match l.viscosity {
+        ViscosityDesc::Vogel { vogel: [a, b, c] } => Some(crate::laws::viscosity::Vogel { a, b, c }),
+        ViscosityDesc::Constant(_) => None,
+    };
+    let thermal = crate::laws::viscosity::Thermal { ambient: th.ambient, heat_capacity: th.heat_capacity, heat_transfer: th.heat_transfer, initial: th.initial.unwrap_or(th.ambient) };
+    Some(crate::clearance::thermal::Heat { vogel, thermal })
+}
+
+/// The film's viscosity at the start: the constant, or Vogel's law at the initial temperature.
+fn initial_viscosity(l: &LubricatedDesc) -> f64 {
+    match (&l.viscosity, heat(l)) {
+        (ViscosityDesc::Constant(mu), _) => *mu,
+        (ViscosityDesc::Vogel { .. }, Some(h)) => h.vogel.map_or(f64::NAN, |v| v.viscosity(h.thermal.initial)),
+        (ViscosityDesc::Vogel { .. }, None) => f64::NAN,
+    }
+}
+
 fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
     let (dry, film) = match &c.model {
         ClearanceModelDesc::Dry(d) => (d, None),
@@ -149,7 +169,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
                 model: l.film,
                 table: (l.film == crate::laws::FilmModel::Finite).then(|| crate::laws::bearing_finite_cache::table_for(2.0 * c.journal_radius / l.length, l.supply)),
                 geometry: BearingGeometry {
-                    viscosity: l.viscosity,
+                    viscosity: initial_viscosity(l),
                     journal_radius: c.journal_radius,
                     clearance: c.clearance,
                     length: l.length,
@@ -165,6 +185,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
                     ),
                     friction: ModifiedCoulomb { friction_coefficient: l.boundary_friction.unwrap_or(l.dry.friction), v0: l.dry.v0, v1: l.dry.v1 },
                 }),
+                heat: heat(l),
             }),
         ),
     };

@@ -24,6 +24,53 @@ fn finite(field: &str, v: f64) -> Result<()> {
     }
 }
 
+/// The viscosity (a constant or Vogel's law) and the heat balance of lubricated joint `f`: a
+/// Vogel law needs the temperature (`thermal`), and the law must hold (T > c) at the ambient and
+/// initial temperatures — then it holds over the run, since the oil never cools below the lower
+/// of the two (the power loss is ≥ 0, docs/physics.md §4, *Heat*).
+fn validate_heat(f: &str, l: &LubricatedDesc) -> Result<()> {
+    let vogel = match l.viscosity {
+        ViscosityDesc::Constant(mu) => {
+            positive(&format!("{f}.viscosity"), mu)?;
+            None
+        }
+        ViscosityDesc::Vogel { vogel: [a, b, c] } => {
+            let v = crate::laws::viscosity::Vogel::new(a, b, c).map_err(|(name, why)| {
+                let value = match name {
+                    "a" => a,
+                    "b" => b,
+                    _ => c,
+                };
+                Error::invalid(format!("{f}.viscosity.vogel.{name}"), num(value), why)
+            })?;
+            if l.thermal.is_none() {
+                return Err(Error::invalid(format!("{f}.thermal"), "None", "a Vogel viscosity needs the oil temperature: give thermal = Thermal(ambient, heat_capacity, heat_transfer)"));
+            }
+            Some(v)
+        }
+    };
+    if let Some(th) = &l.thermal {
+        positive(&format!("{f}.thermal.ambient"), th.ambient)?;
+        positive(&format!("{f}.thermal.heat_capacity"), th.heat_capacity)?;
+        positive(&format!("{f}.thermal.heat_transfer"), th.heat_transfer)?;
+        if let Some(t0) = th.initial {
+            positive(&format!("{f}.thermal.initial"), t0)?;
+        }
+        if let Some(v) = vogel {
+            for (name, t) in [("ambient", th.ambient), ("initial", th.initial.unwrap_or(th.ambient))] {
+                if !v.holds_at(t) {
+                    return Err(Error::invalid(
+                        format!("{f}.thermal.{name}"),
+                        num(t),
+                        format!("must lie above the Vogel law's c = {} K (its viscosity is infinite there; temperatures in kelvin)", num(v.c)),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 fn positive(field: &str, v: f64) -> Result<()> {
     finite(field, v)?;
     if v > 0.0 {
@@ -255,7 +302,7 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                         ),
                     ));
                 }
-                positive(&format!("{f}.viscosity"), l.viscosity)?;
+                validate_heat(&f, l)?;
                 positive(&format!("{f}.length"), l.length)?;
                 if l.film == crate::laws::FilmModel::Finite {
                     check_finite_bearing_ratio(&format!("{f}.film"), l.length / (2.0 * c.journal_radius))?;

@@ -190,6 +190,9 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
         let rows = rec.t.len();
         d.set_item("joints", PyArray1::from_slice(py, &rec.joints).reshape([rows, nj, w])?)?;
     }
+    if !rec.temperature.is_empty() {
+        d.set_item("temperature", array2(py, &rec.temperature, rec.clearance_joints)?)?;
+    }
     if ch.violation {
         d.set_item("violation", array2(py, &rec.violation, 2)?)?;
     }

@@ -12,6 +12,7 @@ mod switching;
 use std::time::Instant;
 
 use crate::assembly::assemble;
+use crate::clearance::thermal::HeatBook;
 use crate::clearance::wear::WearBook;
 use crate::clearance::{ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
@@ -82,6 +83,8 @@ pub struct MechanismSystem<'a> {
     pub wear: Vec<Option<WearBook>>,
     /// [`RunSettings::wear_mark`].
     pub wear_mark: Option<f64>,
+    /// The oil temperature of each lubricated joint that models it (rust/clearance/thermal.rs).
+    pub heat: Vec<Option<HeatBook>>,
 
     // switching.rs
     /// Each clearance joint's kinematics at the last and the next sample of a step
@@ -123,6 +126,7 @@ impl<'a> MechanismSystem<'a> {
             energy: channels.energy.then(|| EnergyBook::new(model)),
             wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
             wear_mark: None,
+            heat: model.clearance.iter().map(|c| c.film.and_then(|f| f.heat).map(HeatBook::new)).collect(),
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -183,6 +187,9 @@ impl OdeSystem for MechanismSystem<'_> {
         self.step_memory.copy_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
+        // A viscosity that followed the oil temperature changed f(t1, y1): an explicit method's
+        // last stage is stale (rust/clearance/thermal.rs).
+        let heated = self.memory.iter().zip(&self.step_memory).any(|(a, b)| a.viscosity != b.viscosity);
         self.last_t = t1;
         self.last_y.copy_from_slice(y1);
         self.accepted += 1;
@@ -200,7 +207,7 @@ impl OdeSystem for MechanismSystem<'_> {
                 }
             }
         }
-        Ok(changed)
+        Ok(changed || heated)
     }
 
     /// See newton.rs.
@@ -217,7 +224,11 @@ impl OdeSystem for MechanismSystem<'_> {
             // Outputs lie inside the step just accepted: the memory it was integrated with.
             self.ws.evaluate(self.model, &self.step_memory, t, y)?;
         }
-        self.recording.push(t, y, &self.ws);
+        self.recording.push(t, y, &self.ws, &self.step_memory);
+        if self.heat.iter().any(Option::is_some) {
+            let temps = self.heat.iter().map(|b| b.as_ref().map_or(f64::NAN, |b| b.temperature_at(t)));
+            self.recording.temperature.extend(temps);
+        }
         if let Some(book) = &self.energy {
             let e = EnergyBook::stored(self.model, &self.ws);
             self.recording.energy.extend_from_slice(&e);
@@ -264,6 +275,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     sys.energy_start(rs.t0, &y0)?;
     sys.wear_mark = rs.wear_mark;
     sys.wear_start(rs.t0, &y0);
+    sys.heat_start(rs.t0);
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {

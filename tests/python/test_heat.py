@@ -1,0 +1,144 @@
+"""The oil temperature of a lubricated joint (docs/physics.md §4, *Heat*): Vogel's law against its
+formula, the heat balance against its closed form at a constant viscosity, and a steadily running
+journal settling at the fixed point T = T_amb + P_loss(μ(T))/hA, solved here independently with
+Petroff's loss of a centred journal."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import clearsim
+
+R, C, L, OMEGA = 0.02, 4e-5, 0.01, 100.0
+#: An oil of ISO VG 32 grade: μ(40 °C) = 0.0267 Pa s, μ(100 °C) = 0.0047 Pa s.
+OIL = clearsim.Vogel(6.4e-5, 900.0, 164.0)
+T_AMB = 313.15
+
+
+def rotor(model: clearsim.Lubricated) -> clearsim.Mechanism:
+    """A 1 kg rotor driven at OMEGA, centred in a ground bearing, unloaded (no gravity)."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("rotor", mass=1.0, inertia=1e-3)
+    m.driver("rotor", omega=OMEGA, angle0=0.0)
+    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=model)
+    return m
+
+
+def petroff_loss(mu: float) -> float:
+    """Petroff's power loss of a centred journal, 2πμR³Lω²/c [W]."""
+    return 2 * math.pi * mu * R**3 * L * OMEGA**2 / C
+
+
+def test_vogels_law_against_its_formula() -> None:
+    for t in (280.0, 313.15, 373.15, 450.0):
+        assert OIL.viscosity(t) == pytest.approx(6.4e-5 * math.exp(900.0 / (t - 164.0)), rel=1e-15)
+    assert OIL.viscosity(313.15) == pytest.approx(0.02672, abs=1e-5)
+    with pytest.raises(clearsim.InputError, match="temperature"):
+        OIL.viscosity(160.0)
+    with pytest.raises(clearsim.InputError, match="vogel.a"):
+        clearsim.Vogel(-1.0, 900.0, 164.0)
+
+
+def test_a_steady_journal_settles_at_the_heat_balances_fixed_point() -> None:
+    """Time constant C/hA = 0.1 s, run 2 s: the oil settles where Petroff's loss at μ(T) equals
+    what the ambient takes away."""
+    thermal = clearsim.Thermal(ambient=T_AMB, heat_capacity=0.01, heat_transfer=0.1)
+    res = rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=thermal)).simulate(2.0, dt_out=0.05, progress=False)
+    assert res.completed
+    # The fixed point by bisection of T − T_amb − P(μ(T))/hA.
+    lo, hi = T_AMB, T_AMB + petroff_loss(OIL.viscosity(T_AMB)) / 0.1
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if mid - T_AMB - petroff_loss(OIL.viscosity(mid)) / 0.1 < 0 else (lo, mid)
+    temp = res.temperature("pin")
+    assert temp[0] == T_AMB
+    rise = temp[-1] - T_AMB
+    # The issue asks 0.5 %; measured 1e-9 (the per-step update's fixed point is exact).
+    assert rise == pytest.approx(lo - T_AMB, rel=1e-5), (temp[-1], lo)
+    assert lo - T_AMB > 10.0  # the coupling matters: 40 °C oil alone would rise by 34 K
+    # The film runs at μ(T): its loss is Petroff's at the recorded temperature.
+    assert res.power_loss("pin")[-1] == pytest.approx(petroff_loss(OIL.viscosity(temp[-1])), rel=1e-3)
+
+
+def test_a_constant_viscosity_keeps_the_old_film_and_heats_as_the_closed_form() -> None:
+    """With a constant viscosity the film's numbers are those without heat, bit for bit, and the
+    temperature is T_amb + P/hA (1 − e^{−t hA/C}) at Petroff's constant loss P."""
+    mu = 0.03
+    plain = rotor(clearsim.Lubricated(viscosity=mu, length=L, film="short")).simulate(0.5, dt_out=0.05, progress=False)
+    thermal = clearsim.Thermal(ambient=T_AMB, heat_capacity=0.05, heat_transfer=0.2)
+    heated = rotor(clearsim.Lubricated(viscosity=mu, length=L, film="short", thermal=thermal)).simulate(0.5, dt_out=0.05, progress=False)
+    assert np.array_equal(plain._raw["joints"], heated._raw["joints"])
+    assert np.array_equal(plain._raw["q"], heated._raw["q"])
+    p = petroff_loss(mu)
+    want = T_AMB + p / 0.2 * (1 - np.exp(-heated.t * 0.2 / 0.05))
+    assert np.allclose(heated.temperature("pin"), want, rtol=0, atol=1e-3 * p / 0.2)
+    with pytest.raises(clearsim.InputError, match="no oil temperature"):
+        plain.temperature("pin")
+
+
+def test_the_temperature_does_not_depend_on_the_output_grid() -> None:
+    thermal = clearsim.Thermal(ambient=T_AMB, heat_capacity=0.01, heat_transfer=0.1, initial=320.0)
+    m = rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=thermal))
+    fine, coarse = (m.simulate(0.4, dt_out=dt, progress=False) for dt in (0.01, 0.1))
+    assert fine.temperature("pin")[0] == 320.0
+    assert np.array_equal(fine.temperature("pin")[::10], coarse.temperature("pin"))
+
+
+def test_bad_heat_input_names_its_field() -> None:
+    with pytest.raises(clearsim.InputError, match="thermal"):
+        clearsim.Lubricated(viscosity=OIL, length=L)  # a Vogel law needs the temperature
+    with pytest.raises(clearsim.InputError, match="heat_capacity"):
+        clearsim.Thermal(T_AMB, -1.0, 0.1)
+    cold = clearsim.Thermal(ambient=150.0, heat_capacity=0.01, heat_transfer=0.1)
+    with pytest.raises(clearsim.InputError, match="ambient"):
+        rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=cold)).simulate(0.01, progress=False)
+    frozen = clearsim.Thermal(ambient=T_AMB, heat_capacity=0.01, heat_transfer=0.1, initial=164.0)
+    with pytest.raises(clearsim.InputError, match=r"'pin'\.thermal\.initial"):
+        rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=frozen)).simulate(0.01, progress=False)
+    with pytest.raises(clearsim.InputError, match="vogel"):
+        clearsim.Lubricated(viscosity=clearsim.Vogel(1e-4, -5.0, 164.0), length=L, thermal=frozen)
+
+
+def test_the_scene_keys(tmp_path: "object") -> None:
+    from pathlib import Path
+
+    scene = Path(str(tmp_path)) / "heat.toml"
+    scene.write_text(
+        """
+[mechanism]
+gravity = [0.0, 0.0]
+[simulation]
+t_end = 0.01
+[[body]]
+name = "rotor"
+mass = 1.0
+inertia = 1e-3
+[[driver]]
+body = "rotor"
+omega = 100.0
+[[clearance_joint]]
+name = "pin"
+bearing_body = "ground"
+bearing_point = [0.0, 0.0]
+journal_body = "rotor"
+journal_point = [0.0, 0.0]
+journal_radius = 0.02
+clearance = 4e-5
+model = "lubricated"
+[clearance_joint.lubricated]
+viscosity = {vogel = [6.4e-5, 900.0, 164.0]}
+length = 0.01
+film = "short"
+[clearance_joint.lubricated.thermal]
+ambient = 313.15
+heat_capacity = 0.01
+heat_transfer = 0.1
+"""
+    )
+    m = clearsim.load_scene(scene)
+    lub = m.description()["clearance_joints"][0]["model"]
+    assert lub["viscosity"] == {"vogel": [6.4e-5, 900.0, 164.0]}
+    assert lub["thermal"]["heat_capacity"] == 0.01
