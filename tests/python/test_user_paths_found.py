@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -152,3 +153,38 @@ def test_coordinates_in_mm_with_inertias_in_kg_m2_are_named():
         _crank_rod_slider(1.0).description()
         _crank_rod_slider(1.0, inertia_scale=1e3).description()
         _crank_rod_slider(1000.0, inertia_scale=1e6).description()  # all in mm and kg mm²: nothing tells
+
+
+# ---------------------------------------------------------------- walk 2: a toggle press of our own
+TOGGLE = Path(__file__).resolve().parents[1] / "data" / "scenes" / "toggle_press.toml"
+SHAPER = Path(__file__).resolve().parents[1] / "data" / "scenes" / "shaper.toml"
+
+
+def test_extremes_of_the_bearing_readings_are_tracked_when_asked():
+    """``simulate(extremes=[joint])`` tracks a clearance joint's film thickness, friction torque
+    and power loss too (lubricated or dry), and each extreme bounds the stored samples and
+    agrees with them on a fine output grid; the dry line-contact pin's peak torque is μ R_j F_N
+    at its peak contact force. Before: ``extremes("A", "friction_torque")`` said the run did
+    not track its extremes, and so did every reading of the dry pin, though both were asked for."""
+    m = clearsim.load_scene(TOGGLE)
+    res = m.simulate(0.1, dt_out=2e-5, extremes=["A", "P"], progress=False)
+    for joint in ("A", "P"):
+        for quantity, values in (("film_thickness", res.film_thickness(joint)), ("friction_torque", res.friction_torque(joint)),
+                                 ("power_loss", res.power_loss(joint))):  # fmt: skip
+            x = res.extremes(joint, quantity)
+            span = values.max() - values.min()
+            assert x.max >= values.max() - 1e-12 * abs(values.max()) and x.min <= values.min() + 1e-12 * abs(values.min())
+            assert x.max - values.max() < 0.1 * span and values.min() - x.min < 0.1 * span, (joint, quantity)
+    torque, contact = res.extremes("P", "friction_torque"), res.extremes("P", "contact_force")
+    assert torque.max == pytest.approx(0.1 * 8e-3 * contact.max, rel=1e-6) and torque.t_max == pytest.approx(contact.t_max)
+
+
+def test_a_series_study_states_that_every_output_must_hold():
+    """The repr of a study of several outputs (a series system: it fails when any passes its
+    limit) states what holds when it is safe: each output within its limit, joined by "and".
+    Before: "film thickness of joint A ≥ 5e-07 m or y displacement error ≤ 0.0005 m"."""
+    from clearsim.reliability.scene import scene_study
+    from clearsim.scene import load_scene_file
+
+    text = repr(scene_study(load_scene_file(TOGGLE), progress=False))
+    assert "film thickness of joint A ≥ 5e-07 m and y displacement error of ram ≤ 0.0005 m" in text and " or " not in text
