@@ -231,3 +231,40 @@ def test_form_of_a_series_system_with_a_mode_that_never_fails():
     assert res.modes[1].beta == 37.0 and res.modes[1].pf < 1e-299
     assert res.modes[0].beta == pytest.approx(-0.0986 / math.hypot(0.111, 0.0963), rel=1e-3)
     assert res.pf == pytest.approx(res.modes[0].pf, rel=1e-9)
+
+
+def _csv(path):
+    import csv
+
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    return rows[0], np.array(rows[1:], dtype=float)
+
+
+@pytest.mark.parametrize("scene, t_end, joint, clearance", [(TOGGLE, 0.1, "A", 40e-6), (SHAPER, 0.0667, "A", 30e-6)])
+def test_walked_scenes_run_and_study_from_the_cli(tmp_path, scene, t_end, joint, clearance):
+    """The walks' own mechanisms (a toggle press, a shaper's quick return; each a lubricated and a
+    dry pin) through ``clearsim run`` (a short --t-end, figures on) and ``clearsim reliability``
+    (2 Monte Carlo samples of their [study], skip_cycles = 1). The joints CSV's film thickness is
+    c − |e| at every sample, and its power loss is at least the Couette shear's |T| ω_rel."""
+    import json
+
+    from clearsim.cli import main
+
+    out = tmp_path / "run"
+    assert main(["run", str(scene), "-o", str(out), "-q", "--t-end", str(t_end)]) == 0
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert summary["run"]["t_reached"] == pytest.approx(t_end) and summary["run"]["failure"] is None
+    assert 0 < summary["run"]["bearings"][joint]["min_film_thickness"] < clearance
+    head, data = _csv(out / "joints.csv")
+    col = {h: k for k, h in enumerate(head)}
+    if f"{joint}.film_thickness [m]" in col:
+        e = np.hypot(data[:, col[f"{joint}.ex [m]"]], data[:, col[f"{joint}.ey [m]"]])
+        assert np.allclose(data[:, col[f"{joint}.film_thickness [m]"]], clearance - e, rtol=0.0, atol=1e-15)
+        assert np.all(data[:, col[f"{joint}.power_loss [W]"]] >= 0.0)
+    assert (out / "orbits.png").stat().st_size > 0 and (out / "summary.md").read_text(encoding="utf-8").count("| A |") == 1
+    rel = tmp_path / "rel"
+    assert main(["reliability", str(scene), "-o", str(rel), "-q", "--methods", "monte_carlo", "--samples", "2", "--no-plots"]) == 0
+    head, samples = _csv(rel / "samples.csv")
+    assert samples.shape[0] == 2 and np.all(np.isfinite(samples[:, head.index("A.film_thickness [m]")]))
+    assert "| monte_carlo | system |" in (rel / "report.md").read_text(encoding="utf-8")
