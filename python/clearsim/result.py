@@ -64,7 +64,7 @@ def extreme_monitors(
             out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITIES]
         else:
             j = list(joint_names).index(name)
-            out += [{"coordinate": j, "quantity": q, **span} for q in JOINT_QUANTITIES]
+            out += [{"coordinate": j, "quantity": q, **span} for q in (*JOINT_QUANTITIES, *READING_QUANTITIES)]
     return out
 
 
@@ -268,7 +268,8 @@ class Result(JointReadings):
         """Largest and smallest value of a body's ``quantity`` (``"displacement"``,
         ``"velocity"`` or ``"acceleration"`` of ``component`` ``"x"``, ``"y"`` or ``"theta"``)
         or of a clearance joint's (``"eccentricity"`` ratio e/c, ``"force"`` on the journal,
-        ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]) and their times [s], over the run.
+        ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]; ``"film_thickness"`` [m],
+        ``"friction_torque"`` on the journal [N m], ``"power_loss"`` [W]) and their times [s], over the run.
 
         Tracked at every accepted integration step and located between steps on the exact
         quantity (accelerations from the KKT solve, as stored; docs/performance.md, "Peaks"), so

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -152,3 +153,118 @@ def test_coordinates_in_mm_with_inertias_in_kg_m2_are_named():
         _crank_rod_slider(1.0).description()
         _crank_rod_slider(1.0, inertia_scale=1e3).description()
         _crank_rod_slider(1000.0, inertia_scale=1e6).description()  # all in mm and kg mm²: nothing tells
+
+
+# ---------------------------------------------------------------- walk 2: a toggle press of our own
+TOGGLE = Path(__file__).resolve().parents[1] / "data" / "scenes" / "toggle_press.toml"
+SHAPER = Path(__file__).resolve().parents[1] / "data" / "scenes" / "shaper.toml"
+
+
+def test_extremes_of_the_bearing_readings_are_tracked_when_asked():
+    """``simulate(extremes=[joint])`` tracks a clearance joint's film thickness, friction torque
+    and power loss too (lubricated or dry), and each extreme bounds the stored samples and
+    agrees with them on a fine output grid; the dry line-contact pin's peak torque is μ R_j F_N
+    at its peak contact force. Before: ``extremes("A", "friction_torque")`` said the run did
+    not track its extremes, and so did every reading of the dry pin, though both were asked for."""
+    m = clearsim.load_scene(TOGGLE)
+    res = m.simulate(0.1, dt_out=2e-5, extremes=["A", "P"], progress=False)
+    for joint in ("A", "P"):
+        for quantity, values in (("film_thickness", res.film_thickness(joint)), ("friction_torque", res.friction_torque(joint)),
+                                 ("power_loss", res.power_loss(joint))):  # fmt: skip
+            x = res.extremes(joint, quantity)
+            span = values.max() - values.min()
+            assert x.max >= values.max() - 1e-12 * abs(values.max()) and x.min <= values.min() + 1e-12 * abs(values.min())
+            assert x.max - values.max() < 0.1 * span and values.min() - x.min < 0.1 * span, (joint, quantity)
+    torque, contact = res.extremes("P", "friction_torque"), res.extremes("P", "contact_force")
+    assert torque.max == pytest.approx(0.1 * 8e-3 * contact.max, rel=1e-6) and torque.t_max == pytest.approx(contact.t_max)
+
+
+def test_a_series_study_states_that_every_output_must_hold():
+    """The repr of a study of several outputs (a series system: it fails when any passes its
+    limit) states what holds when it is safe: each output within its limit, joined by "and".
+    Before: "film thickness of joint A ≥ 5e-07 m or y displacement error ≤ 0.0005 m"."""
+    from clearsim.reliability.scene import scene_study
+    from clearsim.scene import load_scene_file
+
+    text = repr(scene_study(load_scene_file(TOGGLE), progress=False))
+    assert "film thickness of joint A ≥ 5e-07 m and y displacement error of ram ≤ 0.0005 m" in text and " or " not in text
+
+
+def test_normal_and_lognormal_inputs_stay_finite_far_in_the_tails():
+    """``x = F⁻¹(Φ(u))`` of a Normal and a LogNormal input is the closed form at any u (mean + std u,
+    exp(μ_ln + σ_ln u)). Before: Φ(u) rounded to 1 beyond u ≈ 38 and the input became inf, which a
+    FORM step handed to the user's build (``clearance joint 'A'.clearance = inf``)."""
+    from clearsim.reliability import LogNormal
+
+    u = np.array([-50.0, -40.0, 0.0, 40.0, 50.0])
+    assert np.allclose(Normal(40e-6, 4e-6).from_standard_normal(u), 40e-6 + 4e-6 * u, rtol=1e-14, atol=0.0)
+    d = LogNormal(0.1, 0.01)
+    mu, s = d.log_params
+    assert np.allclose(d.from_standard_normal(u), np.exp(mu + s * u), rtol=1e-12, atol=0.0)
+
+
+def test_form_of_a_series_system_with_a_mode_that_never_fails():
+    """The toggle press's study, in miniature: a film mode that fails at β = −0.62 and a ram-error
+    mode whose margin flattens out at g = 0.18 as the pin clearance grows (it never fails; its
+    first HL-RF step from a slope of −0.0127 jumps to u ≈ 50). FORM keeps its search within
+    |u| ≤ 37, reports the safe mode as β = 37 with a ReliabilityWarning, and the series p_f is the
+    film mode's Φ(0.62); no input it asks for is non-finite. Before: the jump to u ≈ 50 made the
+    clearance inf (then, with the closed-form transform, 50 iterations on at the tail), and the
+    study stopped with the build's ``InputError``."""
+    from clearsim.errors import ReliabilityWarning
+    from clearsim.reliability import LimitState, LogNormal
+
+    seen = []
+    mu_ln, s_ln = LogNormal(0.1, 0.01).log_params
+
+    def g(x):
+        c, mu = x["c"], x["mu"]
+        seen.append(np.concatenate([c, mu]))
+        film = -0.0986 - 0.111 * (c - 40e-6) / 4e-6 + 0.0963 * (np.log(mu) - mu_ln) / s_ln  # linear in u
+        ram = 0.18 + 0.46 * np.exp(-(c - 40e-6) / 145e-6)
+        return [film, ram]
+
+    model = LimitState(g, {"c": Normal(40e-6, 4e-6), "mu": LogNormal(0.1, 0.01)}, modes=["film", "ram"])
+    with pytest.warns(ReliabilityWarning, match=r"not reached within \|u\| ≤ 37"):
+        res = model.form()
+    assert np.all(np.isfinite(np.concatenate(seen)))
+    assert res.modes[1].beta == 37.0 and res.modes[1].pf < 1e-299
+    assert res.modes[0].beta == pytest.approx(-0.0986 / math.hypot(0.111, 0.0963), rel=1e-3)
+    assert res.pf == pytest.approx(res.modes[0].pf, rel=1e-9)
+
+
+def _csv(path):
+    import csv
+
+    with open(path, newline="", encoding="utf-8") as f:
+        rows = list(csv.reader(f))
+    return rows[0], np.array(rows[1:], dtype=float)
+
+
+@pytest.mark.parametrize("scene, t_end, joint, clearance", [(TOGGLE, 0.1, "A", 40e-6), (SHAPER, 0.0667, "A", 30e-6)])
+def test_walked_scenes_run_and_study_from_the_cli(tmp_path, scene, t_end, joint, clearance):
+    """The walks' own mechanisms (a toggle press, a shaper's quick return; each a lubricated and a
+    dry pin) through ``clearsim run`` (a short --t-end, figures on) and ``clearsim reliability``
+    (2 Monte Carlo samples of their [study], skip_cycles = 1). The joints CSV's film thickness is
+    c − |e| at every sample, and its power loss is at least the Couette shear's |T| ω_rel."""
+    import json
+
+    from clearsim.cli import main
+
+    out = tmp_path / "run"
+    assert main(["run", str(scene), "-o", str(out), "-q", "--t-end", str(t_end)]) == 0
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert summary["run"]["t_reached"] == pytest.approx(t_end) and summary["run"]["failure"] is None
+    assert 0 < summary["run"]["bearings"][joint]["min_film_thickness"] < clearance
+    head, data = _csv(out / "joints.csv")
+    col = {h: k for k, h in enumerate(head)}
+    if f"{joint}.film_thickness [m]" in col:
+        e = np.hypot(data[:, col[f"{joint}.ex [m]"]], data[:, col[f"{joint}.ey [m]"]])
+        assert np.allclose(data[:, col[f"{joint}.film_thickness [m]"]], clearance - e, rtol=0.0, atol=1e-15)
+        assert np.all(data[:, col[f"{joint}.power_loss [W]"]] >= 0.0)
+    assert (out / "orbits.png").stat().st_size > 0 and (out / "summary.md").read_text(encoding="utf-8").count("| A |") == 1
+    rel = tmp_path / "rel"
+    assert main(["reliability", str(scene), "-o", str(rel), "-q", "--methods", "monte_carlo", "--samples", "2", "--no-plots"]) == 0
+    head, samples = _csv(rel / "samples.csv")
+    assert samples.shape[0] == 2 and np.all(np.isfinite(samples[:, head.index("A.film_thickness [m]")]))
+    assert "| monte_carlo | system |" in (rel / "report.md").read_text(encoding="utf-8")

@@ -154,6 +154,11 @@ class Normal(Distribution):
     def with_mean(self, value: float) -> "Distribution":
         return Normal(value, self.std)
 
+    def from_standard_normal(self, u: Any) -> np.ndarray:
+        """``mean + std u``: exact at any ``u`` (Φ(u) rounds to 0 or 1 beyond |u| ≈ 38)."""
+        u = np.asarray(u, dtype=float)
+        return self.mean + self.std * u if self.std > 0 else np.full(u.shape, self.mean)
+
 
 @dataclass(frozen=True)
 class Uniform(Distribution):
@@ -212,6 +217,12 @@ class LogNormal(Distribution):
 
     def with_mean(self, value: float) -> "Distribution":
         return LogNormal(value, self.std)
+
+    def from_standard_normal(self, u: Any) -> np.ndarray:
+        """``exp(μ_ln + σ_ln u)``: exact at any ``u`` (Φ(u) rounds to 0 or 1 beyond |u| ≈ 38)."""
+        u = np.asarray(u, dtype=float)
+        mu, s = self.log_params
+        return np.exp(mu + s * u) if s > 0 else np.full(u.shape, self.mean)
 
 
 @dataclass(frozen=True)

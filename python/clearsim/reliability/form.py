@@ -60,6 +60,10 @@ NOISE_MARGIN = 0.2
 #: Beyond this uncertainty of β from the noise (relative, at least 1 in u) there is no design
 #: point to speak of: FORM raises.
 BETA_NOISE_LIMIT = 0.1
+#: The search stays within |u| ≤ U_MAX: Φ(−37) ≈ 6e-300, about the smallest probability a double
+#: holds, and beyond it an input's F⁻¹(Φ(u)) is infinite (an HL-RF step from a nearly flat
+#: limit state far from failure can jump there).
+U_MAX = 37.0
 
 
 @dataclass
@@ -168,6 +172,7 @@ def form(
     best = (abs(g), u.copy(), g, grad.copy())
     history: List[float] = []
     converged = False
+    capped = 0  # iterations in a row that ended on the sphere |u| = U_MAX still safe
     iteration = 0
     for iteration in range(1, int(max_iterations) + 1):
         norm2 = float(grad @ grad)
@@ -180,6 +185,9 @@ def form(
         lam = 1.0
         for _ in range(6):
             trial = u + lam * direction
+            radius = float(np.linalg.norm(trial))
+            if radius > U_MAX:
+                trial = trial * (U_MAX / radius)
             g_t = float(model.limit_state(trial[None, :], on_failure)[0])
             if 0.5 * float(trial @ trial) + c * abs(g_t) <= merit0 + max(noise * c, 0.0) or lam < 0.1:
                 break
@@ -192,6 +200,17 @@ def form(
         if abs(g) < best[0]:
             best = (abs(g), u.copy(), g, grad.copy())
         history.append(moved)
+        capped = capped + 1 if (float(np.linalg.norm(u)) >= U_MAX * (1 - 1e-9) and g > 0) else 0
+        if capped >= 3:
+            warnings.warn(
+                f"FORM: the limit state is not reached within |u| ≤ {U_MAX:g} (g = {g:.3g} > 0 at u = {_fmt(u)}): the output stays "
+                f"within its limit out to inputs of probability Φ(−{U_MAX:g}); reported as β = {U_MAX:g}, p_f = Φ(−{U_MAX:g}) (first order: at most this).",
+                ReliabilityWarning, stacklevel=2,
+            )  # fmt: skip
+            x_far = {k: float(v[0]) for k, v in model.values(u[None, :]).items()}
+            imp_far = dict(zip(model.random_names, map(float, (u / U_MAX) ** 2)))
+            return FormResult(U_MAX, float(special.ndtr(-U_MAX)), x_far, u.copy(), imp_far, model.n_runs - runs0, time.perf_counter() - t0, False, noise, h, g,
+                              0.0, False, iteration)  # fmt: skip
         on_surface = abs(g) <= G_TOLERANCE * g_scale or abs(g) <= NOISE_BAND * noise
         # How far u moves from one iteration to the next from the noise alone: the gradient's
         # direction is uncertain by about √d σ_g / (√2 h |∇g|), which turns u* on the sphere

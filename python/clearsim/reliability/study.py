@@ -242,7 +242,7 @@ class Study(ReliabilityModel, Modes):
         return [o.name for o in self.outputs]
 
     def __repr__(self) -> str:
-        modes = " or ".join(f"{o.label} {lim.text(o.unit)}" for o, lim in zip(self.outputs, self.limits))
+        modes = " and ".join(f"{o.label} {lim.text(o.unit)}" for o, lim in zip(self.outputs, self.limits))
         return f"Study({modes}; random: {', '.join(self.random_names) or 'none'})"
 
     # ------------------------------------------------------------------ the model
