@@ -551,13 +551,14 @@ def build_parser() -> argparse.ArgumentParser:
     run.set_defaults(func=_cmd_run)
 
     rel = sub.add_parser(
-        "reliability", help="reliability of a scene's [study]: FORM, importance sampling, subset, Sobol, Monte Carlo",
-        description="Run the [study] of a scene file (random inputs, one output and its limit): p_f by each method, "
-        "Sobol indices, tolerance design; writes CSV tables, reliability.png and report.md.",
+        "reliability", help="reliability of a scene's [study]: Monte Carlo, FORM, importance sampling, subset, AK-MCS/AK-IS, Sobol, life",
+        description="Run the [study] of a scene file (random inputs; one output and its limit, or several as a series "
+        "system): p_f by each method, Sobol indices, tolerance design, p_f over life ([study.life]); writes CSV tables, "
+        "reliability.png and report.md.",
     )  # fmt: skip
     rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table (format: python -m pydoc clearsim.scene)")
     rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
-    rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm")
+    rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm,ak_mcs,ak_is")
     rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")
     rel.add_argument("--no-plots", action="store_true", help="write no figure")
     rel.add_argument("-q", "--quiet", action="store_true", help="no progress bars, nothing on stdout")
