@@ -63,7 +63,7 @@ def alias_study(rel: ReliabilitySettings, sim: SimulationSettings) -> StudySetti
     turns = (sim.t_end - start) / period
     if not turns >= 1.0 - 1e-9:
         raise InputError(
-            f"invalid [reliability]: FOSM needs at least one whole crank turn (2π/|ω| = {period:.6g} s) from t_start to "
+            f"[reliability] needs at least one whole crank turn (2π/|ω| = {period:.6g} s) from t_start to "
             f"t_end, the run gives {max(turns, 0.0):.3g} (from {start:.6g} s to {sim.t_end:.6g} s): raise t_end or cycles in "
             "[simulation] or lower t_start",
             field="reliability.t_start", value=rel.t_start,

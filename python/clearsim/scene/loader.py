@@ -17,7 +17,7 @@ from ..errors import InputError, PlausibilityWarning, SimulationError
 from ..mechanism import Mechanism
 from ..reliability.study import Study
 from ..result import Result
-from .alias import ReliabilitySettings, alias_study, check_window, read_reliability, scene_fosm
+from .alias import ReliabilitySettings, check_window, read_reliability, scene_fosm
 from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
@@ -73,8 +73,6 @@ class Scene:
             integrator=self.simulation.integrator if integrator is None else integrator,
         )
         self.mechanism.run_settings(sim.t_end, **sim.kwargs())  # raises InputError if invalid
-        if self.reliability is not None:
-            alias_study(self.reliability, sim)  # [reliability] needs a whole turn: InputError if not
         return dataclasses.replace(self, simulation=sim)
 
     def study_model(self, progress: bool = True) -> Study:
@@ -138,6 +136,8 @@ class Scene:
         try:
             run.reliability = scene_fosm(self.reliability, self.mechanism, self.simulation, progress)
         except SimulationError as err:
+            run.reliability_failure = f"FOSM not computed: {err.reason}"
+        except InputError as err:  # a run shorter than a turn (with_overrides(t_end=...))
             run.reliability_failure = f"FOSM not computed: {err.reason}"
 
 
