@@ -1,20 +1,23 @@
-"""Deprecated: the old place of :mod:`clearsim.scene.study` (the ``[study]`` table of a scene
-file); kept so ``clearsim.reliability.scene`` imports work. Import ``clearsim.scene.study``
-instead.
+"""Deprecated: the old place of the ``[study]`` table's reader, now :mod:`clearsim.scene.study`;
+kept so that old code reaching it through this module's path still works.
 
-Every name is looked up in :mod:`clearsim.scene.study` when it is first asked for, not imported
-here: the reliability rooms sit below the scene rooms and import nothing of them (issue 29,
-"every import runs downward")."""
+Each name is looked up there when first asked for, and not imported here: the reliability
+rooms sit below the scene rooms and depend on nothing of them (issue 29, "every import runs
+downward")."""
 
 from __future__ import annotations
 
 import importlib
 from typing import Any, List
 
+#: The module this one redirects to (a runtime lookup on first use, the one way this
+#: deprecated path reaches above the reliability rooms).
+_NEW_HOME = "clearsim.scene.study"
+
 
 def __getattr__(name: str) -> Any:
-    return getattr(importlib.import_module("clearsim.scene.study"), name)
+    return getattr(importlib.import_module(_NEW_HOME), name)
 
 
 def __dir__() -> List[str]:
-    return sorted(vars(importlib.import_module("clearsim.scene.study")))
+    return sorted(vars(importlib.import_module(_NEW_HOME)))
