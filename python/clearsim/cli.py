@@ -419,7 +419,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         for q, res in run.reliability.items():
             print(f"FOSM {q}: min R = {res.min_reliability:.6f} (β = {res.min_beta:.3f}) at {res.min_angle:g}°")
         if run.reliability_failure:
-            print(f"[reliability]: {run.reliability_failure}", file=sys.stderr)
+            print(f"[reliability]: {run.reliability_failure}")
         print(f"wrote {len(files)} files to {out_dir}")
     if run.failure is not None:
         t_reached = run.result.stats.get("t_reached", float("nan"))

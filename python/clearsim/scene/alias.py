@@ -55,7 +55,8 @@ class ReliabilitySettings:
 def alias_study(rel: ReliabilitySettings, sim: SimulationSettings) -> StudySettings:
     """``[reliability]`` as ``[study]`` settings: one output per analysed quantity, no random
     inputs, the window from ``t_start`` (at the next bin edge of |ω| (t − t0)) to ``t_end``.
-    A window shorter than one crank turn is an :class:`InputError` (some bins would see no time)."""
+    A window shorter than one crank turn is an :class:`InputError` (some bins would see no time:
+    ``Scene.run`` reports it in ``SceneRun.reliability_failure``, and runs the rest)."""
     period = 2.0 * math.pi / abs(rel.omega)
     bin_time = period * rel.bin_width / 360.0
     start = max(rel.t_start, sim.t0)
@@ -127,14 +128,4 @@ def read_reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]
     )  # fmt: skip
 
 
-def check_window(b: _Builder, rel: ReliabilitySettings, sim: SimulationSettings) -> None:
-    """:func:`alias_study`'s check of the window, its error at ``t_start`` (or the table) in the file."""
-    try:
-        alias_study(rel, sim)
-    except InputError as err:
-        t = b.top.table("reliability", _RELIABILITY_KEYS)
-        assert t is not None
-        raise t.error("t_start" if "t_start" in t else None, err.reason, err.value) from None
-
-
-__all__ = ["RELIABILITY_QUANTITIES", "ReliabilitySettings", "alias_study", "check_window", "read_reliability", "scene_fosm"]
+__all__ = ["RELIABILITY_QUANTITIES", "ReliabilitySettings", "alias_study", "read_reliability", "scene_fosm"]

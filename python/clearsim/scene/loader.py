@@ -17,7 +17,7 @@ from ..errors import InputError, PlausibilityWarning, SimulationError
 from ..mechanism import Mechanism
 from ..reliability.study import Study
 from ..result import Result
-from .alias import ReliabilitySettings, check_window, read_reliability, scene_fosm
+from .alias import ReliabilitySettings, read_reliability, scene_fosm
 from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
@@ -137,7 +137,7 @@ class Scene:
             run.reliability = scene_fosm(self.reliability, self.mechanism, self.simulation, progress)
         except SimulationError as err:
             run.reliability_failure = f"FOSM not computed: {err.reason}"
-        except InputError as err:  # a run shorter than a turn (with_overrides(t_end=...))
+        except InputError as err:  # a run shorter than a crank turn
             run.reliability_failure = f"FOSM not computed: {err.reason}"
 
 
@@ -208,8 +208,6 @@ def load_scene_file(path: PathLike) -> Scene:
     outputs = _outputs(builder, mech)
     reliability = read_reliability(builder, mech)
     sim = _simulation(builder, mech, _needed_channels(outputs, reliability))
-    if reliability is not None:
-        check_window(builder, reliability, sim)
     study = None
     if "study" in builder.top:
         study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech, builder.drivers))
