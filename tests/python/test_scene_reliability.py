@@ -95,10 +95,10 @@ def test_reliability_does_not_depend_on_dt_out(tmp_path):
 
 def test_a_fine_output_grid_converges_to_the_monitored_fosm(tmp_path):
     """(b) A second method: the paper's formula on the stored grid, per bin, approaches the
-    monitors' time averages as the grid is refined. Measured (dry slider-crank, 2 turns): largest
-    |Δμ_s| and |Δσ_s| 0.3–0.7 % of the largest μ_s and |Δβ| ≤ 0.009 at 36 000 points a turn,
-    against up to 11 % / 81 % and 0.43 at 360; the rest is the monitor's quadrature over rk45's
-    long free-flight steps (h_max = T/720 shrinks it to ≤ 0.35 %, |Δβ| ≤ 0.002)."""
+    monitors' time averages as the grid is refined: within 1 % of the largest bin mean and 0.02
+    in β at 36 000 points a turn, closer than at 360 (measured figures: docs/physics.md §6; the
+    rest is the monitor's quadrature over rk45's long free-flight steps: h_max = T/720 shrinks
+    it to ≤ 0.35 %, |Δβ| ≤ 0.002)."""
     scene = _scene(tmp_path)
     period = _period(scene)
     runs = {n: _with(scene, dt_out=period / n).run() for n in (360, 36000)}

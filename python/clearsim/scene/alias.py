@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Dict, Optional, Tuple
+from typing import Dict, Optional, Tuple
 
 from ..errors import InputError
 from ..mechanism import Mechanism
@@ -23,7 +23,7 @@ from ..schema import COMPONENTS
 from .builder import _Builder
 from .settings import ERROR_QUANTITIES, SimulationSettings, _drive_speed
 from .study import StudySettings, study_of
-from .toml_reader import Table, dotted_key
+from .toml_reader import dotted_key
 
 #: The quantities ``[reliability.allowable]`` takes: errors of a body coordinate.
 RELIABILITY_QUANTITIES: Tuple[str, ...] = tuple(ERROR_QUANTITIES.values())
