@@ -193,3 +193,27 @@ def test_old_import_paths_still_work():
     assert old_builder._Builder is builder._Builder and old_reader.Table is toml_reader.Table and old_reader.read_toml is toml_reader.read_toml
     for module in (old_study, old_builder, old_reader):
         assert (module.__doc__ or "").startswith("Deprecated")
+
+
+def test_bins_are_crank_angles_when_the_window_starts_mid_turn(tmp_path):
+    """t_start half a turn in (7 bins and a bit: moved up to the 8th bin edge, 144°): the bins
+    still hold crank angles |ω| (t − t0), as the paper's formula on a fine grid from that edge
+    finds them (Study.fosm folded them from the window's start before, 144° off)."""
+    scene = _scene(tmp_path, RELIABILITY.replace('bin_width = 18.0', 'bin_width = 18.0\nt_start = 0.0047'))
+    period = _period(scene)
+    run = _with(scene, dt_out=period / 36000).run()
+    start = 8 * period / 20
+    assert _alias_start(scene) == pytest.approx(start, rel=1e-12)
+    for q, monitored in run.reliability.items():
+        error = run.errors[("slider", q)][:, 0]
+        t = run.result.t[: len(error)]
+        keep = t >= start - 1e-12
+        grid = rel.fosm(error[keep], np.degrees(abs(scene.reliability.omega) * t[keep]), scene.reliability.allowable[q], bin_width=18.0)
+        assert np.max(np.abs(grid.mu_s - monitored.mu_s)) < 1e-2 * np.max(monitored.mu_s), q
+
+
+def _alias_start(scene: Scene) -> float:
+    from clearsim.scene.alias import alias_study
+
+    settings = alias_study(scene.reliability, scene.simulation)
+    return settings.skip_cycles * _period(scene)
