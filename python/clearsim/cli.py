@@ -290,6 +290,8 @@ def summarize(run: SceneRun) -> Dict[str, Any]:
                 for q, r in run.reliability.items()
             },
         }
+    if run.reliability_failure:
+        out["reliability_failure"] = run.reliability_failure
     return _finite(out)
 
 
@@ -333,6 +335,8 @@ def _markdown(summary: Dict[str, Any], files: Sequence[Path]) -> str:
             r_min = "–" if m["reliability"] is None else f"{m['reliability']:.6f}"
             beta = "–" if m["beta"] is None else f"{m['beta']:.3f}"
             lines.append(f"| {q} | [{m['allowable'][0]:g}, {m['allowable'][1]:g}] | {r_min} | {beta} | {m['angle_deg']:g} |")
+    if summary.get("reliability_failure"):
+        lines += ["", f"**[reliability]:** {summary['reliability_failure']}"]
     lines += ["", "Files: " + ", ".join(f"`{p.name}`" for p in files), ""]
     if summary.get("not_written"):
         lines += ["**Not written** (the run's other outputs are complete):", ""]
@@ -414,6 +418,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
         for q, res in run.reliability.items():
             print(f"FOSM {q}: min R = {res.min_reliability:.6f} (β = {res.min_beta:.3f}) at {res.min_angle:g}°")
+        if run.reliability_failure:
+            print(f"[reliability]: {run.reliability_failure}")
         print(f"wrote {len(files)} files to {out_dir}")
     if run.failure is not None:
         t_reached = run.result.stats.get("t_reached", float("nan"))

@@ -22,7 +22,7 @@ def _header(path: Path) -> list:
 
 def test_run_nine_bar(tmp_path, capsys):
     out = tmp_path / "nb"
-    assert main(["run", str(SCENES / "nine_bar.toml"), "-o", str(out), "--t-end", "0.05", "-q"]) == 0
+    assert main(["run", str(SCENES / "nine_bar.toml"), "-o", str(out), "--t-end", "0.4", "-q"]) == 0  # [reliability]: a crank turn
     for name in ("bodies.csv", "bodies_ideal.csv", "errors.csv", "joints.csv", "reliability_velocity.csv", "summary.json", "summary.md"):
         assert (out / name).is_file(), name
     for name in ("slider9_y.png", "slider9_y_error.png", "orbits.png", "reliability.png"):
@@ -34,9 +34,9 @@ def test_run_nine_bar(tmp_path, capsys):
         "slider9.acceleration_error.y [m/s^2]",
     ]
     assert _header(out / "joints.csv")[:6] == ["t [s]", "A.ex [m]", "A.ey [m]", "A.eps [-]", "A.fx [N]", "A.fy [N]"]
-    assert len((out / "bodies.csv").read_text().splitlines()) == 1 + 251  # header + 0.05 s / 2e-4 s + 1
+    assert len((out / "bodies.csv").read_text().splitlines()) == 1 + 2001  # header + 0.4 s / 2e-4 s + 1
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["run"]["t_reached"] == pytest.approx(0.05) and summary["run"]["failure"] is None
+    assert summary["run"]["t_reached"] == pytest.approx(0.4) and summary["run"]["failure"] is None
     assert set(summary["run"]["impacts"]) == {"A", "B"}
     assert summary["run"]["max_constraint_violation"] < 1e-6
     minimum = summary["reliability"]["minimum"]

@@ -10,8 +10,10 @@ from pathlib import Path
 import pytest
 
 import clearsim
-from clearsim import _core, scene, scene_builder
-from clearsim.reliability import scene as study_scene
+from clearsim import _core, scene
+from clearsim.scene import alias, settings
+from clearsim.scene import builder as scene_builder
+from clearsim.scene import study as study_scene
 
 ROOT = Path(__file__).resolve().parents[2]
 PHYSICS = (ROOT / "docs" / "physics.md").read_text(encoding="utf-8")
@@ -55,8 +57,7 @@ def test_the_scene_help_documents_every_table_and_key():
     b = scene_builder
     keys = {*b._MECHANISM_KEYS, *b._BODY_KEYS, *b._DRIVER_KEYS, *b._CLEARANCE_KEYS, *b._PRISMATIC_CLEARANCE_KEYS,
             *(k for ks in b._JOINT_KEYS.values() for k in ks), *(k for ks in b._FORCE_KEYS.values() for k in ks),
-            *scene._SIM_KEYS, *scene._OUTPUT_KEYS, *scene._RELIABILITY_KEYS,
-            *(getattr(study_scene, "STUDY_KEYS", None) or scene._STUDY_KEYS),  # its keys moved to reliability/scene.py on main
-            *study_scene.INPUT_KEYS, *study_scene.TOLERANCE_KEYS, *getattr(study_scene, "OUTPUT_KEYS", ())}  # fmt: skip
+            *settings._SIM_KEYS, *settings._OUTPUT_KEYS, *alias._RELIABILITY_KEYS, *study_scene.STUDY_KEYS,
+            *study_scene.INPUT_KEYS, *study_scene.TOLERANCE_KEYS, *study_scene.OUTPUT_KEYS}  # fmt: skip
     missing = sorted(k for k in keys if not re.search(rf"\b{k}\b", doc))
     assert not missing, f"keys a scene accepts but pydoc clearsim.scene does not name: {missing}"

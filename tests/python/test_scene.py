@@ -54,7 +54,7 @@ def test_scene_settings():
 
 
 def test_scene_run_errors_and_reliability():
-    scene = load_scene_file(NINE_BAR).with_overrides(t_end=0.05)
+    scene = load_scene_file(NINE_BAR).with_overrides(t_end=0.4)  # [reliability] needs a crank turn
     run = scene.run()
     assert run.ideal is not None and run.failure is None
     for quantity in ("displacement", "velocity", "acceleration"):

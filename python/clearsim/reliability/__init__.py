@@ -28,7 +28,8 @@ AK-IS), :mod:`.uq` (all of these in one import), :mod:`.model` (what the methods
 :class:`LimitState` for any function), :mod:`.study` (:class:`Study`, the simulation model and
 the one Monte Carlo sample loop), :mod:`.binned` (``clearsim.monte_carlo``: per-bin Monte
 Carlo of one body coordinate's errors on that loop), :mod:`.life` and :mod:`.life_plot` (reliability over life by
-cycle jumping), :mod:`.scene` and :mod:`.report` (``clearsim reliability``).
+cycle jumping), :mod:`.report` (``clearsim reliability``; the ``[study]`` table it reads is
+:mod:`clearsim.scene.study`).
 Methods on OpenTURNS need ``pip install clearsim[uq]``; docs/reliability.md says which to use.
 """
 

@@ -11,7 +11,6 @@ from typing import Any, Callable, Dict, List, Optional, Sequence
 import numpy as np
 
 from ..csvfile import write_rows
-from .scene import scene_study
 
 FOSM_NOTE = (
     "FOSM (the paper's method, Eqs. P27–P32) is pointwise in time: per crank-angle bin it compares the "
@@ -127,7 +126,7 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
     ``out_dir``; returns the files."""
     settings = scene.study
-    study = scene_study(scene, progress=progress)
+    study = scene.study_model(progress=progress)
     chosen = list(methods or settings.methods)
     r = Run(study, settings, int(samples or settings.samples), echo)
     out_dir.mkdir(parents=True, exist_ok=True)

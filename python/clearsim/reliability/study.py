@@ -475,17 +475,20 @@ class Study(ReliabilityModel, Modes):
             bounds=(k_sys / int(n), (k_sys + n_fail) / int(n)), wall_time=time.perf_counter() - start, traces=traces, modes=modes,
         )  # fmt: skip
 
-    def fosm(self, bin_width: Optional[float] = None, output: int = 0) -> FosmResult:
+    def fosm(self, bin_width: Optional[float] = None, output: int = 0, allowable: Optional[Tuple[float, float]] = None) -> FosmResult:
         """The paper's per-bin FOSM (Eqs. P27–P32) of the nominal mechanism (every input at its
         mean) for output number ``output``: per crank-angle bin, the time-averaged mean and
         standard deviation of |error| over the analysed cycles, integrated at every step (not
-        from stored samples), against the allowable range ``[0, limit]`` (μ_S = limit/2,
-        σ_S = limit/6)."""
+        from stored samples), against the allowable range ``allowable = (Δv, Δu)`` in the
+        output's unit (default ``(0, limit)``): μ_S = (Δu + Δv)/2, σ_S = (Δu − Δv)/6 (P31–P32).
+        Crank angles count from the start of the runs (``t0`` of the run options, default 0)."""
         width = check_positive("bin_width", bin_width) if bin_width is not None else self.bin_width
         if not (isinstance(output, int) and 0 <= output < len(self.outputs)):
             raise InputError(f"invalid output = {output!r}: the index of one of {len(self.outputs)} outputs", field="output", value=output)
         if self.limits[output].side != "above" or self.outputs[output].quantity == "film_thickness":
             raise InputError(f"invalid output = {output}: FOSM compares an error with an allowable range [0, limit]; {self.outputs[output].label} has a lower limit", field="output", value=output)
+        lower, upper = (0.0, self.limits[output].value) if allowable is None else allowable
+        mu_S, sigma_S = allowable_statistics(lower, upper)
         saved = (self.bin_width, self.outputs, self.limits)
         self.bin_width, self.outputs, self.limits = width, [self.outputs[output]], [self.limits[output]]
         try:
@@ -498,10 +501,13 @@ class Study(ReliabilityModel, Modes):
         assert ev.monitors is not None
         per_cycle = int(math.ceil(360.0 / width - 1e-9))
         mon = ev.monitors[0][0]
-        fold = np.arange(len(mon["bin_time"])) % per_cycle
+        # The bin of the turn the window opens in (0 after whole skipped turns): crank angle |ω| (t − t0).
+        start, _, period = self._window(self.nominal())
+        turns = (start - float(self.run_options.get("t0", 0.0))) / period
+        first = int(round((turns - math.floor(turns + 1e-9)) * 360.0 / width))
+        fold = (first + np.arange(len(mon["bin_time"]))) % per_cycle
         starts = np.arange(per_cycle) * width
         centres = np.minimum(starts + 0.5 * width, 0.5 * (starts + np.minimum(starts + width, 360.0)))
-        mu_S, sigma_S = allowable_statistics(0.0, self.limits[output].value)
         return fosm_from_monitors([mon], fold, starts, centres, np.zeros(per_cycle, dtype=int), mu_S, sigma_S, width)
 
     # ------------------------------------------------------------------ methods of other rooms
