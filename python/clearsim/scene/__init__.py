@@ -183,10 +183,12 @@ naming the file and line. Example scenes: ``scenes/`` (``docs/examples.md``).
 
 TOML is read with :mod:`tomllib` (Python ≥ 3.11) or the ``tomli`` package.
 
-A scene may have both ``[reliability]`` and ``[study]``: they are read independently and serve
-different commands (``clearsim run`` the nominal FOSM of ``[reliability]``, ``clearsim
-reliability`` the methods of ``[study]``), as scenes written before ``[reliability]`` became
-an alias hold both; neither changes the other's answers.
+``clearsim reliability`` runs ``[study]``, or, on a scene without one, the study
+``[reliability]`` stands for (:meth:`Scene.study_settings`: the same FOSM numbers ``clearsim
+run`` prints). A scene may have both tables: they are read independently (``clearsim run`` the
+nominal FOSM of ``[reliability]``, ``clearsim reliability`` the methods of ``[study]``), as
+scenes written before ``[reliability]`` became an alias hold both; neither changes the other's
+answers.
 """
 
 from __future__ import annotations
