@@ -434,8 +434,8 @@ def _cmd_reliability(args: argparse.Namespace) -> int:
     from .reliability.report import run_study
 
     scene = load_scene_file(args.scene)
-    if scene.study is None:
-        print(f"clearsim: error: {args.scene} has no [study] table (random inputs, output and limit; python -m pydoc clearsim.scene)", file=sys.stderr)
+    if scene.study is None and scene.reliability is None:  # [reliability] alone: its FOSM, the study it stands for
+        print(f"clearsim: error: {args.scene} has no [study] table (random inputs, output and limit) nor [reliability] (python -m pydoc clearsim.scene)", file=sys.stderr)
         return EXIT_ERROR
     out_dir = Path(args.output) if args.output else Path(f"clearsim-{Path(args.scene).stem}-reliability")
     methods = args.methods.split(",") if args.methods else None
@@ -562,7 +562,7 @@ def build_parser() -> argparse.ArgumentParser:
         "system): p_f by each method, Sobol indices, tolerance design, p_f over life ([study.life]); writes CSV tables, "
         "reliability.png and report.md.",
     )  # fmt: skip
-    rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table (format: python -m pydoc clearsim.scene)")
+    rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table, or [reliability] (its short form: FOSM) (format: python -m pydoc clearsim.scene)")
     rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
     rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm,ak_mcs,ak_is")
     rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")

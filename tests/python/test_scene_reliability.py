@@ -5,17 +5,21 @@ it; the hand-written [study] gives the same numbers; short or failed runs say wh
 
 from __future__ import annotations
 
+import csv
 import dataclasses
 import json
 import math
+import re
+import subprocess
+import sys
 from pathlib import Path
-from typing import Any, Dict
+from typing import Any, Dict, List
 
 import numpy as np
 import pytest
 
 from clearsim import reliability as rel
-from clearsim.cli import main
+from clearsim.cli import EXIT_ERROR, main
 from clearsim.errors import InputError
 from clearsim.scene import Scene, load_scene_file
 
@@ -183,16 +187,117 @@ def test_a_scene_may_hold_both_tables(tmp_path):
     assert _same(both.study_model(progress=False).fosm(), a["velocity"])
 
 
+#: The names the old clearsim.reliability.scene defined (before the [study] reader moved to clearsim.scene.study).
+OLD_STUDY_NAMES = ("METHODS", "OUTPUT_KEYS", "STUDY_KEYS", "INPUT_KEYS", "TOLERANCE_KEYS", "LIFE_KEYS", "DISTRIBUTIONS", "LifeSettings", "StudySettings", "_output", "parse_study", "scene_study", "Study")
+
+
 def test_old_import_paths_still_work():
-    import clearsim.reliability.scene as old_study
     import clearsim.scene_builder as old_builder
     import clearsim.toml_reader as old_reader
-    from clearsim.scene import builder, study, toml_reader
+    from clearsim.scene import builder, toml_reader
 
-    assert old_study.scene_study is study.scene_study and old_study.METHODS is study.METHODS and old_study.StudySettings is study.StudySettings
     assert old_builder._Builder is builder._Builder and old_reader.Table is toml_reader.Table and old_reader.read_toml is toml_reader.read_toml
-    for module in (old_study, old_builder, old_reader):
+    for module in (old_builder, old_reader):
         assert (module.__doc__ or "").startswith("Deprecated")
+
+
+def test_the_old_study_path_is_registered_from_above():
+    """clearsim.reliability.scene has no file of its own (a module there looking up
+    clearsim.scene.study ran an import upward): clearsim.scene registers the study module under
+    the old name. In a fresh interpreter, with warnings as errors: ``import clearsim`` is silent,
+    and the old imports give the new module's objects."""
+    import clearsim
+
+    assert not (Path(clearsim.__file__).parent / "reliability" / "scene.py").exists()
+    script = f"""
+import warnings
+warnings.simplefilter("error")
+import clearsim
+import clearsim.reliability.scene
+import clearsim.scene.study as new
+from clearsim.reliability.scene import StudySettings
+from clearsim.reliability import scene as attribute
+import importlib
+assert clearsim.reliability.scene is new and attribute is new and importlib.import_module("clearsim.reliability.scene") is new
+assert StudySettings is new.StudySettings
+from clearsim.reliability.scene import {", ".join(OLD_STUDY_NAMES)}
+assert METHODS is new.METHODS and scene_study is new.scene_study and LifeSettings is new.LifeSettings
+print("ok")
+"""
+    for source in (script, "import clearsim.reliability.scene as old; import warnings; print('ok' if old.StudySettings else '')"):
+        done = subprocess.run([sys.executable, "-W", "error", "-c", source], capture_output=True, text=True, cwd=Path(clearsim.__file__).parents[2], timeout=120)
+        assert done.returncode == 0 and done.stdout.strip() == "ok" and not done.stderr, done.stderr
+
+
+@pytest.mark.parametrize("integrator", ["rk45", "radau"])
+def test_one_monitored_run_gives_every_quantity_bit_for_bit(tmp_path, monkeypatch, integrator):
+    """[reliability] makes one monitored run for all its quantities (it made one each), and each
+    quantity's numbers are, bit for bit, those of Study.fosm run for that quantity alone (the
+    monitors do not steer the step: explicit rk45 and implicit radau, whose acceleration monitor
+    shares the KKT workspace with the integrator)."""
+    from clearsim.reliability.study import Study
+    from clearsim.scene.alias import alias_study
+    from clearsim.scene.study import study_of
+
+    scene = _scene(tmp_path).with_overrides(integrator=integrator)
+    calls: List[int] = []
+    original = Study.run_samples
+
+    def counted(self: Any, points: Any, **kwargs: Any) -> Any:
+        calls.append(len(self.outputs))
+        return original(self, points, **kwargs)
+
+    monkeypatch.setattr(Study, "run_samples", counted)
+    run = scene.run()
+    assert calls == [3]  # one run, monitoring three quantities
+    monkeypatch.setattr(Study, "run_samples", original)
+    settings = alias_study(scene.reliability, scene.simulation)
+    study = study_of(settings, scene.mechanism, scene.simulation, progress=False)
+    assert settings.allowable is not None
+    for i, output in enumerate(settings.outputs):
+        alone = study.fosm(output=i, allowable=settings.allowable[i])
+        assert _same(alone, run.reliability[output.quantity]), (integrator, output.quantity)
+    two = study.fosm_all(outputs=[2, 0], allowable=[None, settings.allowable[0]])
+    assert _same(two[1], run.reliability["displacement"]) and two[0].mu_S == 2500.0  # its own range: (0, limit)
+    with pytest.raises(InputError, match="ranges"):
+        study.fosm_all(outputs=[0, 1], allowable=[None])
+
+
+def _fosm_rows(path: Path) -> Dict[str, np.ndarray]:
+    rows = list(csv.reader(path.open(encoding="utf-8")))
+    assert rows[0] == ["output", "bin_start_deg", "mu_s", "sigma_s", "beta", "reliability"]
+    names = sorted({r[0] for r in rows[1:]}, key=[r[0] for r in rows[1:]].index)
+    return {name: np.array([[float(x) for x in r[1:]] for r in rows[1:] if r[0] == name]) for name in names}
+
+
+def test_clearsim_reliability_runs_the_alias(tmp_path, capsys):
+    """An alias behaves as what it aliases: ``clearsim reliability`` on a scene with only
+    [reliability] runs its study (FOSM per quantity of the nominal mechanism) and prints and
+    writes the numbers ``clearsim run`` gives; methods that need random inputs say so."""
+    _scene(tmp_path)
+    path = str(tmp_path / "scene.toml")
+    assert main(["run", path, "-o", str(tmp_path / "run"), "--no-plots"]) == 0
+    printed_run = capsys.readouterr().out
+    out = tmp_path / "rel"
+    assert main(["reliability", path, "-o", str(out)]) == 0
+    printed = capsys.readouterr().out
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())["reliability"]["minimum"]
+    written = _fosm_rows(out / "fosm.csv")
+    assert list(written) == ["slider.x.displacement", "slider.x.velocity", "slider.x.acceleration"]
+    for q in ("displacement", "velocity", "acceleration"):
+        shown = re.search(rf"FOSM {q}: min R = ([0-9.]+) \(β = ([-0-9.]+)\) at ([0-9.]+)°", printed_run)
+        assert shown is not None
+        assert f"slider.x.{q}: min R = {shown[1]} (β = {shown[2]}) at {shown[3]}°" in printed, q
+        rows = list(csv.reader((tmp_path / "run" / f"reliability_{q}.csv").open(encoding="utf-8")))
+        by_run = {name: np.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0])}
+        table = written[f"slider.x.{q}"]  # bin_start_deg, mu_s, sigma_s, beta, reliability: full precision
+        for k, name in enumerate(("angle_deg", "mu_s", "sigma_s", "beta", "reliability")):
+            np.testing.assert_array_equal(table[:, k], by_run[name], err_msg=f"{q} {name}")
+        assert table[:, 4].min() == summary[q]["reliability"]
+    report = (out / "report.md").read_text()
+    assert "no [study]" not in printed and "none: `[reliability]`" in report and (out / "reliability.png").stat().st_size > 0
+    assert main(["reliability", path, "-o", str(tmp_path / "mc"), "--methods", "monte_carlo"]) == EXIT_ERROR
+    assert "[[study.input]]" in capsys.readouterr().err
 
 
 def test_bins_are_crank_angles_when_the_window_starts_mid_turn(tmp_path):

@@ -1,5 +1,5 @@
-"""``clearsim reliability scene.toml``: run the methods of a scene's ``[study]`` and write CSV
-tables, a figure and a short text report."""
+"""``clearsim reliability scene.toml``: run the methods of a scene's ``[study]`` (or of the study
+its ``[reliability]`` is the short form of) and write CSV tables, a figure and a short text report."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence
 import numpy as np
 
 from ..csvfile import write_rows
+from ..errors import InputError
 
 FOSM_NOTE = (
     "FOSM (the paper's method, Eqs. P27–P32) is pointwise in time: per crank-angle bin it compares the "
@@ -83,8 +84,18 @@ def _sobol(r: Run) -> None:
 
 
 def _fosm(r: Run) -> None:
-    r.found["fosm"] = res = r.study.fosm()
-    r.echo(f"{'fosm':20s} min R = {res.min_reliability:.6f} at {res.min_angle:g}°")
+    """FOSM of every output it applies to (an upper limit), from one monitored run of the
+    nominal mechanism, each against its allowable range (``[reliability]``'s, else [0, limit])."""
+    study, allowable = r.study, r.settings.allowable
+    chosen = [i for i, (o, lim) in enumerate(zip(study.outputs, study.limits)) if lim.side == "above" and o.quantity != "film_thickness"] or [0]
+    results = study.fosm_all(outputs=chosen, allowable=[allowable[i] for i in chosen] if allowable is not None else None)
+    r.found["fosm"] = res = results[0]
+    r.found["fosm_outputs"] = {study.outputs[i].name: res_i for i, res_i in zip(chosen, results)}
+    if len(study.outputs) == 1:
+        r.echo(f"{'fosm':20s} min R = {res.min_reliability:.6f} at {res.min_angle:g}°")
+        return
+    for name, res_i in r.found["fosm_outputs"].items():
+        r.echo(f"{'fosm':20s} {name}: min R = {res_i.min_reliability:.6f} (β = {res_i.min_beta:.3f}) at {res_i.min_angle:g}°")
 
 
 def _ak(r: Run, method: str) -> None:
@@ -125,9 +136,12 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     mode on a series system), ``sobol.csv``, ``samples.csv`` (Monte Carlo: inputs, each output's
     peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
     ``out_dir``; returns the files."""
-    settings = scene.study
+    settings = scene.study_settings()
     study = scene.study_model(progress=progress)
     chosen = list(methods or settings.methods)
+    if not settings.inputs and set(chosen) != {"fosm"}:
+        raise InputError(f"invalid methods = {chosen!r}: {scene.path or 'the scene'} has only [reliability] (the FOSM of the nominal mechanism, no random inputs): "
+                         "give a [study] with [[study.input]] for the other methods", field="methods", value=chosen)  # fmt: skip
     r = Run(study, settings, int(samples or settings.samples), echo)
     out_dir.mkdir(parents=True, exist_ok=True)
     echo(f"{scene.name}: {study}")
@@ -158,9 +172,11 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
             head = [f"{o.name} [{o.unit}]" for o in study.outputs] + [f"{o.name} first_passage_time [s]" for o in study.outputs]
         files.append(_write(out_dir / "samples.csv", names + head, [[mc.inputs[k][i] for k in names] + list(peaks[i]) + list(first[i]) for i in range(peaks.shape[0])]))
     if "fosm" in found:
-        fo = found["fosm"]
-        files.append(_write(out_dir / "fosm.csv", ["bin_start_deg", "mu_s", "sigma_s", "beta", "reliability"],
-                            [[a, m, s, b, rr] for a, m, s, b, rr in zip(fo.bin_starts, fo.mu_s, fo.sigma_s, fo.beta, fo.reliability)]))  # fmt: skip
+        # One output: its bins; several (a system, or [reliability]'s quantities): a row per output and bin.
+        several = len(study.outputs) > 1
+        files.append(_write(out_dir / "fosm.csv", ["output"] * several + ["bin_start_deg", "mu_s", "sigma_s", "beta", "reliability"],
+                            [[name] * several + [a, m, s, b, rr] for name, fo in found["fosm_outputs"].items()
+                             for a, m, s, b, rr in zip(fo.bin_starts, fo.mu_s, fo.sigma_s, fo.beta, fo.reliability)]))  # fmt: skip
     if plots:
         files.append(plot_study(study, found, out_dir / "reliability.png"))
     files.append(_report(scene, study, rows, found, out_dir / "report.md", files))
@@ -178,6 +194,8 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
 
     estimates = [(k, found[k]) for k in ("monte_carlo", "form", "importance_sampling", "subset", "ak_mcs", "ak_is") if k in found]
     panels = ["pf"] * bool(estimates) + ["curve"] * ("monte_carlo" in found) + ["importance"] * ("form" in found) + ["sobol"] * ("sobol" in found)
+    if not panels and "fosm" in found:  # FOSM alone ([reliability]): its reliability per bin, as clearsim run draws it
+        return plots.save(plots.plot_reliability_panels({name: {"FOSM, nominal mechanism": res} for name, res in found["fosm_outputs"].items()}), path)
     if not panels:
         panels = ["pf"]
     with plots.style():
@@ -243,8 +261,12 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
     outs = "; ".join(f"{o.label} {lim.text(o.unit)} (`{o.name}`)" for o, lim in zip(study.outputs, study.limits))
     kind = "Output" if len(study.outputs) == 1 else "Outputs (a series system: it fails when any output passes its limit)"
     lines = [f"# Reliability: {scene.name}", "", f"{kind}: {outs}; {study.cycles:g} cycle(s) after {study.skip_cycles:g}.", "", "Random inputs:", ""]
+    settings = scene.study_settings()
     for name, d in study.inputs.items():
-        lines.append(f"- `{name}`: {d}")
+        if name in settings.inputs:
+            lines.append(f"- `{name}`: {d}")
+    if not settings.inputs:
+        lines.append("none: `[reliability]`, the short form of `[study]` with `methods = [\"fosm\"]`, analyses the nominal mechanism.")
     if rows:
         lines += ["", "| method | mode | p_f | 95 % interval | CoV | β | runs | wall time [s] |", "|---|---|---|---|---|---|---|---|"]
         for r in rows:
@@ -284,8 +306,10 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
         elif at is not None:
             lines += ["", f"Life at R = {study_settings_reliability(scene)}: {at}"]
     if "fosm" in found:
-        fo = found["fosm"]
-        lines += ["", f"FOSM (nominal mechanism, {fo.bin_width:g}° bins): minimum reliability {fo.min_reliability:.6f} (β = {fo.min_beta:.3f}) at {fo.min_angle:g}°."]
+        for name, fo in found["fosm_outputs"].items():
+            which = f" `{name}`" if len(study.outputs) > 1 else ""
+            lines += ["", f"FOSM{which} (nominal mechanism, {fo.bin_width:g}° bins, allowable μ_S = {fo.mu_S:.6g}, σ_S = {fo.sigma_S:.6g}): "
+                      f"minimum reliability {fo.min_reliability:.6f} (β = {fo.min_beta:.3f}) at {fo.min_angle:g}°."]  # fmt: skip
     lines += ["", FOSM_NOTE, "", "Files: " + ", ".join(p.name for p in files) + ", report.md", ""]
     path.write_text("\n".join(lines), encoding="utf-8")
     return path

@@ -481,16 +481,35 @@ class Study(ReliabilityModel, Modes):
         standard deviation of |error| over the analysed cycles, integrated at every step (not
         from stored samples), against the allowable range ``allowable = (Δv, Δu)`` in the
         output's unit (default ``(0, limit)``): μ_S = (Δu + Δv)/2, σ_S = (Δu − Δv)/6 (P31–P32).
-        Crank angles count from the start of the runs (``t0`` of the run options, default 0)."""
+        Crank angles count from the start of the runs (``t0`` of the run options, default 0).
+        Several outputs from one run: :meth:`fosm_all`."""
+        return self.fosm_all(bin_width, [output], [allowable])[0]
+
+    def fosm_all(
+        self, bin_width: Optional[float] = None, outputs: Optional[Sequence[int]] = None, allowable: Optional[Sequence[Optional[Tuple[float, float]]]] = None
+    ) -> List[FosmResult]:  # fmt: skip
+        """:meth:`fosm` of several outputs (``outputs``: their numbers, default every output)
+        from one monitored run of the nominal mechanism, each output against its own allowable
+        range (``allowable[i]`` for ``outputs[i]``: ``(Δv, Δu)`` in its unit, ``None`` for
+        ``(0, limit)``). The monitors do not steer the integrator, so each result is bit for bit
+        the one :meth:`fosm` gives for that output alone."""
         width = check_positive("bin_width", bin_width) if bin_width is not None else self.bin_width
-        if not (isinstance(output, int) and 0 <= output < len(self.outputs)):
-            raise InputError(f"invalid output = {output!r}: the index of one of {len(self.outputs)} outputs", field="output", value=output)
-        if self.limits[output].side != "above" or self.outputs[output].quantity == "film_thickness":
-            raise InputError(f"invalid output = {output}: FOSM compares an error with an allowable range [0, limit]; {self.outputs[output].label} has a lower limit", field="output", value=output)
-        lower, upper = (0.0, self.limits[output].value) if allowable is None else allowable
-        mu_S, sigma_S = allowable_statistics(lower, upper)
+        chosen = list(range(len(self.outputs))) if outputs is None else list(outputs)
+        ranges: List[Optional[Tuple[float, float]]] = [None] * len(chosen) if allowable is None else list(allowable)
+        if not chosen:
+            raise InputError(f"invalid outputs = {outputs!r}: give the number of at least one output", field="outputs", value=outputs)
+        if len(ranges) != len(chosen):
+            raise InputError(f"invalid allowable: {len(ranges)} ranges for {len(chosen)} outputs (one each, None for (0, limit))", field="allowable", value=allowable)
+        statistics = []
+        for output, pair in zip(chosen, ranges):
+            if not (isinstance(output, int) and 0 <= output < len(self.outputs)):
+                raise InputError(f"invalid output = {output!r}: the index of one of {len(self.outputs)} outputs", field="output", value=output)
+            if self.limits[output].side != "above" or self.outputs[output].quantity == "film_thickness":
+                raise InputError(f"invalid output = {output}: FOSM compares an error with an allowable range [0, limit]; {self.outputs[output].label} has a lower limit", field="output", value=output)
+            lower, upper = (0.0, self.limits[output].value) if pair is None else pair
+            statistics.append(allowable_statistics(lower, upper))
         saved = (self.bin_width, self.outputs, self.limits)
-        self.bin_width, self.outputs, self.limits = width, [self.outputs[output]], [self.limits[output]]
+        self.bin_width, self.outputs, self.limits = width, [self.outputs[i] for i in chosen], [self.limits[i] for i in chosen]
         try:
             ev, _ = self.run_samples({}, keep_monitors=True, what="FOSM")
         finally:
@@ -500,15 +519,15 @@ class Study(ReliabilityModel, Modes):
             raise SimulationError(f"FOSM: the nominal mechanism failed: {reason}", reason=reason)
         assert ev.monitors is not None
         per_cycle = int(math.ceil(360.0 / width - 1e-9))
-        mon = ev.monitors[0][0]
+        monitors = ev.monitors[0]
         # The bin of the turn the window opens in (0 after whole skipped turns): crank angle |ω| (t − t0).
         start, _, period = self._window(self.nominal())
         turns = (start - float(self.run_options.get("t0", 0.0))) / period
         first = int(round((turns - math.floor(turns + 1e-9)) * 360.0 / width))
-        fold = (first + np.arange(len(mon["bin_time"]))) % per_cycle
+        fold = (first + np.arange(len(monitors[0]["bin_time"]))) % per_cycle
         starts = np.arange(per_cycle) * width
         centres = np.minimum(starts + 0.5 * width, 0.5 * (starts + np.minimum(starts + width, 360.0)))
-        return fosm_from_monitors([mon], fold, starts, centres, np.zeros(per_cycle, dtype=int), mu_S, sigma_S, width)
+        return [fosm_from_monitors([mon], fold, starts, centres, np.zeros(per_cycle, dtype=int), mu_S, sigma_S, width) for mon, (mu_S, sigma_S) in zip(monitors, statistics)]
 
     # ------------------------------------------------------------------ methods of other rooms
     # Reliability over life (life.py) and active-learning surrogates (akmcs.py) add their

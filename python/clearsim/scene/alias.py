@@ -5,8 +5,8 @@ It is read and checked here, then set up as the equivalent :class:`~clearsim.rel
 error against the ideal mechanism, with the upper end of its allowable range as the limit; the
 window from ``t_start`` (moved up to the next bin edge of the crank angle |ω| (t − t0)) to the
 end of the run. :func:`scene_fosm` computes ``SceneRun.reliability`` through
-:meth:`Study.fosm <clearsim.reliability.Study.fosm>`: from the integrator's step monitors, so no
-number depends on ``dt_out`` (docs/physics.md §6).
+:meth:`Study.fosm_all <clearsim.reliability.Study.fosm_all>`: one run of the nominal mechanism whose
+step monitors track every quantity, so no number depends on ``dt_out`` (docs/physics.md §6).
 """
 
 from __future__ import annotations
@@ -79,12 +79,13 @@ def alias_study(rel: ReliabilitySettings, sim: SimulationSettings) -> StudySetti
 
 
 def scene_fosm(rel: ReliabilitySettings, mech: Mechanism, sim: SimulationSettings, progress: bool = False) -> Dict[str, FosmResult]:
-    """``{quantity: FosmResult}`` of ``[reliability]`` through :meth:`Study.fosm` (the nominal
-    mechanism, monitored at every step; the same numbers whatever ``dt_out``)."""
+    """``{quantity: FosmResult}`` of ``[reliability]`` through :meth:`Study.fosm_all` (the
+    nominal mechanism, one run monitoring every quantity at every step; the same numbers
+    whatever ``dt_out``)."""
     settings = alias_study(rel, sim)
     study = study_of(settings, mech, sim, progress)
-    assert settings.allowable is not None
-    return {o.quantity: study.fosm(output=i, allowable=settings.allowable[i]) for i, o in enumerate(settings.outputs)}
+    results = study.fosm_all(allowable=settings.allowable)
+    return {o.quantity: res for o, res in zip(settings.outputs, results)}
 
 
 def read_reliability(b: _Builder, m: Mechanism) -> Optional[ReliabilitySettings]:

@@ -75,12 +75,21 @@ class Scene:
         self.mechanism.run_settings(sim.t_end, **sim.kwargs())  # raises InputError if invalid
         return dataclasses.replace(self, simulation=sim)
 
+    def study_settings(self) -> Optional[StudySettings]:
+        """The study ``clearsim reliability`` runs: the ``[study]`` table, else the one
+        ``[reliability]`` is the short form of (:func:`~clearsim.scene.alias.alias_study`: FOSM
+        per quantity of the nominal mechanism); ``None`` if the scene has neither."""
+        if self.study is not None:
+            return self.study
+        return self.reliability.study(self.simulation) if self.reliability is not None else None
+
     def study_model(self, progress: bool = True) -> Study:
-        """The :class:`~clearsim.reliability.Study` of the ``[study]`` table (``clearsim
-        reliability``); :class:`InputError` if the scene has none."""
-        if self.study is None:
-            raise InputError(f"{self.path or 'the scene'} has no [study] table (random inputs, output and limit)", field="study", value=None)
-        return study_of(self.study, self.mechanism, self.simulation, progress)
+        """The :class:`~clearsim.reliability.Study` of :meth:`study_settings` (``clearsim
+        reliability``); :class:`InputError` if the scene has neither table."""
+        settings = self.study_settings()
+        if settings is None:
+            raise InputError(f"{self.path or 'the scene'} has no [study] table (random inputs, output and limit) nor [reliability]", field="study", value=None)
+        return study_of(settings, self.mechanism, self.simulation, progress)
 
     def simulate(self) -> Result:
         """Run the mechanism with the scene's settings."""
