@@ -9,18 +9,22 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .. import plots
-from ..csvfile import write_rows
+from ..csvfile import column_name, write_rows
 from ..reliability import FosmResult
+from ..schema import ascii_unit
 from .analysis import Analysis, minima_with_paper
 from .cases import CASES, CLEARANCE_CASES, Case, JOINTS, QUANTITIES, TRANSITION_FRACTION, UNIT, _short_label
 from .runs import Run
 from .trends import Trend
 from .values import PEAKS
 
-CSV_UNIT = {"displacement": "m", "velocity": "m_per_s", "acceleration": "m_per_s2"}
+#: The columns of time [s] and crank angle |ω| t [deg] that open every curve's CSV file.
+TIME, CRANK_ANGLE = column_name("t", "s"), column_name("crank_angle", "deg")
 
 
 # ====================================================================== files
+# Headers ``name [unit]`` (clearsim.csvfile.column_name; units as clearsim.schema spells them, in
+# ASCII); a column whose unit varies by row names it in its ``error_unit`` column.
 
 
 def _write_csv(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> Path:
@@ -56,10 +60,10 @@ def _shade_startup(axes: Sequence[Any], period: float, label_axis: Any = None, t
 
 def _error_files(out: Path, stem: str, an: Sequence[Analysis], study: str, title: str) -> List[Path]:
     longest = max(an, key=lambda a: len(a.t))
-    cols: Dict[str, np.ndarray] = {"time_s": longest.t, "crank_angle_deg": longest.angle}
+    cols: Dict[str, np.ndarray] = {TIME: longest.t, CRANK_ANGLE: longest.angle}
     for a in an:
         for q in QUANTITIES:
-            cols[f"{_csv_name(a.case)}_{q}_error_{CSV_UNIT[q]}"] = a.errors[q]
+            cols[column_name(f"{_csv_name(a.case)}_{q}_error", UNIT[q])] = a.errors[q]
     csv_path = _columns_csv(out / f"{stem}.csv", cols)
     series = {_short_label(a.case, study): {q: a.errors[q] for q in QUANTITIES} for a in an}
     tmap = {_short_label(a.case, study): a.t for a in an}
@@ -78,8 +82,8 @@ def _orbit_files(out: Path, stem: str, runs: Sequence[Run], labeller: Callable[[
     band: Dict[str, Optional[float]] = {}
     longest = max(runs, key=lambda r: len(r.result.t))
     cols: Dict[str, np.ndarray] = {
-        "time_s": longest.result.t,
-        "crank_angle_deg": np.degrees(abs(longest.case.omega) * longest.result.t),
+        TIME: longest.result.t,
+        CRANK_ANGLE: np.degrees(abs(longest.case.omega) * longest.result.t),
     }
     for joint in JOINTS:
         for run in runs:
@@ -98,13 +102,13 @@ def _orbit_files(out: Path, stem: str, runs: Sequence[Run], labeller: Callable[[
 
 def _reliability_rows(a: Analysis, scope: str, res: FosmResult, q: str) -> List[List[Any]]:
     return [
-        [a.case.key, q, UNIT[q], scope, r["cycle"] + 1 if res.cycle.any() or scope.startswith("per_cycle") else "", r["angle_deg"], r["centre_deg"], r["count"], r["mu_s"], r["sigma_s"], r["mu_S"], r["sigma_S"], r["beta"], r["reliability"]]
+        [a.case.key, q, ascii_unit(UNIT[q]), scope, r["cycle"] + 1 if res.cycle.any() or scope.startswith("per_cycle") else "", r["angle_deg"], r["centre_deg"], r["count"], r["mu_s"], r["sigma_s"], r["mu_S"], r["sigma_S"], r["beta"], r["reliability"]]
         for r in res.to_rows()
     ]
 
 
 RELIABILITY_HEADER = [
-    "case", "quantity", "error_unit", "scope", "cycle", "bin_start_deg", "bin_centre_deg", "samples",
+    "case", "quantity", "error_unit", "scope", "cycle", "bin_start [deg]", "bin_centre [deg]", "samples",
     "mu_s_error_unit", "sigma_s_error_unit", "mu_S_error_unit", "sigma_S_error_unit", "beta", "reliability",
 ]  # fmt: skip
 
@@ -158,8 +162,8 @@ def _summary_csvs(out: Path, runs: Dict[str, Run], an: Dict[str, Analysis], tren
         )  # fmt: skip
     runs_csv = _write_csv(
         out / "runs.csv",
-        ["case", "joints", "clearance_mm", "omega_rad_per_s", "steps", "rejected_steps", "rhs_evaluations", "impacts_A", "impacts_B",
-         "wall_time_s", "max_constraint_violation", "t_reached_s", "status"],
+        ["case", "joints", "clearance [mm]", "omega [rad/s]", "steps", "rejected_steps", "rhs_evaluations", "impacts_A", "impacts_B",
+         "wall_time [s]", "max_constraint_violation", "t_reached [s]", "status"],
         run_rows,
     )  # fmt: skip
     peak_rows = []
@@ -170,7 +174,7 @@ def _summary_csvs(out: Path, runs: Dict[str, Run], an: Dict[str, Analysis], tren
             pv, pt = PEAKS[key][q]
             peak_rows.append(
                 [
-                    key, q, UNIT[q],
+                    key, q, ascii_unit(UNIT[q]),
                     pk.value if pk else float("nan"), pk.time if pk else float("nan"),
                     pf.value if pf else float("nan"), pf.time if pf else float("nan"),
                     a.rms[q], pv, pt,
@@ -178,8 +182,8 @@ def _summary_csvs(out: Path, runs: Dict[str, Run], an: Dict[str, Analysis], tren
             )  # fmt: skip
     peaks_csv = _write_csv(
         out / "peaks.csv",
-        ["case", "quantity", "error_unit", "peak_whole_run", "peak_time_s", "peak_cycle1", "peak_cycle1_time_s", "rms_analysed_cycles",
-         "paper_peak", "paper_peak_time_s"],
+        ["case", "quantity", "error_unit", "peak_whole_run", "peak_time [s]", "peak_cycle1", "peak_cycle1_time [s]", "rms_analysed_cycles",
+         "paper_peak", "paper_peak_time [s]"],
         peak_rows,
     )  # fmt: skip
     min_rows = [
@@ -192,7 +196,7 @@ def _summary_csvs(out: Path, runs: Dict[str, Run], an: Dict[str, Analysis], tren
     ]  # fmt: skip
     minima_csv = _write_csv(
         out / "reliability_minima.csv",
-        ["case", "quantity", "min_bin_start_deg", "min_beta", "min_reliability", "paper_angle_deg", "paper_beta", "paper_reliability"],
+        ["case", "quantity", "min_bin_start [deg]", "min_beta", "min_reliability", "paper_angle [deg]", "paper_beta", "paper_reliability"],
         min_rows,
     )
     trend_rows = [[t.number, t.statement, c.comparison, c.ours, c.paper, c.status] for t in trends for c in t.checks]

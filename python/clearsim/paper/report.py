@@ -367,11 +367,12 @@ def _report(
     parts.append("## Files\n")
     parts.append("\n".join(f"- `{p.relative_to(out)}`" for p in files) + "\n")
     parts.append(
-        "CSV conventions: times in s (`time_s`), crank angles in degrees (`crank_angle_deg`, `bin_start_deg`), errors in SI "
-        "with the unit in the column name (`_m`, `_m_per_s`, `_m_per_s2`), orbits normalised by the clearance "
-        "(`_ex_over_c`, dimensionless). Reliability CSVs: `scope` = `per_cycle_all_cycles` (displacement, one set of bins per "
-        "cycle, `cycle` numbered from 1, `bin_start_deg` running over all cycles) or `pooled_…` (bins of one cycle pooled over "
-        "the analysed cycles, `cycle` empty); the statistics are in `error_unit`.\n"
+        "CSV conventions: a column with a unit is headed `name [unit]` (units in ASCII, as every clearsim CSV file): times "
+        "in s (`t [s]`), crank angles in degrees (`crank_angle [deg]`, `bin_start [deg]`), errors in SI (`…_error [m]`, "
+        "`[m/s]`, `[m/s^2]`), orbits normalised by the clearance (`_ex_over_c`, dimensionless). Where the unit varies by row "
+        "(peaks, reliability statistics) it is in the row's `error_unit`. Reliability CSVs: `scope` = `per_cycle_all_cycles` "
+        "(displacement, one set of bins per cycle, `cycle` numbered from 1, `bin_start [deg]` running over all cycles) or "
+        "`pooled_…` (bins of one cycle pooled over the analysed cycles, `cycle` empty).\n"
     )
     return "\n".join(parts)
 

@@ -13,9 +13,10 @@ from typing import Dict, List, Optional
 
 import numpy as np
 
+from ..csvfile import column_name
 from ..errors import InputError, check_choice
 from .analysis import _analyse, _film_runs, _max_ecc
-from .cases import CASES, CLEARANCE_CASES, CLEARANCE_STUDY, FILM_RUN_BUDGET_S, GRID_DEG, GRID_DEG_QUICK, PRINTED_FORM_STEPS, QUANTITIES, SPEED_STUDY, _ideal_key, film_cases
+from .cases import CASES, CLEARANCE_CASES, CLEARANCE_STUDY, FILM_RUN_BUDGET_S, GRID_DEG, GRID_DEG_QUICK, PRINTED_FORM_STEPS, QUANTITIES, SPEED_STUDY, UNIT, _ideal_key, film_cases
 from .files import _error_files, _orbit_files, _reliability_files, _summary_csvs, _write_csv
 from .report import _films_section, _report
 from .runs import Run, Runs, run_all
@@ -138,7 +139,8 @@ def _study(
     files.append(report)
     if films is not None:
         rows = [[k, f, *(a.peak_analysed[q] for q in QUANTITIES), _max_ecc(run), run.wall_time] for (k, f), (run, a) in films.items()]
-        files.append(_write_csv(out / "film_models.csv", ["case", "film", "peak_displacement_error_m", "peak_velocity_error_m_per_s", "peak_acceleration_error_m_per_s2", "max_e_over_c", "wall_time_s"], rows))
+        header = ["case", "film", *(column_name(f"peak_{q}_error", UNIT[q]) for q in QUANTITIES), "max_e_over_c", column_name("wall_time", "s")]
+        files.append(_write_csv(out / "film_models.csv", header, rows))
     text = _report(out, runs, an, trends, cycles, quick, grid_deg, sorted(files), wall)
     if films is not None:
         marker = "## Files\n"
