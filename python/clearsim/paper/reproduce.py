@@ -19,7 +19,7 @@ from .analysis import _analyse, _film_runs, _max_ecc
 from .cases import CASES, CLEARANCE_CASES, CLEARANCE_STUDY, FILM_RUN_BUDGET_S, GRID_DEG, GRID_DEG_QUICK, PRINTED_FORM_STEPS, QUANTITIES, SPEED_STUDY, UNIT, _ideal_key, film_cases
 from .files import _error_files, _orbit_files, _reliability_files, _summary_csvs, _write_csv
 from .report import _films_section, _report
-from .runs import Run, Runs, run_all
+from .runs import Run, Runs, run_cases
 from .trends import _trends
 
 __all__ = ["run_paper_study"]
@@ -79,7 +79,7 @@ def run_paper_study(
     # GIL) while the study's own runs, then its figures (one Python thread), take the rest.
     pending = Runs(film_cases(film), cycles, grid_deg, min(2, os.cpu_count() or 1), FILM_RUN_BUDGET_S, printed_form_steps) if compare_films else None
     try:
-        runs = run_all(cycles, grid_deg, progress, film, printed_form_steps)
+        runs = run_cases(cycles, grid_deg, progress, film, printed_form_steps)
         return _study(out, runs, pending, cycles, quick, grid_deg, progress, film, printed_form_steps, start)
     finally:
         if pending is not None:

@@ -53,8 +53,8 @@ class Runs:
         """The runs, a bar tick as each finishes, keyed by case (``"key|film"`` if ``by_film``).
         A run that stopped keeps its partial result and says why in ``failure``. In the order the
         cases were given."""
-        raws = self.started.results(progress, f"clearsim paper: {what}", [c.key for c in self.cases])
         key = (lambda c: f"{c.key}|{c.film_key}") if by_film else (lambda c: c.key)
+        raws = self.started.results(progress, f"clearsim paper: {what}", [key(c) for c in self.cases])
         runs: Dict[str, Run] = {}
         for case, mech, settings, raw in zip(self.cases, self.mechanisms, self.settings, raws):
             result, failure = batch.finish(mech, raw, settings)
@@ -71,7 +71,7 @@ class Runs:
         self.close()
 
 
-def run_all(cycles: int, grid_deg: float, progress: bool, film: str = "long", printed_steps: Optional[int] = None) -> Dict[str, Run]:
+def run_cases(cycles: int, grid_deg: float, progress: bool, film: str = "long", printed_steps: Optional[int] = None) -> Dict[str, Run]:
     """Every run of the study (:data:`CASES`, lubricated joints on ``film``), on all cores."""
     with Runs([_with_film(c, film) for c in CASES.values()], cycles, grid_deg, printed_steps=printed_steps) as runs:
         return runs.results(progress, "runs", by_film=False)

@@ -8,7 +8,7 @@ from ..paper.cases import (
     AXIS_Y, BEARING_LENGTH, CASES, CLEARANCE_CASES, CLEARANCE_STUDY, FILM_LABEL, FILM_RUN_BUDGET_S, FILMS, GRID_DEG, GRID_DEG_QUICK, JOINTS, PRINTED_FORM_STEPS,
     QUANTITIES, SLIDER, SPEED_STUDY, TRANSITION_FRACTION, UNIT, VISCOSITY, Case, film_cases,
 )
-from ..paper.runs import Run, run_all as _run_all
+from ..paper.runs import Run, run_cases as _run_all
 from ..paper.trends import FAILS, HOLDS, NOT_EVALUABLE
 
 __all__ = [
