@@ -1,17 +1,22 @@
 """Batches of runs in the Rust core, the only caller of ``_core.run_batch``: run descriptions
-with their settings (on all local cores with the GIL released, or in chunks through any
-``concurrent.futures``-style executor), with a progress bar, and tell a failed run (an exception,
-or a result carrying its error and what it computed) from a completed one.
+with their settings (on all local cores with the GIL released, in chunks through any
+``concurrent.futures``-style executor, or one run a task on Python threads beside other work),
+with a progress bar, and tell a failed run (an exception, or a result carrying its error and what
+it computed) from a completed one, or turn it into a :class:`clearsim.Result` and its failure.
+A run's wall-time budget is its settings' ``max_seconds`` (the core stops it there and keeps
+what it computed).
 """
 
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, List, Optional
+from concurrent.futures import Future, ThreadPoolExecutor, as_completed
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import _core
+from .errors import InputError, SimulationError
 
-__all__ = ["run_descriptions", "run_all", "progress", "failed", "error_of"]
+__all__ = ["run_descriptions", "run_all", "start", "Started", "finish", "progress", "failed", "error_of"]
 
 
 def run_descriptions(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]]) -> List[Any]:
@@ -30,11 +35,27 @@ def error_of(raw: Any) -> Any:
     return raw if isinstance(raw, BaseException) else raw["error"]
 
 
-def progress(total: int, enabled: bool, what: str) -> Any:
-    """A progress bar over ``total`` runs (:func:`clearsim.progress.bar`)."""
+def progress(total: int, enabled: bool, what: str, **options: Any) -> Any:
+    """A progress bar over ``total`` runs (:func:`clearsim.progress.bar`, with its ``options``)."""
     from .progress import bar
 
-    return bar(total, what, "run", enabled=enabled)
+    return bar(total, what, "run", enabled=enabled, **options)
+
+
+def finish(mechanism: Any, raw: Any, settings: Dict[str, Any]) -> Tuple[Any, Optional[SimulationError]]:
+    """A raw run result of ``mechanism`` (a :class:`clearsim.Mechanism`) run with ``settings``
+    as ``(result, failure)``: its :class:`clearsim.Result` and ``None`` for a completed run; for
+    a run that stopped, the partial result and the :class:`clearsim.SimulationError` saying where
+    and why (the same as :meth:`clearsim.Mechanism.simulate` raises). A run that failed before it
+    computed anything raises its error."""
+    if isinstance(raw, BaseException):
+        raise raw
+    try:
+        return mechanism._finish(raw, settings), None
+    except SimulationError as err:
+        if getattr(err, "result", None) is None:
+            raise
+        return err.result, err
 
 
 def run_all(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], executor: Any, chunk_size: Optional[int], show: bool, what: str) -> List[Any]:
@@ -65,3 +86,53 @@ def run_all(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], 
     finally:
         bar.close()
     return out
+
+
+class Started:
+    """Runs started by :func:`start`: one run a task on Python threads (the core releases the
+    GIL, so they run in parallel with each other and with Python work in the caller's thread).
+    Use it as a context manager: leaving it cancels the runs not yet started and waits for the
+    others."""
+
+    def __init__(self, descriptions: Sequence[Dict[str, Any]], settings: Sequence[Dict[str, Any]], threads: Optional[int] = None) -> None:
+        workers = max(1, min(len(descriptions), threads or os.cpu_count() or 1))
+        self._pool = ThreadPoolExecutor(max_workers=workers)
+        # One description a batch: the core runs it in this worker's thread (no pool of its own).
+        self._futures: List["Future[List[Any]]"] = [self._pool.submit(run_descriptions, [d], [s]) for d, s in zip(descriptions, settings)]
+
+    def results(self, show: bool, what: str, labels: Optional[Sequence[str]] = None) -> List[Any]:
+        """Wait for every run, a progress bar moving as each finishes (named by its ``labels``
+        entry); the raw results (:func:`failed`, :func:`finish`) in the order of the descriptions."""
+        index = {fut: k for k, fut in enumerate(self._futures)}
+        out: List[Any] = [None] * len(self._futures)
+        bar = progress(len(self._futures), show, what, delay=0.0, leave=True)
+        try:
+            for fut in as_completed(self._futures):
+                k = index[fut]
+                out[k] = fut.result()[0]
+                if labels is not None:
+                    bar.set_postfix_str(labels[k])
+                bar.update(1)
+        finally:
+            bar.close()
+        return out
+
+    def close(self) -> None:
+        """Cancel the runs not yet started; wait for those running."""
+        self._pool.shutdown(wait=True, cancel_futures=True)
+
+    def __enter__(self) -> "Started":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+
+def start(descriptions: Sequence[Dict[str, Any]], settings: Sequence[Dict[str, Any]], threads: Optional[int] = None) -> Started:
+    """Start ``descriptions`` with their ``settings``, one run a task on ``threads`` Python
+    threads (default: the local cores) in the order given (put the longest first), and return
+    at once; :meth:`Started.results` collects them. For a few long runs whose progress should
+    show run by run, or a batch that goes on in the background while the caller works."""
+    if len(descriptions) != len(settings):
+        raise InputError(f"invalid settings: {len(settings)} entries for {len(descriptions)} descriptions", field="settings", value=len(settings))
+    return Started(descriptions, settings, threads)

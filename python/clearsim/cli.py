@@ -448,11 +448,11 @@ def _cmd_reliability(args: argparse.Namespace) -> int:
 
 def _cmd_paper(args: argparse.Namespace) -> int:
     try:
-        from .study.paper import run_paper_study
+        from .paper import run_paper_study
     except ImportError as err:
-        if not (err.name or "").startswith("clearsim.study"):
+        if not (err.name or "").startswith("clearsim.paper"):
             raise
-        print("clearsim: error: the paper study (clearsim.study.paper) is not available in this installation", file=sys.stderr)
+        print("clearsim: error: the paper study (clearsim.paper) is not available in this installation", file=sys.stderr)
         return EXIT_ERROR
     with _summary_on_failure(Path(args.output), "clearsim paper", "report.md"):
         out = run_paper_study(Path(args.output), cycles=args.cycles, quick=args.quick, progress=not args.quiet, film=args.film, compare_films=not args.no_film_comparison)

@@ -105,10 +105,9 @@ def test_paper_calls_the_study(tmp_path, monkeypatch, capsys):
         calls.append((out_dir, cycles, quick, progress, film, compare_films))
         return out_dir
 
-    fake = types.ModuleType("clearsim.study.paper")
+    fake = types.ModuleType("clearsim.paper")
     fake.run_paper_study = run_paper_study  # type: ignore[attr-defined]
-    monkeypatch.setitem(sys.modules, "clearsim.study", types.ModuleType("clearsim.study"))
-    monkeypatch.setitem(sys.modules, "clearsim.study.paper", fake)
+    monkeypatch.setitem(sys.modules, "clearsim.paper", fake)
     assert main(["paper", "-o", str(tmp_path), "--quick", "--cycles", "2", "-q"]) == 0
     assert calls == [(tmp_path, 2, True, False, "long", True)]
     assert main(["paper", "-q", "--film", "finite", "--no-film-comparison"]) == 0

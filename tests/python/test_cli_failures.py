@@ -102,8 +102,7 @@ def test_paper_failure_after_some_files(tmp_path, capsys, monkeypatch):
         (out_dir / "fig08_errors_clearance.png").write_bytes(b"png")
         raise KeyError("lub-c0.3-5pi")
 
-    monkeypatch.setitem(sys.modules, "clearsim.study", types.ModuleType("clearsim.study"))
-    _fake_module(monkeypatch, "clearsim.study.paper", run_paper_study=run_paper_study)
+    _fake_module(monkeypatch, "clearsim.paper", run_paper_study=run_paper_study)
     out = tmp_path / "paper"
     assert main(["paper", "-o", str(out), "-q"]) == EXIT_FAILURE
     err = capsys.readouterr().err.strip()

@@ -1,4 +1,4 @@
-"""The paper study (``clearsim paper``, clearsim.study.paper) in quick mode: every figure, CSV file
+"""The paper study (``clearsim paper``, clearsim.paper) in quick mode: every figure, CSV file
 and report section is written, the trends table carries a computed status per trend, and the one
 trend that must hold in our model does (lubricated acceleration errors below the dry ones)."""
 
@@ -10,7 +10,7 @@ import re
 import numpy as np
 import pytest
 
-from clearsim.study import paper
+from clearsim import paper
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 FIGURES = [
@@ -65,10 +65,10 @@ def test_error_csvs_have_units_and_every_case(study):
         ("fig13_errors_8pi", ("dry-c0.6-8pi", "lub-c0.6-8pi")),
     ):
         header, rows = _read_csv(out / f"{stem}.csv")
-        assert header[:2] == ["time_s", "crank_angle_deg"]
+        assert header[:2] == ["t [s]", "crank_angle [deg]"]
         for case in cases:
             name = case.replace("-", "_")
-            for col in (f"{name}_displacement_error_m", f"{name}_velocity_error_m_per_s", f"{name}_acceleration_error_m_per_s2"):
+            for col in (f"{name}_displacement_error [m]", f"{name}_velocity_error [m/s]", f"{name}_acceleration_error [m/s^2]"):
                 assert col in header, (stem, col)
         data = np.array(rows, dtype=float)
         # quick mode: one cycle on a 2° grid (180 intervals), crank angle |ω| t in degrees
@@ -81,7 +81,7 @@ def test_orbit_csvs_are_normalised(study):
     out, _ = study
     for stem in ("fig09_orbits_c0.3mm", "fig10_orbits_c0.5mm", "fig14_orbits_5pi", "fig15_orbits_8pi"):
         header, rows = _read_csv(out / f"{stem}.csv")
-        assert header[:2] == ["time_s", "crank_angle_deg"]
+        assert header[:2] == ["t [s]", "crank_angle [deg]"]
         cols = [h for h in header if h.endswith("_over_c")]
         assert len(cols) == 8  # 2 joints × (dry, lubricated) × (x, y)
         assert {h.split("_", 1)[0] for h in cols} == {"A", "B"}
@@ -96,23 +96,24 @@ def test_reliability_csvs(study):
     for stem in ("fig11_reliability_clearance", "fig16_reliability_speed"):
         header, rows = _read_csv(out / f"{stem}.csv")
         assert header == paper.RELIABILITY_HEADER
-        assert {"bin_start_deg", "bin_centre_deg"} <= set(header)
+        assert {"bin_start [deg]", "bin_centre [deg]"} <= set(header)
         quantities = {r[1] for r in rows}
         assert quantities == set(paper.QUANTITIES)
         r = np.array([float(row[header.index("reliability")]) for row in rows])
         assert np.all((r > 0) & (r <= 1))
-        starts = sorted({float(row[header.index("bin_start_deg")]) for row in rows if row[3].startswith("pooled")})
+        assert {r[2] for r in rows} == {"m", "m/s", "m/s^2"}  # error_unit: the schema's units, ASCII
+        starts = sorted({float(row[header.index("bin_start [deg]")]) for row in rows if row[3].startswith("pooled")})
         assert starts == [18.0 * k for k in range(20)]
 
 
 def test_summary_csvs(study):
     out, _ = study
     header, rows = _read_csv(out / "runs.csv")
-    assert "wall_time_s" in header and "max_constraint_violation" in header
+    assert "wall_time [s]" in header and "max_constraint_violation" in header
     assert {r[0] for r in rows} == set(paper.CASES)
     assert all(r[header.index("status")] == "complete" for r in rows)
     header, rows = _read_csv(out / "peaks.csv")
-    assert {"peak_time_s", "paper_peak", "paper_peak_time_s"} <= set(header)
+    assert {"peak_time [s]", "paper_peak", "paper_peak_time [s]"} <= set(header)
     assert len(rows) == 3 * len(paper.CLEARANCE_CASES)
     header, rows = _read_csv(out / "trends.csv")
     assert header == ["trend", "statement", "comparison", "ours", "paper", "status"]
@@ -199,3 +200,41 @@ def test_film_models_are_compared_on_every_lubricated_run(study):
     # supply="none", each its own row with its own film (their velocity peaks differ).
     assert 'supply="widest_gap"' in text and 'finite (supply="none")' in text
     assert any(abs(by[(k, "finite_none")] - by[(k, "finite")]) > 1e-2 * by[(k, "finite")] for k in lub)
+
+
+def test_a_stopped_run_is_counted_with_its_reason(study):
+    """The printed closed forms stall (2 000 steps here): each of their runs is kept with its
+    partial result and named with why it stopped, in the table and the report."""
+    out, report = study
+    text = report.read_text(encoding="utf-8")
+    lub = [k for k in paper.CLEARANCE_CASES if k.startswith("lub")]
+    assert text.count("maximum number of steps (2000) reached") == len(lub)
+    from clearsim.paper.cases import CASES, _with_film
+    from clearsim.paper.runs import Runs
+
+    case = _with_film(CASES["lub-c0.3-5pi"], "long_paper")
+    with Runs([case, CASES["ideal-5pi"]], 1, 2.0, printed_steps=50) as runs:
+        done = runs.results(False, "test", by_film=True)
+    assert list(done) == ["lub-c0.3-5pi|long_paper", "ideal-5pi|long"]  # the order given
+    stopped, ideal = done.values()
+    assert stopped.failure is not None and "maximum number of steps (50) reached" in stopped.failure
+    assert 0 < len(stopped.result.t) < 181 and stopped.wall_time >= 0
+    assert ideal.failure is None and len(ideal.result.t) == 181
+
+
+def test_old_module_paths_are_kept():
+    """clearsim.study.* (deprecated) re-export clearsim.paper's names; ``import clearsim`` loads
+    neither package."""
+    import subprocess
+    import sys
+
+    from clearsim.paper import analysis, cases, files, report, trends, values
+    from clearsim.study import paper as old_paper, paper_files, paper_report, paper_runs, paper_trends, paper_values
+
+    assert old_paper.run_paper_study is paper.run_paper_study and old_paper.RELIABILITY_HEADER is files.RELIABILITY_HEADER
+    assert paper_runs.Case is cases.Case and paper_runs.Analysis is analysis.Analysis and paper_runs.FILMS is cases.FILMS
+    assert paper_files._write_csv is files._write_csv and paper_report._report is report._report
+    assert paper_trends.Trend is trends.Trend and paper_values.PEAKS is values.PEAKS
+    code = "import sys, clearsim; assert not {'clearsim.study', 'clearsim.paper'} & set(sys.modules)"
+    done = subprocess.run([sys.executable, "-W", "error", "-c", code], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr

@@ -1,9 +1,7 @@
-"""Studies built on clearsim: ready-made reproductions of published analyses.
-
-:mod:`clearsim.study.paper` reproduces the seed paper's study (docs/physics.md §7): clearance sizes
-0.3/0.5 mm and drive speeds 5π/8π rad/s of the nine-bar mechanism, dry against lubricated,
-with error histories, journal orbits and FOSM dynamic-accuracy reliability
-(``clearsim paper`` on the command line).
+"""Deprecated: the paper study is :mod:`clearsim.paper` (``clearsim paper``); this package and its
+modules ``paper``, ``paper_runs``, ``paper_files``, ``paper_report``, ``paper_trends`` and
+``paper_values`` only re-export its names under their old paths (the word "study" now names
+:class:`clearsim.reliability.Study` alone). Nothing imports it on ``import clearsim``.
 """
 
 from __future__ import annotations
