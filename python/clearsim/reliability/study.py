@@ -509,17 +509,19 @@ class Study(ReliabilityModel, Modes):
     # methods here, each a thin call into its own module (as ReliabilityModel's methods call form.py etc.).
     def life(
         self, cycles: Sequence[float], n: int, seed: Optional[int] = 0, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None,
-        settle: Optional[float] = None, on_failure: str = "fail", confidence: float = 0.95,
+        settle: Optional[float] = None, on_failure: str = "fail", confidence: float = 0.95, max_blocks: int = 1000,
     ) -> Any:  # fmt: skip
         """p_f against operating cycles with Archard wear fed back (each worn joint needs
         ``Archard(..., feedback=True)``): ``n`` samples each run through its life in blocks of
         ``settle`` + ``cycles`` turns, the worn depths extrapolated between blocks (cycle
         jumping, at most ``max_growth`` × the clearance of growth and ``max_jump`` cycles a
-        jump). Returns a :class:`~clearsim.reliability.life.LifeResult` (its ``life_at(R)``: the
-        cycles at which the reliability falls to R). See docs/reliability.md, "Reliability over life"."""
+        jump; at most ``max_blocks`` blocks a sample, an estimate above it after the first round is
+        an InputError saying why). Returns a :class:`~clearsim.reliability.life.LifeResult` (its
+        ``life_at(R)``: the cycles at which the reliability falls to R). See docs/reliability.md,
+        "Reliability over life"."""
         from .life import study_life
 
-        return study_life(self, cycles, n, seed, max_growth=max_growth, max_jump=max_jump, settle=settle, on_failure=on_failure, confidence=confidence)
+        return study_life(self, cycles, n, seed, max_growth=max_growth, max_jump=max_jump, settle=settle, on_failure=on_failure, confidence=confidence, max_blocks=max_blocks)
 
     def life_model(self, cycles: float, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None, settle: Optional[float] = None) -> Any:
         """The limit state "failure by ``cycles`` operating cycles" as a model of its own, each
