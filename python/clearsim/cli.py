@@ -125,7 +125,8 @@ def _body_columns(run: SceneRun, which: str) -> Columns:
 
 
 def _joint_columns(run: SceneRun) -> Columns:
-    """Columns of the selected clearance-joint quantities (eccentricity also as ε = e/c)."""
+    """Columns of the selected clearance-joint quantities (eccentricity also as ε = e/c), and the
+    oil temperature [K] of every selected joint with a heat model (its only reading)."""
     result, out = run.result, run.scene.outputs
     clearance = _clearances(run.scene)
     getters = {
@@ -137,6 +138,7 @@ def _joint_columns(run: SceneRun) -> Columns:
         "friction_torque": lambda j: np.column_stack([result.friction_torque(j), result.friction_torque(j, body="bearing")]),
         "power_loss": lambda j: result.power_loss(j)[:, None],
     }
+    heated = {c["name"] for c in run.scene.mechanism.description()["clearance_joints"] if c["model"].get("thermal")}
     cols: Columns = []
     for joint in out.joints:
         for quantity in out.joint_quantities:
@@ -149,6 +151,8 @@ def _joint_columns(run: SceneRun) -> Columns:
                 data = getters[quantity](joint)
             for k, (name, unit) in enumerate(JOINT_CHANNELS[quantity]):
                 cols.append((f"{joint}.{name} [{unit}]", data[:, k]))
+        if joint in heated:
+            cols.append((f"{joint}.temperature [K]", result.temperature(joint)))
     return cols
 
 
@@ -412,6 +416,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
         print(f"{scene.name}: {r['outputs']} outputs to t = {r['t_reached']:g} s in {r['steps']} steps ({r['wall_time']:.3g} s)")
         if run.result.impacts:
             print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
+        for joint, b in r.get("bearings", {}).items():
+            extra_b = (f", λ = {b['lambda']:.3g}" if "lambda" in b else "") + (f", oil {b['temperature_start']:.5g} → {b['temperature_end']:.5g} K" if "temperature_end" in b else "")
+            print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W")
         for q, res in run.reliability.items():
             print(f"FOSM {q}: min R = {res.min_reliability:.6f} (β = {res.min_beta:.3f}) at {res.min_angle:g}°")
         print(f"wrote {len(files)} files to {out_dir}")
