@@ -79,6 +79,23 @@ def test_cli_run_animates(tmp_path):
         assert im.n_frames == 10  # 0.02 s at 1/20 of real time, 25 frames/s
 
 
+def test_cli_animation_frames_follow_the_run(tmp_path, capsys):
+    """Without --speed, 24 frames a crank turn (one per 15°) within [50, 400], or real time at
+    25 frames/s without a constant-speed driver; the old default made every run 200 frames (8 s)."""
+    from clearsim.cli import animation_frames
+
+    assert [animation_frames(k * 0.012, 0.012) for k in (1, 5, 10, 100)] == [50, 120, 240, 400]
+    assert [animation_frames(t, None) for t in (0.1, 3.0, 60.0)] == [50, 75, 400]
+    # The slider-crank scene (5000 rpm: a turn in 12 ms) for three turns: 72 frames.
+    gif = tmp_path / "a.gif"
+    assert main(["run", str(SCENES / "slider_crank.toml"), "-o", str(tmp_path / "o"), "--t-end", "0.036", "--no-plots", "--animate", str(gif), "-q"]) == 0
+    with Image.open(gif) as im:
+        assert im.n_frames == 72
+    with pytest.raises(SystemExit):
+        main(["run", "--help"])
+    assert "24 frames a crank turn" in " ".join(capsys.readouterr().out.split())
+
+
 @pytest.mark.parametrize("scene", ["engine.toml", "four_bar_spring.toml", "slider_crank_guide_clearance.toml", "nine_bar_lubricated.toml"])
 def test_a_drawing_moved_to_a_pose_matches_one_drawn_there(scene):
     """Animations move the artists of one drawing (draw.Drawing.update) instead of drawing each
