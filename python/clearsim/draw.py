@@ -161,6 +161,10 @@ def _place_spring(coil: Any, f: Dict[str, Any], width: float, q: np.ndarray) -> 
     coil.set_data(*_zigzag(_point(q, f["body_a"], f["point_a"]), _point(q, f["body_b"], f["point_b"]), width).T)
 
 
+def _spring_ends(f: Dict[str, Any], q: np.ndarray) -> np.ndarray:
+    return np.array([_point(q, f["body_a"], f["point_a"]), _point(q, f["body_b"], f["point_b"])])
+
+
 def _ground_point(local: Sequence[float], q: np.ndarray) -> np.ndarray:
     return _point(q, None, local)
 
@@ -350,6 +354,9 @@ class Drawing:
             if f["kind"] == "spring_damper":
                 coil = self._line(color=FORCE_COLOUR, lw=1.2, zorder=3)
                 self._updates.append(partial(_place_spring, coil, f, 0.015 * size))
+                label = self._label(f["name"], (3, 3), FORCE_COLOUR)
+                if label is not None:  # at the middle of the spring
+                    self._updates.append(partial(_place_label, label, partial(_spring_ends, f)))
                 if f["body_a"] is None:
                     self._support(partial(_ground_point, f["point_a"]), pin)
             elif f["kind"] == "force":

@@ -42,6 +42,23 @@ def test_drawing_puts_bodies_at_their_assembled_pose():
     assert any("×100" in t and "rod-slider" in t for t in labels)
 
 
+def test_springs_are_labelled_at_their_middle_and_the_label_follows_them():
+    m = load_scene(SCENES / "four_bar_spring.toml")
+    res = m.simulate(0.1, dt_out=1e-3, progress=False)
+    f = next(f for f in res.description["forces"] if f["kind"] == "spring_damper")
+    for t in (0.0, 0.1):
+        fig = res.plot_mechanism(t)
+        (label,) = [x for x in fig.axes[0].texts if x.get_text() == "return-spring"]
+        q = draw.states_at(res, np.array([t]))[0]
+        middle = 0.5 * (draw._point(q, f["body_a"], f["point_a"]) + draw._point(q, f["body_b"], f["point_b"]))
+        assert np.allclose(label.xy, middle, rtol=0, atol=1e-12)
+    from matplotlib.figure import Figure
+
+    ax = Figure().add_subplot()
+    draw.draw(ax, res.description, q, labels=False)
+    assert not [x for x in ax.texts if x.get_text() == "return-spring"]
+
+
 def test_journal_drawn_at_magnified_eccentricity():
     m = clearsim.models.slider_crank("dry", clearance=0.5e-3)
     res = m.simulate(0.01, dt_out=1e-4, progress=False)
