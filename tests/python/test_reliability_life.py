@@ -284,3 +284,43 @@ def test_life_shows_a_bar_advancing_per_round_of_blocks(monkeypatch):
     res = life(CountingWear(1e-3), np.zeros((2, 1)), [0, 400])
     (b,) = bars
     assert b.enabled and "life" in b.desc and b.n == res.blocks.max() == 21 and b.totals[0] == 21
+
+
+def test_cli_names_a_life_over_budget_and_keeps_the_other_results(tmp_path, capsys):
+    """``clearsim reliability`` with ``[study.life]`` to 1e6 cycles on the k = 1e-2 pin (~0.6 µm a
+    cycle, 10 µm a jump: ~7e4 blocks): the life stops after its first round, the Monte Carlo
+    results are written, report.md names the cause and the command exits with an error."""
+    import csv
+    from pathlib import Path
+
+    from clearsim.cli import main
+
+    base = (Path(__file__).resolve().parents[2] / "scenes" / "slider_crank.toml").read_text()
+    base = base.replace('v1 = 1e-2                             # m/s', 'v1 = 1e-2\nwear = { coefficient = 1e-2, hardness = 2e9, length = 0.02, feedback = true }', 1)
+    study = """
+[study]
+body = "slider"
+component = "x"
+quantity = "displacement"
+limit = 0.59e-3
+skip_cycles = 1.0
+methods = ["monte_carlo"]
+samples = 3
+
+[[study.input]]
+path = "rod-slider.clearance"
+distribution = "normal"
+mean = 0.5e-3
+std = 0.02e-3
+
+[study.life]
+cycles = [0, 1e6]
+"""
+    scene = tmp_path / "worn.toml"
+    scene.write_text(base + study)
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q"]) != 0
+    assert "max_blocks" in capsys.readouterr().err
+    assert [r["method"] for r in csv.DictReader((out / "reliability.csv").open())] == ["monte_carlo"]
+    report = (out / "report.md").read_text()
+    assert "Reliability over life: not run to the end" in report and "| monte_carlo |" in report and "Stopped early" in report

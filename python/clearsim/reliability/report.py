@@ -13,6 +13,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence
 import numpy as np
 
 from ..csvfile import write_rows
+from ..errors import ClearsimError
 from .scene import scene_study
 
 FOSM_NOTE = (
@@ -138,7 +139,9 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     """Run the study's methods, write ``reliability.csv`` (one row per method, and per failure
     mode on a series system), ``sobol.csv``, ``samples.csv`` (Monte Carlo: inputs, each output's
     peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
-    ``out_dir``; returns the files."""
+    ``out_dir``; returns the files. A life (``[study.life]``) that stops with a clearsim error
+    (e.g. more blocks than ``max_blocks``) is named in report.md after the other methods'
+    results are written, then raised."""
     settings = scene.study
     study = scene_study(scene, progress=progress)
     chosen = list(methods or settings.methods)
@@ -153,7 +156,13 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
         r.found["tolerance"] = tol = study.tolerance(name, rel_target, bracket=bracket, cov=settings.cov, seed=settings.seed, step=settings.step)
         echo(f"{'tolerance':20s} largest mean {name} = {tol.value:.6g} (95 % [{tol.interval[0]:.6g}, {tol.interval[1]:.6g}]) for R = {rel_target}  runs = {tol.n_runs}")
     rows, found = r.rows, r.found
-    files: List[Path] = _life(r, out_dir, plots) if settings.life is not None else []
+    files: List[Path] = []
+    life_error: Optional[ClearsimError] = None
+    if settings.life is not None:
+        try:
+            files = _life(r, out_dir, plots)
+        except ClearsimError as err:  # the other methods' results are still written, then it is raised
+            life_error = found["life_error"] = err
     if rows:
         files.append(_write(out_dir / "reliability.csv", list(rows[0]), [[row[k] for k in rows[0]] for row in rows]))
     if "sobol" in found:
@@ -178,6 +187,8 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     if plots:
         files.append(plot_study(study, found, out_dir / "reliability.png"))
     files.append(_report(scene, study, rows, found, out_dir / "report.md", files))
+    if life_error is not None:
+        raise life_error
     return files
 
 
@@ -314,6 +325,8 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
             lines += ["", f"Reliability falls to {study_settings_reliability(scene)} at {at[0]:.4g} cycles (95 % [{at[1][0]:.4g}, {at[1][1]:.4g}])."]
         elif at is not None:
             lines += ["", f"Life at R = {study_settings_reliability(scene)}: {at}"]
+    if "life_error" in found:
+        lines += ["", f"Reliability over life: not run to the end: {found['life_error']}"]
     if "fosm" in found:
         fo = found["fosm"]
         lines += ["", f"FOSM (nominal mechanism, {fo.bin_width:g}° bins): minimum reliability {fo.min_reliability:.6f} (β = {fo.min_beta:.3f}) at {fo.min_angle:g}°."]
