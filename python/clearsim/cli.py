@@ -125,7 +125,8 @@ def _body_columns(run: SceneRun, which: str) -> Columns:
 
 
 def _joint_columns(run: SceneRun) -> Columns:
-    """Columns of the selected clearance-joint quantities (eccentricity also as ε = e/c)."""
+    """Columns of the selected clearance-joint quantities (eccentricity also as ε = e/c), and the
+    oil temperature [K] of every selected joint with a heat model (its only reading)."""
     result, out = run.result, run.scene.outputs
     clearance = _clearances(run.scene)
     getters = {
@@ -137,6 +138,7 @@ def _joint_columns(run: SceneRun) -> Columns:
         "friction_torque": lambda j: np.column_stack([result.friction_torque(j), result.friction_torque(j, body="bearing")]),
         "power_loss": lambda j: result.power_loss(j)[:, None],
     }
+    heated = {c["name"] for c in run.scene.mechanism.description()["clearance_joints"] if c["model"].get("thermal")}
     cols: Columns = []
     for joint in out.joints:
         for quantity in out.joint_quantities:
@@ -149,6 +151,8 @@ def _joint_columns(run: SceneRun) -> Columns:
                 data = getters[quantity](joint)
             for k, (name, unit) in enumerate(JOINT_CHANNELS[quantity]):
                 cols.append((f"{joint}.{name} [{unit}]", data[:, k]))
+        if joint in heated:
+            cols.append((f"{joint}.temperature [K]", result.temperature(joint)))
     return cols
 
 
@@ -397,6 +401,26 @@ def _fosm_csv(path: Path, fosm: Any) -> Path:
 
 
 # ====================================================================== commands
+#: ``clearsim run --animate`` without ``--speed``: frames per crank turn (one per 15°), the
+#: fewest and most frames, and the frame rate [1/s]; without a crank period, real time.
+FRAMES_PER_CYCLE, MIN_FRAMES, MAX_FRAMES, ANIMATION_FPS = 24, 50, 400, 25
+
+
+def animation_frames(span: float, period: Optional[float]) -> int:
+    """Frames of an animation of a run ``span`` [s] long: :data:`FRAMES_PER_CYCLE` a crank turn
+    of ``period`` [s], else real time at :data:`ANIMATION_FPS`, within [MIN_FRAMES, MAX_FRAMES]."""
+    wanted = span / period * FRAMES_PER_CYCLE if period else span * ANIMATION_FPS
+    return int(min(MAX_FRAMES, max(MIN_FRAMES, math.ceil(wanted - 1e-9))))
+
+
+def _crank_period(scene: Scene) -> Optional[float]:
+    """The crank turn [s]: ``[simulation].period``, else 2π/|ω| of the first constant-speed driver (by name)."""
+    if scene.simulation.period:
+        return float(scene.simulation.period)
+    speeds = [float(d["law"]["omega"]) for d in scene.mechanism.description()["drivers"] if d["law"]["kind"] == "constant_speed"]
+    return 2 * math.pi / abs(speeds[0]) if speeds and speeds[0] != 0 else None
+
+
 def _cmd_run(args: argparse.Namespace) -> int:
     scene = load_scene_file(args.scene).with_overrides(t_end=args.t_end, integrator=args.integrator)
     out_dir = Path(args.output) if args.output else Path(f"clearsim-{Path(args.scene).stem}")
@@ -404,8 +428,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
     extra: List[Tuple[str, Callable[[], Path]]] = []
     if args.animate:
         span = float(run.result.t[-1] - run.result.t[0]) if len(run.result.t) else 1.0
-        speed = args.speed or max(span, 1e-9) / 8.0  # default: the whole run in 8 s
-        extra.append((Path(args.animate).name, lambda: run.result.animate(args.animate, speed=speed, magnify=args.magnify)))
+        frames = animation_frames(span, _crank_period(scene))
+        speed = args.speed or max(span, 1e-9) * ANIMATION_FPS / frames
+        extra.append((Path(args.animate).name, lambda: run.result.animate(args.animate, speed=speed, magnify=args.magnify, fps=ANIMATION_FPS, max_frames=frames if not args.speed else 400)))
     failed: Optional[OutputsFailed] = None
     try:
         files = write_run(run, out_dir, plots=not args.no_plots, extra=extra)
@@ -416,6 +441,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
         print(f"{scene.name}: {r['outputs']} outputs to t = {r['t_reached']:g} s in {r['steps']} steps ({r['wall_time']:.3g} s)")
         if run.result.impacts:
             print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
+        for joint, b in r.get("bearings", {}).items():
+            extra_b = (f", λ = {b['lambda']:.3g}" if "lambda" in b else "") + (f", oil {b['temperature_start']:.5g} → {b['temperature_end']:.5g} K" if "temperature_end" in b else "")
+            print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W")
         for q, res in run.reliability.items():
             print(f"FOSM {q}: min R = {res.min_reliability:.6f} (β = {res.min_beta:.3f}) at {res.min_angle:g}°")
         if run.reliability_failure:
@@ -550,7 +578,11 @@ def build_parser() -> argparse.ArgumentParser:
     run.add_argument("--t-end", type=_positive_float, metavar="T", help="end time [s] instead of the scene's")
     run.add_argument("--integrator", choices=INTEGRATORS, help="integrator instead of the scene's")
     run.add_argument("--animate", metavar="FILE", help="also animate the run into FILE (.gif, or .mp4 with ffmpeg)")
-    run.add_argument("--speed", type=_positive_float, default=None, metavar="S", help="animation speed × real time (default: the run lasts 8 s)")
+    run.add_argument(
+        "--speed", type=_positive_float, default=None, metavar="S",
+        help=f"animation speed × real time (default: {FRAMES_PER_CYCLE} frames a crank turn, or real time without a constant-speed "
+        f"driver, at {ANIMATION_FPS} frames/s, {MIN_FRAMES} to {MAX_FRAMES} frames)",
+    )  # fmt: skip
     run.add_argument("--magnify", type=_positive_float, metavar="M", help="clearance magnification in pictures (default: automatic)")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar, no summary on stdout")
     run.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")

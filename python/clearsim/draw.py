@@ -161,6 +161,19 @@ def _place_spring(coil: Any, f: Dict[str, Any], width: float, q: np.ndarray) -> 
     coil.set_data(*_zigzag(_point(q, f["body_a"], f["point_a"]), _point(q, f["body_b"], f["point_b"]), width).T)
 
 
+def _place_spring_label(label: Any, f: Dict[str, Any], q: np.ndarray) -> None:
+    """The spring's name at its middle, set off 10 points to its upper side (clear of the coil)."""
+    a, b = _point(q, f["body_a"], f["point_a"]), _point(q, f["body_b"], f["point_b"])
+    d = b - a
+    n = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-300)
+    if n[1] < 0 or (n[1] == 0 and n[0] < 0):
+        n = -n
+    label.xy = tuple(0.5 * (a + b))
+    label.xyann = tuple(10.0 * n)
+    label.set_horizontalalignment("left" if n[0] > 1e-9 else "right" if n[0] < -1e-9 else "center")
+    label.set_verticalalignment("bottom")
+
+
 def _ground_point(local: Sequence[float], q: np.ndarray) -> np.ndarray:
     return _point(q, None, local)
 
@@ -350,6 +363,9 @@ class Drawing:
             if f["kind"] == "spring_damper":
                 coil = self._line(color=FORCE_COLOUR, lw=1.2, zorder=3)
                 self._updates.append(partial(_place_spring, coil, f, 0.015 * size))
+                label = self._label(f["name"], (0, 0), FORCE_COLOUR)
+                if label is not None:
+                    self._updates.append(partial(_place_spring_label, label, f))
                 if f["body_a"] is None:
                     self._support(partial(_ground_point, f["point_a"]), pin)
             elif f["kind"] == "force":

@@ -128,7 +128,9 @@ class JointReadings:
         ``min_film_crank_angle_deg`` (the first driver's angle then, if any), ``peak_power_loss``
         and ``mean_power_loss`` [W] over the run, tracked at every integration step (independent
         of ``dt_out``); with ``roughness`` σ also ``lambda`` = min film / σ (below ~3 the
-        asperities carry load: mixed lubrication)."""
+        asperities carry load: mixed lubrication); with a heat model (``thermal``) also
+        ``temperature_start`` and ``temperature_end`` [K], the oil temperature at the run's
+        first and last output (the state itself there: independent of ``dt_out``)."""
         out: Dict[str, Dict[str, Any]] = {}
         models = {cj["name"]: cj["model"] for cj in (self.description or {}).get("clearance_joints", [])}
         for j, name in enumerate(self.joint_names):
@@ -148,6 +150,9 @@ class JointReadings:
             sigma = models.get(name, {}).get("roughness")
             if sigma:
                 entry["lambda"] = entry["min_film_thickness"] / float(sigma)
+            temps = self._raw.get("temperature")
+            if models.get(name, {}).get("thermal") and temps is not None and len(temps):
+                entry["temperature_start"], entry["temperature_end"] = float(temps[0, j]), float(temps[-1, j])
             out[name] = entry
         return out
 
@@ -160,12 +165,18 @@ def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]
     def num(v: Any, scale: float = 1.0, fmt: str = ".4g") -> str:
         return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(float(v) * scale, fmt)
 
-    lines = ["", "| lubricated joint | min film [µm] | at t [s] | crank angle [deg] | peak power loss [W] | mean power loss [W] |", "|---|---|---|---|---|---|"]
+    # λ = h_min/σ for every table (– without roughness); the oil temperature when a joint models heat.
+    heat = any("temperature_end" in b for b in bearings.values())
+    head = "| lubricated joint | min film [µm] | λ = h_min/σ | at t [s] | crank angle [deg] | peak power loss [W] | mean power loss [W] |"
+    head += " oil T start [K] | oil T end [K] |" if heat else ""
+    lines = ["", head, "|---" * head.count(" | ") + "|---|"]
     for joint, b in bearings.items():
-        lines.append(
-            f"| {joint} | {num(b.get('min_film_thickness'), 1e6)} | {num(b.get('t_min_film'), fmt='.6g')} | {num(b.get('min_film_crank_angle_deg'), fmt='.1f')} | "
-            f"{num(b.get('peak_power_loss'))} | {num(b.get('mean_power_loss'))} |"
-        )
+        row = (
+            f"| {joint} | {num(b.get('min_film_thickness'), 1e6)} | {num(b.get('lambda'), fmt='.3g')} | {num(b.get('t_min_film'), fmt='.6g')} | "
+            f"{num(b.get('min_film_crank_angle_deg'), fmt='.1f')} | {num(b.get('peak_power_loss'))} | {num(b.get('mean_power_loss'))} |"
+        )  # fmt: skip
+        row += f" {num(b.get('temperature_start'), fmt='.5g')} | {num(b.get('temperature_end'), fmt='.5g')} |" if heat else ""
+        lines.append(row)
     return lines
 
 

@@ -15,6 +15,8 @@ import os
 from typing import Any, Optional
 
 _enabled: Optional[bool] = None  # None: follow CLEARSIM_PROGRESS
+#: Seconds of wall time before a bar appears (``bar(delay=None)``): shorter runs print nothing.
+DELAY = 1.0
 
 
 def set_progress(enabled: bool) -> None:
@@ -32,13 +34,15 @@ def progress_enabled() -> bool:
     return os.environ.get("CLEARSIM_PROGRESS", "1").strip().lower() not in ("0", "false", "no", "off")
 
 
-def bar(total: float, desc: str, unit: str = "run", *, enabled: bool = True, delay: float = 1.0, leave: bool = False, unit_scale: bool = False) -> Any:
+def bar(total: float, desc: str, unit: str = "run", *, enabled: bool = True, delay: Optional[float] = None, leave: bool = False, unit_scale: bool = False) -> Any:
     """A progress bar over ``total`` units (runs, or simulated seconds with ``unit="s"``) with
-    an estimate of the time left; a disabled bar when ``enabled`` is false or bars are switched
-    off. Use it as a context manager; ``update(n)`` advances it."""
+    an estimate of the time left, shown after ``delay`` seconds (``None``: :data:`DELAY`); a
+    disabled bar when ``enabled`` is false or bars are switched off. Use it as a context
+    manager; ``update(n)`` advances it."""
     from tqdm.auto import tqdm
 
-    return tqdm(total=total, desc=desc, unit=unit, unit_scale=unit_scale, delay=delay, leave=leave, disable=not (enabled and progress_enabled()))
+    wait = DELAY if delay is None else delay
+    return tqdm(total=total, desc=desc, unit=unit, unit_scale=unit_scale, delay=wait, leave=leave, disable=not (enabled and progress_enabled()))
 
 
 __all__ = ["bar", "progress_enabled", "set_progress"]

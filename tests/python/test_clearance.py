@@ -304,28 +304,6 @@ def test_a_locked_up_mechanism_stops_and_names_the_joint():
     assert ok.completed
 
 
-def test_progress_shows_the_time_left_and_one_switch_hides_every_bar(capfd, monkeypatch):
-    """A run longer than a second shows a bar with elapsed and remaining time ("[00:01<00:00");
-    ``clearsim.set_progress(False)`` and ``CLEARSIM_PROGRESS=0`` each hide it."""
-    from clearsim import progress
-
-    m = models.nine_bar("dry")
-    run = lambda: m.simulate(14.0, dt_out=0.01)  # noqa: E731 - about 2 s of work
-    try:
-        run()
-        err = capfd.readouterr().err
-        assert "simulating" in err and "<" in err, err[-300:]
-        clearsim.set_progress(False)
-        run()
-        assert capfd.readouterr().err == ""
-        progress._enabled = None  # back to the environment
-        monkeypatch.setenv("CLEARSIM_PROGRESS", "0")
-        run()
-        assert capfd.readouterr().err == ""
-    finally:
-        progress._enabled = None
-
-
 def test_outputs_inside_a_contact_use_its_impact_speed_to_the_end():
     """Within one contact the Lankarani–Nikravesh force F_N = K δ^1.5 (1 + D δ̇/δ̇⁽⁻⁾) (P3) uses
     the impact speed δ̇⁽⁻⁾ of that contact at every instant, so the δ̇⁽⁻⁾ implied by each recorded

@@ -42,6 +42,23 @@ def test_drawing_puts_bodies_at_their_assembled_pose():
     assert any("×100" in t and "rod-slider" in t for t in labels)
 
 
+def test_springs_are_labelled_at_their_middle_and_the_label_follows_them():
+    m = load_scene(SCENES / "four_bar_spring.toml")
+    res = m.simulate(0.1, dt_out=1e-3, progress=False)
+    f = next(f for f in res.description["forces"] if f["kind"] == "spring_damper")
+    for t in (0.0, 0.1):
+        fig = res.plot_mechanism(t)
+        (label,) = [x for x in fig.axes[0].texts if x.get_text() == "return-spring"]
+        q = draw.states_at(res, np.array([t]))[0]
+        middle = 0.5 * (draw._point(q, f["body_a"], f["point_a"]) + draw._point(q, f["body_b"], f["point_b"]))
+        assert np.allclose(label.xy, middle, rtol=0, atol=1e-12)
+    from matplotlib.figure import Figure
+
+    ax = Figure().add_subplot()
+    draw.draw(ax, res.description, q, labels=False)
+    assert not [x for x in ax.texts if x.get_text() == "return-spring"]
+
+
 def test_journal_drawn_at_magnified_eccentricity():
     m = clearsim.models.slider_crank("dry", clearance=0.5e-3)
     res = m.simulate(0.01, dt_out=1e-4, progress=False)
@@ -77,6 +94,23 @@ def test_cli_run_animates(tmp_path):
     assert main(["run", str(SCENES / "four_bar_spring.toml"), "-o", str(out), "--t-end", "0.02", "--no-plots", "--animate", str(gif), "--speed", "0.05", "-q"]) == 0
     with Image.open(gif) as im:
         assert im.n_frames == 10  # 0.02 s at 1/20 of real time, 25 frames/s
+
+
+def test_cli_animation_frames_follow_the_run(tmp_path, capsys):
+    """Without --speed, 24 frames a crank turn (one per 15°) within [50, 400], or real time at
+    25 frames/s without a constant-speed driver; the old default made every run 200 frames (8 s)."""
+    from clearsim.cli import animation_frames
+
+    assert [animation_frames(k * 0.012, 0.012) for k in (1, 5, 10, 100)] == [50, 120, 240, 400]
+    assert [animation_frames(t, None) for t in (0.1, 3.0, 60.0)] == [50, 75, 400]
+    # The slider-crank scene (5000 rpm: a turn in 12 ms) for three turns: 72 frames.
+    gif = tmp_path / "a.gif"
+    assert main(["run", str(SCENES / "slider_crank.toml"), "-o", str(tmp_path / "o"), "--t-end", "0.036", "--no-plots", "--animate", str(gif), "-q"]) == 0
+    with Image.open(gif) as im:
+        assert im.n_frames == 72
+    with pytest.raises(SystemExit):
+        main(["run", "--help"])
+    assert "24 frames a crank turn" in " ".join(capsys.readouterr().out.split())
 
 
 @pytest.mark.parametrize("scene", ["engine.toml", "four_bar_spring.toml", "slider_crank_guide_clearance.toml", "nine_bar_lubricated.toml"])

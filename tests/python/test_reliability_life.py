@@ -197,3 +197,130 @@ reliability = 0.5
     assert methods == ["ak_mcs"]
     report = (out / "report.md").read_text()
     assert "Reliability over life" in report and "| 40 |" in report
+
+
+class CountingWear(LinearWear):
+    """:class:`LinearWear` that counts its rounds of blocks."""
+
+    def __init__(self, b: float, sigma: float = 0.0, a: float = 1e9) -> None:
+        super().__init__(b, sigma, a)
+        self.rounds = 0
+
+    def __call__(self, u: np.ndarray, wear: np.ndarray) -> BlockOutcome:
+        self.rounds += 1
+        return super().__call__(u, wear)
+
+
+def test_a_life_of_too_many_blocks_stops_after_its_first_round_and_says_why():
+    """A pin that wears 1e-3 of its depth scale a cycle, jumps of 2 % of it (20 cycles): 1e5
+    cycles take 5 001 blocks; above max_blocks (1 000) the life stops after one round with the
+    estimate, the rate, the jump and what to change (the old code ran all 5 000 rounds)."""
+    from clearsim.errors import ReliabilityWarning
+
+    runner = CountingWear(1e-3)
+    with pytest.raises(InputError) as err:
+        life(runner, np.zeros((3, 1)), [0, 1e3, 1e4, 1e5], progress=False)
+    assert runner.rounds == 1 and err.value.field == "max_blocks"
+    msg = str(err.value)
+    assert "about 5001 blocks" in msg and "0.001 m a cycle" in msg and "20 cycles" in msg and "max_growth" in msg
+    assert "100 m deep" in msg  # 1e-3 × 1e5: the worn depth the life asks for, named
+    # Raised budget: it runs (5 001 blocks: the block at 0 and 5 000 jumps), with a warning.
+    with pytest.warns(ReliabilityWarning, match="about 5001 blocks"):
+        res = life(CountingWear(1e-3), np.zeros((1, 1)), [0, 1e5], max_blocks=6000, progress=False)
+    assert res.blocks[0] == 5001
+    with pytest.raises(InputError, match="max_blocks"):
+        life(runner, np.zeros((1, 1)), [10], max_blocks=0)
+
+
+def test_the_estimate_names_the_jump_limit_that_binds():
+    """Wear faster than max_growth in one analysed window: each block advances only the window,
+    and the message says cycle jumping saves nothing; a small max_jump is named as the cap."""
+    from clearsim.errors import ReliabilityWarning
+
+    with pytest.warns(ReliabilityWarning, match="advances only the window's 1 cycles"):
+        life(CountingWear(0.05), np.zeros((1, 1)), [0, 300], progress=False)
+    with pytest.warns(ReliabilityWarning, match="max_jump = 1 caps each jump"):
+        life(CountingWear(1e-6), np.zeros((1, 1)), [0, 300], max_jump=1.0, progress=False)
+    with pytest.warns(ReliabilityWarning, match="250 requested cycle counts"):
+        life(CountingWear(1e-6), np.zeros((1, 1)), np.arange(250.0), progress=False)
+
+
+def test_a_sample_whose_wear_speeds_up_past_the_budget_is_stopped_and_counted():
+    """dw/dN = b (1 + w/w0) grows e-fold every w0/b cycles: the first round's estimate (2 000
+    cycles at 20 cycles a jump: 101 blocks) fits in 150, the sped-up life does not; the sample
+    is stopped at 150 blocks, counted as failed with its reason (raise: a SimulationError)."""
+    from clearsim.errors import SimulationError
+
+    res = life(GrowingWear(1e-3, 0.5), np.zeros((2, 1)), [0, 2000], max_blocks=150, progress=False)
+    assert list(res.blocks) == [150, 150] and res.pf[-1] == 1.0
+    assert len(res.failures) == 2 and "max_blocks = 150" in res.failures[0][2]
+    assert 0 < res.failures[0][1] < 2000 and np.all(res.g_min[:, -1] == -1.0)
+    with pytest.raises(SimulationError, match="max_blocks = 150"):
+        life(GrowingWear(1e-3, 0.5), np.zeros((1, 1)), [0, 2000], max_blocks=150, on_failure="raise", progress=False)
+
+
+def test_life_shows_a_bar_advancing_per_round_of_blocks(monkeypatch):
+    """The bar's total is the estimated rounds (21: the block at 0 and 20 jumps of 20 cycles)
+    and it advances once per round."""
+    import clearsim.reliability.life as life_module
+
+    bars = []
+
+    class Bar:
+        def __init__(self, total: float, desc: str, unit: str = "run", *, enabled: bool = True, **kw: object) -> None:
+            self.total, self.desc, self.enabled, self.n, self.totals = total, desc, enabled, 0, []
+            bars.append(self)
+
+        def update(self, k: int = 1) -> None:
+            self.n += k
+
+        def refresh(self) -> None:
+            self.totals.append(self.total)
+
+        def close(self) -> None:
+            pass
+
+    monkeypatch.setattr(life_module, "bar", Bar)
+    res = life(CountingWear(1e-3), np.zeros((2, 1)), [0, 400])
+    (b,) = bars
+    assert b.enabled and "life" in b.desc and b.n == res.blocks.max() == 21 and b.totals[0] == 21
+
+
+def test_cli_names_a_life_over_budget_and_keeps_the_other_results(tmp_path, capsys):
+    """``clearsim reliability`` with ``[study.life]`` to 1e6 cycles on the k = 1e-2 pin (~0.6 µm a
+    cycle, 10 µm a jump: ~7e4 blocks): the life stops after its first round, the Monte Carlo
+    results are written, report.md names the cause and the command exits with an error."""
+    import csv
+    from pathlib import Path
+
+    from clearsim.cli import main
+
+    base = (Path(__file__).resolve().parents[2] / "scenes" / "slider_crank.toml").read_text()
+    base = base.replace('v1 = 1e-2                             # m/s', 'v1 = 1e-2\nwear = { coefficient = 1e-2, hardness = 2e9, length = 0.02, feedback = true }', 1)
+    study = """
+[study]
+body = "slider"
+component = "x"
+quantity = "displacement"
+limit = 0.59e-3
+skip_cycles = 1.0
+methods = ["monte_carlo"]
+samples = 3
+
+[[study.input]]
+path = "rod-slider.clearance"
+distribution = "normal"
+mean = 0.5e-3
+std = 0.02e-3
+
+[study.life]
+cycles = [0, 1e6]
+"""
+    scene = tmp_path / "worn.toml"
+    scene.write_text(base + study)
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q"]) != 0
+    assert "max_blocks" in capsys.readouterr().err
+    assert [r["method"] for r in csv.DictReader((out / "reliability.csv").open())] == ["monte_carlo"]
+    report = (out / "report.md").read_text()
+    assert "Reliability over life: not run to the end" in report and "| monte_carlo |" in report and "Stopped early" in report

@@ -16,7 +16,14 @@ Each sample chooses its own jumps h_k: at most ``max_growth`` × the runner's de
 smallest clearance of a worn joint) of growth in its deepest-wearing bin, at most ``max_jump``
 cycles, at least the analysed turns, shortened to equal jumps that land on the next requested
 cycle count. All samples'
-blocks of a round run as one batch. The algorithm only needs a :class:`BlockRunner`: tests drive
+blocks of a round run as one batch.
+
+The number of blocks is about the life's wear over ``max_growth`` × the depth scale: after the
+first round :func:`life` estimates it from each sample's rate, warns (:class:`ReliabilityWarning`)
+above :data:`WARN_BLOCKS` a sample and stops with an :class:`InputError` above ``max_blocks``,
+both saying what sets the jumps and what to change; a sample whose wear speeds up past the
+budget later is stopped there and counted as failed, with its reason (``on_failure="raise"``:
+:class:`SimulationError`). A progress bar (:func:`clearsim.progress.bar`) advances per round. The algorithm only needs a :class:`BlockRunner`: tests drive
 it with mocks whose life has a closed form; :class:`StudyBlocks` runs the blocks of a
 :class:`~clearsim.reliability.Study` with wear fed back into the simulations.
 """
@@ -26,12 +33,14 @@ from __future__ import annotations
 import copy
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Protocol, Sequence, Tuple
 
 import numpy as np
 
-from ..errors import InputError, SimulationError, check_positive
+from ..errors import InputError, ReliabilityWarning, SimulationError, check_positive
+from ..progress import bar
 from .distributions import input_stream
 from .estimates import wilson_interval
 from .bridge import check_on_failure
@@ -40,13 +49,18 @@ from ..lazy import lazy
 
 stats = lazy("scipy.stats")
 
-__all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "LifeModel", "StudyBlocks", "life", "study_life", "MAX_GROWTH", "WEAR_BINS"]
+__all__ = ["BlockOutcome", "BlockRunner", "LifeResult", "LifeModel", "StudyBlocks", "life", "study_life", "MAX_BLOCKS", "MAX_GROWTH", "WARN_BLOCKS", "WEAR_BINS"]
 
 #: Bins around each worn surface (rust/clearance/wear.rs WEAR_BINS).
 WEAR_BINS = 360
 #: Default growth of the deepest-wearing bin per jump, as a fraction of the clearance: on the
 #: 200-cycle check (docs/reliability.md, "Reliability over life") 2 % keeps the peak and the worn volume within 3 %.
 MAX_GROWTH = 0.02
+#: Default most blocks a sample may run (``max_blocks``): a life estimated to need more stops
+#: after its first round with an :class:`InputError` that says why and what to change.
+MAX_BLOCKS = 1000
+#: A life estimated to need more blocks a sample than this warns, with the same explanation.
+WARN_BLOCKS = 200
 
 
 @dataclass
@@ -154,14 +168,21 @@ def life(
     surfaces: Optional[List[str]] = None,
     confidence: float = 0.95,
     on_failure: str = "fail",
+    max_blocks: int = MAX_BLOCKS,
+    progress: bool = True,
 ) -> LifeResult:
     """Simulate the life of the samples at standard normal points ``u`` (N × d) in blocks (see
     the module's docstring) and estimate p_f at each of ``cycles``.
     ``max_growth``: the deepest bin's growth per jump as a fraction of ``runner.depth_scale``
     (``None``: no limit); ``max_jump``: most cycles per jump (``None``: no limit);
-    ``surfaces``: names of the worn surfaces, each :data:`WEAR_BINS` entries of the state."""
+    ``surfaces``: names of the worn surfaces, each :data:`WEAR_BINS` entries of the state;
+    ``max_blocks``: most blocks a sample may run (an estimate above it after the first round is
+    an :class:`InputError`; a sample reaching it later is stopped and counted as failed);
+    ``progress``: a bar over the rounds of blocks."""
     t_start = time.perf_counter()
     check_on_failure(on_failure)
+    if isinstance(max_blocks, bool) or not isinstance(max_blocks, (int, np.integer)) or max_blocks < 1:
+        raise InputError(f"invalid max_blocks = {max_blocks!r}: must be a positive integer", field="max_blocks", value=max_blocks)
     if on_failure == "exclude":
         raise InputError("invalid on_failure = 'exclude': a life cannot leave a failed sample out; use 'fail' or 'raise'", field="on_failure", value=on_failure)
     req = np.asarray(cycles, dtype=float).reshape(-1)
@@ -190,67 +211,94 @@ def life(
     prev_n = np.full(n, np.nan)
     prev_g = np.full(n, np.nan)
     n_runs = 0
-    while active.any():
-        idx = np.flatnonzero(active)
-        out = runner(u[idx], wear[idx])
-        n_runs += idx.size
-        blocks[idx] += 1
-        values = np.asarray(out.values, dtype=float).reshape(idx.size, -1)
-        if values_req is None:
-            values_req = np.full((n, req.size, values.shape[1]), np.nan)
-        if out.failures and on_failure == "raise":
-            i, reason = out.failures[0]
-            raise SimulationError(f"life: sample {idx[i]} failed at {at_n[idx[i]]:g} cycles: {reason}", reason=reason)
-        ok = np.ones(idx.size, dtype=bool)
-        for i, reason in out.failures:
-            s = int(idx[i])
-            ok[i] = False
-            active[s] = False
-            failures.append((s, float(at_n[s]), reason))
-            first[s] = min(first[s], float(at_n[s]))
-            worn[s] = wear[s]
-            gmin_req[s, nxt[s] :] = -1.0
-        sel, i_ok = idx[ok], np.flatnonzero(ok)
-        g = np.asarray(out.g, dtype=float)[i_ok]
-        g_run[sel] = np.minimum(g_run[sel], g)
-        # First passage, interpolated linearly in g between this block and the last.
-        newly = (g <= 0.0) & ~np.isfinite(first[sel])
-        a, ga = prev_n[sel], prev_g[sel]
-        crossed = newly & np.isfinite(ga) & (ga > 0.0)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            interp = a + (at_n[sel] - a) * ga / (ga - g)
-        first[sel] = np.where(crossed, interp, np.where(newly, at_n[sel], first[sel]))
-        prev_n[sel], prev_g[sel] = at_n[sel], g
-        # Record the requested counts reached.
-        here = at_n[sel] == req[nxt[sel]]
-        for s, i in zip(sel[here], i_ok[here]):
-            g_req[s, nxt[s]] = out.g[i]
-            gmin_req[s, nxt[s]] = g_run[s]
-            values_req[s, nxt[s]] = values[i]
-            depth_req[s, nxt[s]] = _surface_depths(wear[s : s + 1], len(names))[0]
-            nxt[s] += 1
-        done = nxt[sel] == req.size
-        worn[sel[done]] = wear[sel[done]]
-        active[sel[done]] = False
-        go, i_go = sel[~done], i_ok[~done]
-        if go.size == 0:
-            continue
-        at_window, at_end = out.at_window[i_go], out.at_end[i_go]
-        rate = np.maximum(at_end - at_window, 0.0) / window
-        fastest = rate.max(axis=1) if m else np.zeros(go.size)
-        with np.errstate(divide="ignore"):
-            h_growth = np.where(fastest > 0, growth / fastest, math.inf)
-        # The allowed jump, shortened so that equal jumps land on the next requested count.
-        target = req[nxt[go]]
-        remaining = target - at_n[go]
-        allowed = np.minimum(cap, np.maximum(h_growth, window))
-        h = remaining / np.maximum(1.0, np.ceil(remaining / allowed - 1e-9))
-        start = blocks[go] == 1  # the life's real start-up: the first block's whole wear
-        inc = h[:, None] * rate
-        frac = np.minimum(1.0, h / n_block)[:, None]
-        inc[start] = (frac * (at_end - wear[go]) + np.maximum(0.0, h - n_block)[:, None] * rate)[start]
-        wear[go] += np.maximum(inc, 0.0)
-        at_n[go] = np.where(h == remaining, target, at_n[go] + h)
+    rounds = 0
+    budget = _Budget(int(max_blocks), growth, cap, window, float(runner.depth_scale), max_growth, max_jump)
+    progress_bar = bar(req.size, "life: rounds of blocks", unit="round", enabled=progress)  # total: the estimate, from round 2
+    try:
+        while active.any():
+            idx = np.flatnonzero(active)
+            t_round = time.perf_counter()
+            out = runner(u[idx], wear[idx])
+            n_runs += idx.size
+            rounds += 1
+            blocks[idx] += 1
+            values = np.asarray(out.values, dtype=float).reshape(idx.size, -1)
+            if values_req is None:
+                values_req = np.full((n, req.size, values.shape[1]), np.nan)
+            if out.failures and on_failure == "raise":
+                i, reason = out.failures[0]
+                raise SimulationError(f"life: sample {idx[i]} failed at {at_n[idx[i]]:g} cycles: {reason}", reason=reason)
+            ok = np.ones(idx.size, dtype=bool)
+            for i, reason in out.failures:
+                s = int(idx[i])
+                ok[i] = False
+                active[s] = False
+                failures.append((s, float(at_n[s]), reason))
+                first[s] = min(first[s], float(at_n[s]))
+                worn[s] = wear[s]
+                gmin_req[s, nxt[s] :] = -1.0
+            sel, i_ok = idx[ok], np.flatnonzero(ok)
+            g = np.asarray(out.g, dtype=float)[i_ok]
+            g_run[sel] = np.minimum(g_run[sel], g)
+            # First passage, interpolated linearly in g between this block and the last.
+            newly = (g <= 0.0) & ~np.isfinite(first[sel])
+            a, ga = prev_n[sel], prev_g[sel]
+            crossed = newly & np.isfinite(ga) & (ga > 0.0)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                interp = a + (at_n[sel] - a) * ga / (ga - g)
+            first[sel] = np.where(crossed, interp, np.where(newly, at_n[sel], first[sel]))
+            prev_n[sel], prev_g[sel] = at_n[sel], g
+            # Record the requested counts reached.
+            here = at_n[sel] == req[nxt[sel]]
+            for s, i in zip(sel[here], i_ok[here]):
+                g_req[s, nxt[s]] = out.g[i]
+                gmin_req[s, nxt[s]] = g_run[s]
+                values_req[s, nxt[s]] = values[i]
+                depth_req[s, nxt[s]] = _surface_depths(wear[s : s + 1], len(names))[0]
+                nxt[s] += 1
+            done = nxt[sel] == req.size
+            worn[sel[done]] = wear[sel[done]]
+            active[sel[done]] = False
+            go, i_go = sel[~done], i_ok[~done]
+            # A sample that spent its block budget is stopped, counted as failed from here.
+            spent = blocks[go] >= max_blocks
+            for s in go[spent]:
+                reason = f"stopped after max_blocks = {max_blocks} blocks at {at_n[s]:g} of {req[-1]:g} cycles: its wear sped up past the first round's estimate"
+                if on_failure == "raise":
+                    raise SimulationError(f"life: sample {s} {reason}", reason=reason)
+                failures.append((int(s), float(at_n[s]), reason))
+                first[s] = min(first[s], float(at_n[s]))
+                worn[s] = wear[s]
+                gmin_req[s, nxt[s] :] = -1.0
+                active[s] = False
+            go, i_go = go[~spent], i_go[~spent]
+            progress_bar.update(1)
+            if go.size == 0:
+                continue
+            at_window, at_end = out.at_window[i_go], out.at_end[i_go]
+            rate = np.maximum(at_end - at_window, 0.0) / window
+            fastest = rate.max(axis=1) if m else np.zeros(go.size)
+            with np.errstate(divide="ignore"):
+                h_growth = np.where(fastest > 0, growth / fastest, math.inf)
+            # The allowed jump, shortened so that equal jumps land on the next requested count.
+            target = req[nxt[go]]
+            remaining = target - at_n[go]
+            allowed = np.minimum(cap, np.maximum(h_growth, window))
+            # Relative tolerance: a rate carries rounding ~1e-12 relative, which over thousands of jumps an absolute one did not absorb.
+            h = remaining / np.maximum(1.0, np.ceil(remaining / allowed * (1.0 - 1e-9)))
+            left = _blocks_left(at_n[go], nxt[go], req, allowed)
+            if rounds == 1:
+                budget.check(left + blocks[go], fastest, allowed, wear[go], req[-1] - at_n[go], req[-1], req.size, time.perf_counter() - t_round)
+            progress_bar.total = rounds + int(left.max())
+            progress_bar.refresh()
+            start = blocks[go] == 1  # the life's real start-up: the first block's whole wear
+            inc = h[:, None] * rate
+            frac = np.minimum(1.0, h / n_block)[:, None]
+            inc[start] = (frac * (at_end - wear[go]) + np.maximum(0.0, h - n_block)[:, None] * rate)[start]
+            wear[go] += np.maximum(inc, 0.0)
+            at_n[go] = np.where(h == remaining, target, at_n[go] + h)
+    finally:
+        progress_bar.close()
     kk = (first[:, None] <= req[None, :]).sum(axis=0)
     lo, hi = wilson_interval(kk, np.full(req.size, n), confidence)
     return LifeResult(
@@ -258,6 +306,61 @@ def life(
         peaks=values_req if values_req is not None else np.full((n, req.size, 0), np.nan), depth=depth_req, surfaces=list(names),
         failure_cycles=first, blocks=blocks, n_runs=n_runs, wall_time=time.perf_counter() - t_start, failures=failures, worn=worn,
     )  # fmt: skip
+
+
+def _blocks_left(at_n: np.ndarray, nxt: np.ndarray, req: np.ndarray, allowed: np.ndarray) -> np.ndarray:
+    """Blocks each sample still runs to the last requested count if its jumps stay ``allowed``
+    (one a jump: equal jumps landing on each count from ``at_n`` on)."""
+    lower = np.maximum(np.concatenate([[-math.inf], req[:-1]])[None, :], at_n[:, None])
+    seg = req[None, :] - lower
+    mine = (np.arange(req.size)[None, :] >= nxt[:, None]) & (seg > 0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        jumps = np.maximum(1.0, np.ceil(seg / allowed[:, None] * (1.0 - 1e-9)))
+    return np.where(mine, jumps, 0.0).sum(axis=1).astype(int)
+
+
+@dataclass
+class _Budget:
+    """The first round's estimate of a life's blocks against ``max_blocks``, and why the jumps
+    are as long as they are (the growth limit, ``max_jump`` or the analysed turns)."""
+
+    max_blocks: int
+    growth: float
+    cap: float
+    window: float
+    depth_scale: float
+    max_growth: Optional[float]
+    max_jump: Optional[float]
+
+    def check(self, total: np.ndarray, fastest: np.ndarray, allowed: np.ndarray, wear: np.ndarray, remaining: np.ndarray, last: float, counts: int, t_round: float) -> None:
+        worst = int(np.argmax(total))
+        est = int(total[worst])
+        if est <= WARN_BLOCKS and est <= self.max_blocks:
+            return
+        rate, h = float(fastest[worst]), float(allowed[worst])
+        c = self.depth_scale
+        if est <= counts + 1:
+            why = f"{counts} requested cycle counts each take a block (ask for fewer)"
+        elif h >= self.cap:
+            why = f"max_jump = {self.max_jump:g} caps each jump (raise it or leave it out)"
+        elif h <= self.window and rate * self.window > self.growth:
+            why = (
+                f"its deepest bin wears {rate:.3g} m a cycle, more than max_growth × c = {self.growth:.3g} m in one analysed "
+                f"window, so each block advances only the window's {self.window:g} cycles (cycle jumping saves nothing here; "
+                "check the wear coefficient)"
+            )  # fmt: skip
+        else:
+            why = f"its deepest bin wears {rate:.3g} m a cycle and max_growth = {self.max_growth:g} allows {self.growth:.3g} m a jump, so each jump is {h:.3g} cycles"
+        depth = float(wear[worst].max(initial=0.0)) + rate * float(remaining[worst])
+        msg = (
+            f"life to {last:g} cycles needs about {est} blocks a sample (at the first round's wear rates; {t_round:.3g} s a round, "
+            f"so at least {est * t_round:.3g} s): in the fastest-wearing sample {why}; at that rate it is worn {depth:.3g} m deep "
+            f"by {last:g} cycles, {depth / c:.3g} × the depth scale c = {c:.3g} m (the smallest worn clearance). To shorten it ask "
+            "for fewer cycles, or raise max_growth (the extrapolation error grows with it: docs/reliability.md, 'Reliability over life')"
+        )  # fmt: skip
+        if est > self.max_blocks:
+            raise InputError(f"invalid life: {msg}; or raise max_blocks = {self.max_blocks} to run it anyway", field="max_blocks", value=self.max_blocks)
+        warnings.warn(msg, ReliabilityWarning, stacklevel=4)
 
 
 def _surface_depths(wear: np.ndarray, surfaces: int) -> np.ndarray:
@@ -359,14 +462,17 @@ def study_life(
     settle: Optional[float] = None,
     on_failure: str = "fail",
     confidence: float = 0.95,
+    max_blocks: int = MAX_BLOCKS,
 ) -> LifeResult:
     """:meth:`Study.life`: ``n`` Monte Carlo samples (the streams of :meth:`Study.monte_carlo`
-    with the same ``seed``), each run through its life in blocks."""
+    with the same ``seed``), each run through its life in blocks (a progress bar when the
+    study's ``progress`` is on)."""
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
         raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
     runner = StudyBlocks(study, settle)
     u = np.column_stack([input_stream(seed, name).standard_normal(int(n)) for name in study.random_names]) if study.random_names else np.zeros((int(n), 0))
-    res = life(runner, u, cycles, max_growth=max_growth, max_jump=max_jump, surfaces=runner.surfaces, confidence=confidence, on_failure=on_failure)
+    res = life(runner, u, cycles, max_growth=max_growth, max_jump=max_jump, surfaces=runner.surfaces, confidence=confidence, on_failure=on_failure,
+               max_blocks=max_blocks, progress=bool(study.progress))  # fmt: skip
     res.outputs = list(study.mode_names)
     return res
 
@@ -384,7 +490,7 @@ class LifeModel(ReliabilityModel):
             raise InputError(f"invalid cycles = {cycles!r}: a cycle count ≥ 0", field="cycles", value=cycles)
         self.cycles = n
         self.runner = StudyBlocks(study, settle)
-        self.options: Dict[str, Any] = {"max_growth": max_growth, "max_jump": max_jump}
+        self.options: Dict[str, Any] = {"max_growth": max_growth, "max_jump": max_jump, "progress": bool(study.progress)}
         self.inputs = study.inputs
         self.random_names = study.random_names
         self._counter = study._counter

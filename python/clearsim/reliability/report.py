@@ -4,14 +4,16 @@ its ``[reliability]`` is the short form of) and write CSV tables, a figure and a
 from __future__ import annotations
 
 import math
+import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
+from statistics import NormalDist
 from typing import Any, Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
 from ..csvfile import write_rows
-from ..errors import InputError
+from ..errors import ClearsimError, InputError
 
 FOSM_NOTE = (
     "FOSM (the paper's method, Eqs. P27–P32) is pointwise in time: per crank-angle bin it compares the "
@@ -35,18 +37,29 @@ class Run:
     rows: List[Dict[str, Any]] = field(default_factory=list)
     found: Dict[str, Any] = field(default_factory=dict)
 
-    def row(self, method: str, res: Any, beta: Optional[float] = None, mode: str = "system") -> None:
+    def row(self, method: str, res: Any, beta: Optional[float] = None, mode: str = "system", of: Any = None) -> None:
+        """A row of ``res``; ``of``: the system estimate whose runs a mode's estimate shares (its
+        runs and wall time are reported). β is FORM's index, else the generalised reliability
+        index −Φ⁻¹(p_f) (Ditlevsen)."""
         lo, hi = getattr(res, "interval", (math.nan, math.nan))
         whole = mode == "system"
         if whole and len(self.study.outputs) == 1:
             mode = self.study.mode_names[0]
+        runs_of = of if of is not None else res
         self.rows.append({"method": method, "pf": res.pf, "interval_low": lo, "interval_high": hi, "cov": getattr(res, "cov", math.nan),
-                          "beta": beta if beta is not None else getattr(res, "beta", math.nan), "runs": getattr(res, "n_runs", 0),
-                          "wall_time_s": getattr(res, "wall_time", math.nan), "mode": mode})  # fmt: skip
+                          "beta": beta if beta is not None else getattr(res, "beta", generalised_beta(res.pf)), "runs": getattr(runs_of, "n_runs", 0),
+                          "wall_time_s": getattr(runs_of, "wall_time", math.nan), "mode": mode})  # fmt: skip
         if whole:
             self.echo(f"{method:20s} p_f = {res.pf:.4g}  runs = {res.n_runs}  ({res.wall_time:.1f} s)")
         else:
             self.echo(f"{'':20s}   {mode}: p_f = {res.pf:.4g}")
+
+
+def generalised_beta(pf: float) -> float:
+    """β = −Φ⁻¹(p_f) [-] (inf at p_f = 0, −inf at 1, NaN if p_f is not a probability)."""
+    if not 0.0 <= pf <= 1.0:
+        return math.nan
+    return math.inf if pf == 0.0 else -math.inf if pf == 1.0 else -NormalDist().inv_cdf(pf)
 
 
 def _monte_carlo(r: Run) -> None:
@@ -54,7 +67,7 @@ def _monte_carlo(r: Run) -> None:
     r.row("monte_carlo", mc)
     if len(mc.modes) > 1:
         for m in mc.modes:
-            r.row("monte_carlo", m, mode=m.name)
+            r.row("monte_carlo", m, mode=m.name, of=mc)
     if mc.failures:
         r.echo(f"  {len(mc.failures)} runs failed (counted as exceedances): {mc.failure_reasons()}")
 
@@ -135,7 +148,9 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     """Run the study's methods, write ``reliability.csv`` (one row per method, and per failure
     mode on a series system), ``sobol.csv``, ``samples.csv`` (Monte Carlo: inputs, each output's
     peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
-    ``out_dir``; returns the files."""
+    ``out_dir``; returns the files. A life (``[study.life]``) that stops with a clearsim error
+    (e.g. more blocks than ``max_blocks``) is named in report.md after the other methods'
+    results are written, then raised."""
     settings = scene.study_settings()
     study = scene.study_model(progress=progress)
     chosen = list(methods or settings.methods)
@@ -153,7 +168,13 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
         r.found["tolerance"] = tol = study.tolerance(name, rel_target, bracket=bracket, cov=settings.cov, seed=settings.seed, step=settings.step)
         echo(f"{'tolerance':20s} largest mean {name} = {tol.value:.6g} (95 % [{tol.interval[0]:.6g}, {tol.interval[1]:.6g}]) for R = {rel_target}  runs = {tol.n_runs}")
     rows, found = r.rows, r.found
-    files: List[Path] = _life(r, out_dir, plots) if settings.life is not None else []
+    files: List[Path] = []
+    life_error: Optional[ClearsimError] = None
+    if settings.life is not None:
+        try:
+            files = _life(r, out_dir, plots)
+        except ClearsimError as err:  # the other methods' results are still written, then it is raised
+            life_error = found["life_error"] = err
     if rows:
         files.append(_write(out_dir / "reliability.csv", list(rows[0]), [[row[k] for k in rows[0]] for row in rows]))
     if "sobol" in found:
@@ -180,6 +201,8 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     if plots:
         files.append(plot_study(study, found, out_dir / "reliability.png"))
     files.append(_report(scene, study, rows, found, out_dir / "report.md", files))
+    if life_error is not None:
+        raise life_error
     return files
 
 
@@ -211,10 +234,13 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
             ax.annotate(f"{r.pf:.3g}  ({r.n_runs} runs)", (r.pf if r.pf > 0 else 1e-300, y), textcoords="offset points", xytext=(0, 7), ha="center", fontsize=7)
         ax.set_yticks(range(len(estimates)), [k.replace("_", " ") for k, _ in estimates])
         ax.set_ylim(-0.6, len(estimates) - 0.3)
-        ax.set_xscale("log")
+        if any(r.pf > 0 for _, r in estimates):  # else a log axis has nothing to show
+            ax.set_xscale("log")
         ax.set_xlabel("probability of exceedance p_f")
         ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}" if len(study.outputs) == 1 else f"p_f of the system ({len(study.outputs)} modes)")
-        if "monte_carlo" in found and len(study.outputs) == 1:
+        if "monte_carlo" in found and not np.isfinite(found["monte_carlo"].peaks).any():
+            _no_sample(axes.pop(0), found["monte_carlo"])  # every run failed: nothing to draw but why
+        elif "monte_carlo" in found and len(study.outputs) == 1:
             ax = axes.pop(0)
             peaks = np.sort(found["monte_carlo"].peaks[np.isfinite(found["monte_carlo"].peaks)])
             p = 1.0 - np.arange(peaks.size) / max(peaks.size, 1)
@@ -257,6 +283,15 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
         return plots.save(fig, path)
 
 
+def _no_sample(ax: Any, mc: Any) -> None:
+    """The Monte Carlo panel when no sample succeeded: why, by reason and count."""
+    reasons = "\n".join(textwrap.fill(f"{n} × {why}", 58) for why, n in mc.failure_reasons().items())
+    ax.text(0.5, 0.5, f"no sample succeeded ({len(mc.failures)} of {mc.n_runs} failed):\n\n{reasons}", transform=ax.transAxes, ha="center", va="center", fontsize=7)
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.set_title("Monte Carlo: p_f against the limit")
+
+
 def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str, Any], path: Path, files: List[Path]) -> Path:
     outs = "; ".join(f"{o.label} {lim.text(o.unit)} (`{o.name}`)" for o, lim in zip(study.outputs, study.limits))
     kind = "Output" if len(study.outputs) == 1 else "Outputs (a series system: it fails when any output passes its limit)"
@@ -271,6 +306,11 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
         lines += ["", "| method | mode | p_f | 95 % interval | CoV | β | runs | wall time [s] |", "|---|---|---|---|---|---|---|---|"]
         for r in rows:
             lines.append(f"| {r['method']} | {r['mode']} | {r['pf']:.4g} | [{r['interval_low']:.3g}, {r['interval_high']:.3g}] | {r['cov']:.3g} | {r['beta']:.3g} | {r['runs']} | {r['wall_time_s']:.1f} |")
+        lines += ["", "β: FORM's reliability index, for the sampling methods the generalised index −Φ⁻¹(p_f); a series system's mode rows share its runs."]
+    mc = found.get("monte_carlo")
+    if mc is not None and mc.failures:
+        lines += ["", f"Monte Carlo: {len(mc.failures)} of {mc.n_runs} runs failed ({'counted as exceedances' if mc.on_failure == 'fail' else 'left out'}): "
+                  + "; ".join(f"{n} × {why}" for why, n in mc.failure_reasons().items())]  # fmt: skip
     if "form" in found:
         fr = found["form"]
         lines += ["", "FORM design point: " + ", ".join(f"`{k}` = {v:.6g}" for k, v in fr.design_point.items()),
@@ -305,6 +345,8 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
             lines += ["", f"Reliability falls to {study_settings_reliability(scene)} at {at[0]:.4g} cycles (95 % [{at[1][0]:.4g}, {at[1][1]:.4g}])."]
         elif at is not None:
             lines += ["", f"Life at R = {study_settings_reliability(scene)}: {at}"]
+    if "life_error" in found:
+        lines += ["", f"Reliability over life: not run to the end: {found['life_error']}"]
     if "fosm" in found:
         for name, fo in found["fosm_outputs"].items():
             which = f" `{name}`" if len(study.outputs) > 1 else ""
@@ -317,4 +359,5 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
 
 def study_settings_reliability(scene: Any) -> Any:
     """The reliability ``[study.life]`` asks the life for."""
-    return scene.study.life.reliability if scene.study.life is not None else None
+    settings = scene.study_settings()
+    return settings.life.reliability if settings.life is not None else None

@@ -149,6 +149,21 @@ class _Job:
     refine: int = 1
 
 
+def _driver_speed(m: Any) -> float:
+    """ω [rad/s] of the constant-speed driver of mechanism ``m``: the default of ``Study(omega=)``
+    (a scene's ``[study]`` takes the first such driver of the file the same way)."""
+    speeds = {d["name"]: float(d["law"]["omega"]) for d in m.description()["drivers"] if d["law"]["kind"] == "constant_speed"}
+    if not speeds:
+        raise InputError(
+            "missing omega: the nominal mechanism has no constant-speed driver to take the crank cycle from; "
+            "give omega, the drive speed [rad/s], or the name of the input that holds it", field="omega", value=None,
+        )  # fmt: skip
+    if len(set(speeds.values())) > 1:
+        listed = ", ".join(f"{name!r} {w:g} rad/s" for name, w in speeds.items())
+        raise InputError(f"missing omega: the nominal mechanism has several constant-speed drivers ({listed}); give omega, the drive speed [rad/s] of the crank cycle", field="omega", value=None)
+    return next(iter(speeds.values()))
+
+
 class Study(ReliabilityModel, Modes):
     """Reliability of one or several outputs of a mechanism with random inputs.
 
@@ -168,7 +183,10 @@ class Study(ReliabilityModel, Modes):
         acceptable minimum, e.g. a film thickness) or :meth:`Limit.above`; a list for a list of
         outputs.
     omega:
-        Drive speed [rad/s] defining the crank cycle: a number or the name of an input.
+        Drive speed [rad/s] defining the crank cycle: a number or the name of an input. Default:
+        the speed of the constant-speed driver of the nominal mechanism (``build`` at the inputs'
+        means), as a scene's ``[study]`` takes it; an :class:`InputError` when it has none, or
+        several at different speeds. Give the input's name when an input sets the drive speed.
     cycles, skip_cycles:
         The analysed window: ``cycles`` crank turns after ``skip_cycles`` turns of start-up.
     bin_width:
@@ -212,7 +230,7 @@ class Study(ReliabilityModel, Modes):
         self.build = build
         self._set_inputs(inputs)
         if omega is None:
-            raise InputError("missing omega: give the drive speed [rad/s] or the name of the input that holds it", field="omega", value=None)
+            omega = _driver_speed(build(**self.nominal()))
         if isinstance(omega, str) and omega not in self.inputs:
             raise InputError(f"invalid omega = {omega!r}: not an input; give the drive speed [rad/s] or an input's name", field="omega", value=omega)
         if not isinstance(omega, str) and (check_finite("omega", omega) == 0.0):
@@ -534,17 +552,19 @@ class Study(ReliabilityModel, Modes):
     # methods here, each a thin call into its own module (as ReliabilityModel's methods call form.py etc.).
     def life(
         self, cycles: Sequence[float], n: int, seed: Optional[int] = 0, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None,
-        settle: Optional[float] = None, on_failure: str = "fail", confidence: float = 0.95,
+        settle: Optional[float] = None, on_failure: str = "fail", confidence: float = 0.95, max_blocks: int = 1000,
     ) -> Any:  # fmt: skip
         """p_f against operating cycles with Archard wear fed back (each worn joint needs
         ``Archard(..., feedback=True)``): ``n`` samples each run through its life in blocks of
         ``settle`` + ``cycles`` turns, the worn depths extrapolated between blocks (cycle
         jumping, at most ``max_growth`` × the clearance of growth and ``max_jump`` cycles a
-        jump). Returns a :class:`~clearsim.reliability.life.LifeResult` (its ``life_at(R)``: the
-        cycles at which the reliability falls to R). See docs/reliability.md, "Reliability over life"."""
+        jump; at most ``max_blocks`` blocks a sample, an estimate above it after the first round is
+        an InputError saying why). Returns a :class:`~clearsim.reliability.life.LifeResult` (its
+        ``life_at(R)``: the cycles at which the reliability falls to R). See docs/reliability.md,
+        "Reliability over life"."""
         from .life import study_life
 
-        return study_life(self, cycles, n, seed, max_growth=max_growth, max_jump=max_jump, settle=settle, on_failure=on_failure, confidence=confidence)
+        return study_life(self, cycles, n, seed, max_growth=max_growth, max_jump=max_jump, settle=settle, on_failure=on_failure, confidence=confidence, max_blocks=max_blocks)
 
     def life_model(self, cycles: float, *, max_growth: Optional[float] = 0.02, max_jump: Optional[float] = None, settle: Optional[float] = None) -> Any:
         """The limit state "failure by ``cycles`` operating cycles" as a model of its own, each

@@ -1,0 +1,79 @@
+"""``clearsim run``'s summaries and joints CSV carry every bearing reading: λ = h_min/σ beside
+the minimum film in summary.md (as summary.json has it), and a heat model's oil temperature in
+summary.json, summary.md, the stdout summary and joints.csv, checked against closed forms on a
+centred, unloaded journal (Petroff's loss, heated as T_amb + P/hA (1 − e^(−t hA/C)))."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from clearsim import cli
+
+R, C, L, OMEGA, MU, SIGMA = 0.02, 4e-5, 0.01, 100.0, 0.03, 1e-6
+T_AMB, CAP, HA, T_END = 313.15, 0.05, 0.2, 0.05
+
+SCENE = f"""
+[mechanism]
+name = "centred rotor"
+gravity = [0.0, 0.0]
+[simulation]
+t_end = {T_END}
+dt_out = 0.01
+[outputs]
+joint_quantities = ["film_thickness"]
+[[body]]
+name = "rotor"
+mass = 1.0
+inertia = 1e-3
+[[driver]]
+body = "rotor"
+omega = {OMEGA}
+angle0 = 0.0
+[[clearance_joint]]
+name = "pin"
+bearing_body = "ground"
+bearing_point = [0.0, 0.0]
+journal_body = "rotor"
+journal_point = [0.0, 0.0]
+journal_radius = {R}
+clearance = {C}
+model = "lubricated"
+[clearance_joint.lubricated]
+viscosity = {MU}
+length = {L}
+film = "short"
+roughness = {SIGMA}
+[clearance_joint.lubricated.thermal]
+ambient = {T_AMB}
+heat_capacity = {CAP}
+heat_transfer = {HA}
+"""
+
+
+def test_the_summaries_and_csv_carry_lambda_and_the_oil_temperature(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    scene = tmp_path / "rotor.toml"
+    scene.write_text(SCENE, encoding="utf-8")
+    out = tmp_path / "out"
+    assert cli.main(["run", str(scene), "-o", str(out), "--no-plots"]) == 0
+    petroff = 2 * math.pi * MU * R**3 * L * OMEGA**2 / C  # W, a centred journal's loss
+    t_end = T_AMB + petroff / HA * (1 - math.exp(-T_END * HA / CAP))
+    b = json.loads((out / "summary.json").read_text(encoding="utf-8"))["run"]["bearings"]["pin"]
+    assert b["lambda"] == pytest.approx(C / SIGMA, rel=1e-9)  # unloaded: h_min = c
+    assert b["temperature_start"] == T_AMB and b["temperature_end"] == pytest.approx(t_end, abs=1e-3 * (t_end - T_AMB))
+    md = (out / "summary.md").read_text(encoding="utf-8")
+    header = next(line for line in md.splitlines() if line.startswith("| lubricated joint"))
+    row = next(line for line in md.splitlines() if line.startswith("| pin |"))
+    cells = dict(zip([h.strip() for h in header.split("|")[1:-1]], [c.strip() for c in row.split("|")[1:-1]]))
+    assert float(cells["λ = h_min/σ"]) == pytest.approx(C / SIGMA, rel=1e-3)
+    assert float(cells["oil T start [K]"]) == pytest.approx(T_AMB) and float(cells["oil T end [K]"]) == pytest.approx(t_end, rel=1e-5)
+    rows = list(csv.reader((out / "joints.csv").open(encoding="utf-8")))
+    k = rows[0].index("pin.temperature [K]")
+    assert float(rows[1][k]) == pytest.approx(T_AMB) and float(rows[-1][k]) == pytest.approx(b["temperature_end"], rel=1e-9)
+    assert "pin.film_thickness [m]" in rows[0]
+    stdout = capsys.readouterr().out
+    assert "bearing pin: min film 40 µm, λ = 40, oil 313.15 → " in stdout

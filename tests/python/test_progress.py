@@ -1,0 +1,46 @@
+"""clearsim.progress: a long run shows a bar with the time left, and one switch
+(``clearsim.set_progress`` or ``CLEARSIM_PROGRESS=0``) hides every bar. The bars' one-second
+delay is set to zero here, so runs of a fraction of a second show what a long one would."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+import clearsim
+from clearsim import models, progress
+
+
+@pytest.fixture
+def bars_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(progress, "DELAY", 0.0)
+    monkeypatch.setattr(progress, "_enabled", None)  # follow the environment, restored after
+
+
+def test_progress_shows_the_time_left_and_one_switch_hides_every_bar(capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch, bars_at_once: None) -> None:
+    m = models.nine_bar("dry")
+    m.simulate(3.0, dt_out=0.01)  # ~0.4 s of work: several refreshes of the bar (every 0.1 s)
+    err = capfd.readouterr().err
+    assert "simulating" in err and re.search(r"<\d\d:\d\d", err), err[-300:]  # elapsed<remaining, estimated
+    clearsim.set_progress(False)
+    m.simulate(0.2, dt_out=0.01)
+    assert capfd.readouterr().err == ""
+    progress._enabled = None  # back to the environment
+    monkeypatch.setenv("CLEARSIM_PROGRESS", "0")
+    m.simulate(0.2, dt_out=0.01)
+    assert capfd.readouterr().err == ""
+    monkeypatch.delenv("CLEARSIM_PROGRESS")
+    m.simulate(0.2, dt_out=0.01)  # and shown again: the switches were what hid it
+    assert "simulating" in capfd.readouterr().err
+
+
+def test_the_delay_is_one_second_by_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without ``delay`` a bar waits :data:`clearsim.progress.DELAY` = 1 s (short runs print
+    nothing: test_clearance.py's ``test_a_short_run_shows_no_progress_bar``)."""
+    monkeypatch.setattr(progress, "_enabled", True)
+    assert progress.DELAY == 1.0
+    for delay, want in ((None, 1.0), (0.0, 0.0)):
+        b = progress.bar(10, "x", delay=delay)
+        assert b.delay == want
+        b.close()
