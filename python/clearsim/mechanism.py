@@ -14,7 +14,7 @@ import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import forces as _forces
-from . import plausibility, references
+from . import _core, plausibility, references
 from .errors import InputError, SimulationError, check_finite, check_positive
 from .joints import Dry, Lubricated
 from .running import DEFAULT_OUTPUTS, INTEGRATORS, MAX_OUTPUTS, OUTPUTS, RunOptions, Running  # noqa: F401 (re-exported)
@@ -608,28 +608,16 @@ class Mechanism(Running):
         return m
 
     def idealized(self) -> "Mechanism":
-        """A copy with every clearance joint replaced by an ideal revolute joint (docs/physics.md §5)."""
+        """A copy with every clearance joint replaced by an ideal joint (docs/physics.md §5): a
+        revolute one by a revolute joint, a prismatic one by a prismatic joint along its guide.
+        The core idealises (``_core.idealize``, ``MechanismDesc::idealized``: the one
+        implementation); the copy is rebuilt from the description it returns."""
+        ideal = references.unresolve(_core.idealize(self.description()))
         m = self.copy()
-        for c in m._clearance:
-            _insert(
-                m._joints,
-                {
-                    "kind": "revolute",
-                    "name": c["name"],
-                    "body_a": c["bearing_body"],
-                    "point_a": c["bearing_point"],
-                    "body_b": c["journal_body"],
-                    "point_b": c["journal_point"],
-                }
-            )
-        for p in m._prismatic_clearance:
-            _insert(
-                m._joints,
-                {"kind": "prismatic", "name": p["name"], "body_a": p["guide_body"], "point_a": p["guide_point"],
-                 "axis": p["axis"], "body_b": p["slider_body"], "point_b": [0.0, 0.0]}
-            )  # fmt: skip
-        m._clearance = []
-        m._prismatic_clearance = []
+        m.gravity, m.baumgarte = ideal["gravity"], ideal["baumgarte"]
+        m._bodies, m._joints, m._drivers, m._forces = ideal["bodies"], ideal["joints"], ideal["drivers"], ideal["forces"]
+        m._clearance, m._prismatic_clearance = ideal["clearance_joints"], ideal["prismatic_clearance_joints"]
+        m._index = {b["name"]: k for k, b in enumerate(m._bodies)}
         m._compiled = None
         return m
 

@@ -6,8 +6,9 @@ use crate::description::*;
 use crate::error::{Error, Result};
 
 /// A number as it appears in a message: plain for ordinary magnitudes, scientific for very
-/// small or large ones (Rust's `Display` would print 1e-300 with 300 digits).
-fn num(v: f64) -> String {
+/// small or large ones (Rust's `Display` would print 1e-300 with 300 digits). Run settings'
+/// messages ([`crate::settings`]) write their numbers the same way.
+pub(crate) fn num(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 || !a.is_finite() || (1e-4..1e15).contains(&a) {
         format!("{v}")
