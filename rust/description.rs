@@ -507,15 +507,33 @@ pub fn from_json(text: &str) -> crate::error::Result<MechanismDesc> {
 pub fn from_value(v: &serde_json::Value) -> crate::error::Result<MechanismDesc> {
     use crate::error::Error;
     serde_path_to_error::deserialize::<_, MechanismDesc>(v).map_err(|e| {
-        let (field, value) = name_path(v, e.path());
-        Error::invalid(field, value, e.inner().to_string())
+        let why = e.inner().to_string();
+        // Inside an internally tagged enum (a joint's model, a force) serde's path stops at the
+        // enum: an unknown name is then looked up by its value to name its field (`model.film`).
+        let variant = why.strip_prefix("unknown variant `").and_then(|r| r.split('`').next());
+        let (field, value) = name_path(v, e.path(), variant);
+        Error::invalid(field, value, why)
+    })
+}
+
+/// The keys (depth first) leading from `v` to a string value equal to `s`, and that value.
+#[cfg(feature = "serde")]
+fn find_string<'a>(v: &'a serde_json::Value, s: &str) -> Option<(Vec<&'a str>, &'a serde_json::Value)> {
+    let map = v.as_object()?;
+    if let Some((k, x)) = map.iter().find(|(k, x)| *k != "kind" && x.as_str() == Some(s)) {
+        return Some((vec![k.as_str()], x));
+    }
+    map.iter().find_map(|(k, x)| {
+        let (mut keys, found) = find_string(x, s)?;
+        keys.insert(0, k.as_str());
+        Some((keys, found))
     })
 }
 
 /// The field a deserialisation error points at, named the way validation names it, and the
 /// value found there (shortened).
 #[cfg(feature = "serde")]
-fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path) -> (String, String) {
+fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path, variant: Option<&str>) -> (String, String) {
     use serde_path_to_error::Segment;
     let mut field = String::new();
     let mut at = Some(root);
@@ -542,6 +560,15 @@ fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path) -> (Str
                 at = at.and_then(|v| v.get(key.as_str()));
             }
             Segment::Enum { .. } | Segment::Unknown => {}
+        }
+    }
+    if let (Some(name), Some(here)) = (variant, at) {
+        if let Some((keys, found)) = find_string(here, name) {
+            for k in keys {
+                field.push('.');
+                field.push_str(k);
+            }
+            at = Some(found);
         }
     }
     if field.is_empty() {

@@ -114,11 +114,9 @@ impl RunSettings {
 #[serde(rename_all = "lowercase")]
 pub enum IntegratorName {
     /// Dormand–Prince 5(4).
-    #[serde(alias = "dopri5")]
     Rk45,
     Dop853,
     Rodas4,
-    #[serde(alias = "radau5")]
     Radau,
     /// Classic RK4 with the fixed `step`.
     Rk4,

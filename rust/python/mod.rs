@@ -126,7 +126,7 @@ fn plain_value(obj: &Bound<'_, PyAny>, field: &str, top: bool) -> PyResult<serde
     if let Ok(x) = obj.extract::<f64>() {
         return serde_json::Number::from_f64(x)
             .map(Value::Number)
-            .ok_or_else(|| input_error(py, if field.is_empty() { "description" } else { field }, x, "must be a finite number"));
+            .ok_or_else(|| input_error(py, if field.is_empty() { "description" } else { field }, crate::compile::num(x), "must be a finite number"));
     }
     if let Ok(d) = obj.cast::<PyDict>() {
         let mut map = serde_json::Map::with_capacity(d.len());
@@ -448,6 +448,13 @@ fn compile(py: Python<'_>, description: &Bound<'_, PyAny>) -> PyResult<CompiledM
     CompiledModel::build(py, desc)
 }
 
+/// Check run settings (the dict `Mechanism.run_settings` writes) as a run does, without running:
+/// for a scene file, whose mistakes are reported at load with their line.
+#[pyfunction]
+fn check_settings(settings: &Bound<'_, PyAny>) -> PyResult<()> {
+    read_settings(settings).map(|_| ())
+}
+
 /// The ideal counterpart of a description ([`MechanismDesc::idealized`], the one implementation
 /// of idealisation): read through serde, idealised, and handed back as plain data (written by
 /// serde with every default filled in, read by Python's `json`: floats round-trip exactly).
@@ -569,6 +576,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<CompiledModel>()?;
     m.add_function(wrap_pyfunction!(compile, m)?)?;
     m.add_function(wrap_pyfunction!(idealize, m)?)?;
+    m.add_function(wrap_pyfunction!(check_settings, m)?)?;
     m.add("DEFAULTS", defaults(m.py())?)?;
     m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;
     m.add_function(wrap_pyfunction!(film_force, m)?)?;
