@@ -574,7 +574,8 @@ fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path, variant
     if field.is_empty() {
         field.push_str("description");
     }
-    let mut value = at.map_or_else(|| "(missing)".to_string(), |v| v.to_string());
+    // A string quoted as Python writes it ('hooke'), as every other message does.
+    let mut value = at.map_or_else(|| "(missing)".to_string(), |v| v.as_str().map_or_else(|| v.to_string(), |s| format!("'{s}'")));
     if value.chars().count() > 80 {
         value = value.chars().take(77).collect::<String>() + "…";
     }

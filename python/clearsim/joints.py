@@ -20,6 +20,15 @@ NORMAL_LAWS = ("lankarani_nikravesh", "hertz", "hunt_crossley", "flores")
 STIFFNESS_FORMS = ("internal", "paper_printed", "cylindrical")
 
 
+def _numbers(model: Any, fields: Tuple[str, ...], optional: Tuple[str, ...] = ()) -> None:
+    """Each of ``fields`` of ``model`` (and each of ``optional`` that is not ``None``) made a
+    float, or an :class:`InputError` naming the field if it is not a finite number: checked where it is given, because
+    inside a joint's model the core names a value's field for its range, not for its type
+    (serde's path stops at the model)."""
+    for name in fields + tuple(o for o in optional if getattr(model, o) is not None):
+        object.__setattr__(model, name, check_finite(name, getattr(model, name)))  # a float, as the core reads it
+
+
 #: The core's defaults of a dry law and of a lubricated joint's film (rust/description.rs).
 _DRY: Dict[str, Any] = _core.DEFAULTS["dry"]
 _FILM: Dict[str, Any] = _core.DEFAULTS["lubricated"]
@@ -153,6 +162,8 @@ class Dry:
     def __post_init__(self) -> None:
         if self.wear is not None and not isinstance(self.wear, Archard):
             raise InputError(f"invalid wear = {self.wear!r}: must be clearsim.Archard(...) or None", field="wear", value=self.wear)
+        _numbers(self, ("youngs_modulus", "poisson_ratio", "restitution", "exponent", "friction", "v0", "v1", "impact_speed_floor"),
+                 ("journal_youngs_modulus", "journal_poisson_ratio", "stiffness", "length"))  # fmt: skip
         # stiffness_form selects the fields it is written into (stiffness_paper_printed,
         # cylinder_length): checked here, before they are written.
         check_choice("stiffness_form", self.stiffness_form, STIFFNESS_FORMS)
@@ -330,16 +341,13 @@ class Lubricated:
     thermal: Optional[Thermal] = None
 
     def __post_init__(self) -> None:
-        # The nested models must be these classes (they write themselves as plain data); the
-        # viscosity and the length are numbers the plausibility checks compute with. The values'
-        # ranges, the choices of film and supply and what goes with what are the core's checks.
+        # The nested models must be these classes (they write themselves as plain data). The
+        # values' ranges, the choices of film and supply and what goes with what are the core's checks.
         if self.thermal is not None and not isinstance(self.thermal, Thermal):
             raise InputError(f"invalid thermal = {self.thermal!r}: must be clearsim.Thermal(...) or None", field="thermal", value=self.thermal)
         if not isinstance(self.dry, Dry):
             raise InputError(f"invalid dry = {self.dry!r}: must be clearsim.Dry(...)", field="dry", value=self.dry)
-        if not isinstance(self.viscosity, Vogel):
-            check_finite("viscosity", self.viscosity)
-        check_finite("length", self.length)
+        _numbers(self, ("length", "eps0", "m", "eps_max") + (() if isinstance(self.viscosity, Vogel) else ("viscosity",)), ("e0", "roughness", "boundary_friction"))
 
     def _as_dict(self) -> Dict[str, Any]:
         d: Dict[str, Any] = {

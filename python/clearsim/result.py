@@ -268,7 +268,8 @@ class Result(JointReadings):
         """Largest and smallest value of a body's ``quantity`` (``"displacement"``,
         ``"velocity"`` or ``"acceleration"`` of ``component`` ``"x"``, ``"y"`` or ``"theta"``)
         or of a clearance joint's (``"eccentricity"`` ratio e/c, ``"force"`` on the journal,
-        ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]; ``"film_thickness"`` [m],
+        ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]; ``"film_thickness"`` [m], the
+        reading h = c − |e| (not a study's window minimum c (1 − ε_max), :data:`clearsim.schema.JOINT_QUANTITY_UNITS`),
         ``"friction_torque"`` on the journal [N m], ``"power_loss"`` [W]) and their times [s], over the run.
 
         Tracked at every accepted integration step and located between steps on the exact
