@@ -1,5 +1,6 @@
 """Resolve the names by which a mechanism's elements refer to one another (a joint's bodies, a
-driver's body, a load table's driver) into the indices of the Rust core's description.
+driver's body, a load table's driver) into the indices of the Rust core's description, and back
+(:func:`unresolve`, for a description the core hands back: the ideal counterpart).
 
 This runs when the mechanism compiles (:meth:`clearsim.Mechanism.description`), not when an
 element is added, so elements may be defined in any order. An unknown name is an

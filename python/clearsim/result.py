@@ -39,7 +39,8 @@ class Extremes:
     unit: str
 
     def __str__(self) -> str:
-        return f"{self.quantity}: max {self.max:.6g} {self.unit} at t = {self.t_max:.6g} s, min {self.min:.6g} {self.unit} at t = {self.t_min:.6g} s"
+        u = "" if self.unit == "1" else f" {self.unit}"  # a ratio (e/c) has no unit to write
+        return f"{self.quantity}: max {self.max:.6g}{u} at t = {self.t_max:.6g} s, min {self.min:.6g}{u} at t = {self.t_min:.6g} s"
 
 
 def extreme_monitors(
