@@ -7,7 +7,7 @@ use crate::laws::film::FilmModel;
 use crate::laws::geometry::FilmSupply;
 
 /// A rigid body: reference point at the centroid (docs/physics.md §1, P19).
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyDesc {
     pub name: String,
@@ -29,7 +29,7 @@ pub struct BodyDesc {
 pub type BodyRef = Option<usize>;
 
 /// An ideal joint: a set of holonomic constraints (docs/physics.md §1).
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum JointDesc {
@@ -42,7 +42,7 @@ pub enum JointDesc {
 }
 
 /// A prescribed angle law θ(t) for a driving constraint `θ_body − f(t) = 0`.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum AngleLaw {
@@ -55,7 +55,7 @@ pub enum AngleLaw {
 }
 
 /// A driving constraint on a body's angle.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct DriverDesc {
     pub name: String,
@@ -64,7 +64,7 @@ pub struct DriverDesc {
 }
 
 /// Parameters of a dry clearance joint (docs/physics.md §3); a missing field takes [`DryDesc::steel`]'s value.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(default))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct DryDesc {
@@ -98,7 +98,7 @@ pub struct DryDesc {
 }
 
 /// Archard's wear law: worn volume = coefficient × normal force × sliding distance / hardness.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct WearDesc {
     /// Dimensionless wear coefficient k.
@@ -120,7 +120,7 @@ pub struct WearDesc {
 }
 
 /// Parameters of a lubricated clearance joint (docs/physics.md §4).
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct LubricatedDesc {
     #[cfg_attr(feature = "serde", serde(default))]
@@ -162,7 +162,7 @@ pub struct LubricatedDesc {
 }
 
 /// The viscosity of a lubricated joint: `0.4` or `{vogel = [a, b, c]}`.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(untagged))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum ViscosityDesc {
@@ -173,7 +173,7 @@ pub enum ViscosityDesc {
 }
 
 /// The lumped heat balance C dT/dt = P_loss − hA (T − T_ambient) of a lubricated joint.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ThermalDesc {
@@ -188,7 +188,7 @@ pub struct ThermalDesc {
     pub initial: Option<f64>,
 }
 
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum ClearanceModelDesc {
@@ -197,7 +197,7 @@ pub enum ClearanceModelDesc {
 }
 
 /// A revolute joint with radial clearance: bearing (hole) on one body, journal (pin) on another.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClearanceJointDesc {
     pub name: String,
@@ -219,7 +219,7 @@ pub struct ClearanceJointDesc {
 /// `slider_length` centred on the slider body's centroid moves in a guide through `guide_point`
 /// of the guide body along `axis` (guide frame), with a total lateral play `clearance`. Its two
 /// ends (rounded with `corner_radius`) contact either guide surface with the dry law.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct PrismaticClearanceDesc {
     pub name: String,
@@ -245,7 +245,7 @@ fn default_corner_radius() -> f64 {
 }
 
 /// What a [`Table`] is a function of.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum TableArgument {
@@ -257,7 +257,7 @@ pub enum TableArgument {
 
 /// A piecewise-linear function y(x) (x strictly increasing), held at its end values outside
 /// [x₀, x_last]; with a `period` the argument is first wrapped into [x₀, x₀ + period).
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
     pub x: Vec<f64>,
@@ -267,7 +267,7 @@ pub struct Table {
 }
 
 /// A scalar load: constant, or a table of time or of a body's angle.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Profile {
@@ -276,7 +276,7 @@ pub enum Profile {
 }
 
 /// The frame a force's direction is given in.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Frame {
@@ -286,7 +286,7 @@ pub enum Frame {
 }
 
 /// A force element or load (docs/physics.md §10). Body references: `None` is the ground.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 #[derive(Debug, Clone, PartialEq)]
 pub enum ForceDesc {
@@ -380,7 +380,7 @@ impl JointDesc {
 }
 
 /// Everything needed to compile a model.
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(default))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct MechanismDesc {
@@ -507,15 +507,33 @@ pub fn from_json(text: &str) -> crate::error::Result<MechanismDesc> {
 pub fn from_value(v: &serde_json::Value) -> crate::error::Result<MechanismDesc> {
     use crate::error::Error;
     serde_path_to_error::deserialize::<_, MechanismDesc>(v).map_err(|e| {
-        let (field, value) = name_path(v, e.path());
-        Error::invalid(field, value, e.inner().to_string())
+        let why = e.inner().to_string();
+        // Inside an internally tagged enum (a joint's model, a force) serde's path stops at the
+        // enum: an unknown name is then looked up by its value to name its field (`model.film`).
+        let variant = why.strip_prefix("unknown variant `").and_then(|r| r.split('`').next());
+        let (field, value) = name_path(v, e.path(), variant);
+        Error::invalid(field, value, why)
+    })
+}
+
+/// The keys (depth first) leading from `v` to a string value equal to `s`, and that value.
+#[cfg(feature = "serde")]
+fn find_string<'a>(v: &'a serde_json::Value, s: &str) -> Option<(Vec<&'a str>, &'a serde_json::Value)> {
+    let map = v.as_object()?;
+    if let Some((k, x)) = map.iter().find(|(k, x)| *k != "kind" && x.as_str() == Some(s)) {
+        return Some((vec![k.as_str()], x));
+    }
+    map.iter().find_map(|(k, x)| {
+        let (mut keys, found) = find_string(x, s)?;
+        keys.insert(0, k.as_str());
+        Some((keys, found))
     })
 }
 
 /// The field a deserialisation error points at, named the way validation names it, and the
 /// value found there (shortened).
 #[cfg(feature = "serde")]
-fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path) -> (String, String) {
+fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path, variant: Option<&str>) -> (String, String) {
     use serde_path_to_error::Segment;
     let mut field = String::new();
     let mut at = Some(root);
@@ -544,10 +562,20 @@ fn name_path(root: &serde_json::Value, path: &serde_path_to_error::Path) -> (Str
             Segment::Enum { .. } | Segment::Unknown => {}
         }
     }
+    if let (Some(name), Some(here)) = (variant, at) {
+        if let Some((keys, found)) = find_string(here, name) {
+            for k in keys {
+                field.push('.');
+                field.push_str(k);
+            }
+            at = Some(found);
+        }
+    }
     if field.is_empty() {
         field.push_str("description");
     }
-    let mut value = at.map_or_else(|| "(missing)".to_string(), |v| v.to_string());
+    // A string quoted as Python writes it ('hooke'), as every other message does.
+    let mut value = at.map_or_else(|| "(missing)".to_string(), |v| v.as_str().map_or_else(|| v.to_string(), |s| format!("'{s}'")));
     if value.chars().count() > 80 {
         value = value.chars().take(77).collect::<String>() + "…";
     }

@@ -5,6 +5,7 @@
 //! dict, through serde like the mechanism description, the keys `clearsim.Mechanism.run_settings`
 //! writes; an unknown key is an error, not ignored) and their conversion.
 
+use crate::compile::num;
 use crate::error::{Error, Result};
 use crate::integrate::{Method, Settings};
 use crate::model::Model;
@@ -42,45 +43,46 @@ impl RunSettings {
     /// monitor specs): done once, by `RunSettingsDesc::into_settings` for what comes from Python;
     /// a Rust caller that builds [`RunSettings`] itself calls it before [`crate::simulate::simulate`].
     pub fn validate(&self) -> Result<()> {
-        let fin = |f: &str, v: f64| if v.is_finite() { Ok(()) } else { Err(Error::invalid(f, v, "must be a finite number")) };
+        let fin = |f: &str, v: f64| if v.is_finite() { Ok(()) } else { Err(Error::invalid(f, num(v), "must be a finite number")) };
         fin("t0", self.t0)?;
         fin("t_end", self.t_end)?;
         if self.t_end <= self.t0 {
-            return Err(Error::invalid("t_end", self.t_end, format!("must be greater than t0 = {}", self.t0)));
+            return Err(Error::invalid("t_end", num(self.t_end), format!("must be greater than t0 = {}", num(self.t0))));
         }
         if !(self.ode.rtol > 0.0 && self.ode.rtol < 1.0) {
-            return Err(Error::invalid("rtol", self.ode.rtol, "must lie in (0, 1)"));
+            return Err(Error::invalid("rtol", num(self.ode.rtol), "must lie in (0, 1)"));
         }
         if !(self.ode.atol > 0.0 && self.ode.atol.is_finite()) {
-            return Err(Error::invalid("atol", self.ode.atol, "must be positive and finite"));
+            return Err(Error::invalid("atol", num(self.ode.atol), "must be positive and finite"));
         }
         if let Some(b) = self.max_wall_time {
             if !(b > 0.0) {
-                return Err(Error::invalid("max_seconds", b, "must be a positive number of seconds"));
+                return Err(Error::invalid("max_seconds", num(b), "must be a positive number of seconds"));
             }
         }
         if let Some(m) = self.wear_mark {
             if !(m >= self.t0 && m <= self.t_end) {
-                return Err(Error::invalid("wear_mark", m, format!("must lie in [t0, t_end] = [{}, {}]", self.t0, self.t_end)));
+                return Err(Error::invalid("wear_mark", num(m), format!("must lie in [t0, t_end] = [{}, {}]", num(self.t0), num(self.t_end))));
             }
         }
         if self.ode.max_steps == 0 {
             return Err(Error::invalid("max_steps", self.ode.max_steps, "must be a positive integer"));
         }
-        if !(self.ode.h_min >= 0.0 && self.ode.h_min.is_finite()) {
-            return Err(Error::invalid("h_min", self.ode.h_min, "must be a finite number ≥ 0"));
+        // h_min = 0 would let a step halve without end at t = 0 (the floor is max(h_min, 1e-14 |t|)).
+        if !(self.ode.h_min > 0.0 && self.ode.h_min.is_finite()) {
+            return Err(Error::invalid("h_min", num(self.ode.h_min), "must be positive and finite"));
         }
         if !(self.ode.h_max > 0.0) {
-            return Err(Error::invalid("h_max", self.ode.h_max, "must be positive"));
+            return Err(Error::invalid("h_max", num(self.ode.h_max), "must be positive"));
         }
         if let Method::Rk4 { step } = self.method {
             if !(step > 0.0 && step.is_finite()) {
-                return Err(Error::invalid("step", step, "must be positive and finite"));
+                return Err(Error::invalid("step", num(step), "must be positive and finite"));
             }
         }
         for (k, w) in self.t_out.windows(2).enumerate() {
             if !(w[1] > w[0]) {
-                return Err(Error::invalid(format!("t_out[{}]", k + 1), w[1], "output times must increase strictly"));
+                return Err(Error::invalid(format!("t_out[{}]", k + 1), num(w[1]), "output times must increase strictly"));
             }
         }
         for (i, m) in self.monitors.iter().enumerate() {
@@ -112,11 +114,9 @@ impl RunSettings {
 #[serde(rename_all = "lowercase")]
 pub enum IntegratorName {
     /// Dormand–Prince 5(4).
-    #[serde(alias = "dopri5")]
     Rk45,
     Dop853,
     Rodas4,
-    #[serde(alias = "radau5")]
     Radau,
     /// Classic RK4 with the fixed `step`.
     Rk4,

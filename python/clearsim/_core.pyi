@@ -90,6 +90,17 @@ class CompiledModel:
 def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
     """Validate and compile a description (plain data or its JSON text), read by serde."""
 
+def check_settings(settings: Union[RunSettings, Mapping[str, Any]]) -> None:
+    """Check run settings as a run does (InputError naming the setting), without running."""
+
+def idealize(description: Union[str, Mapping[str, Any]]) -> Dict[str, Any]:
+    """The ideal counterpart of a description (every clearance joint an ideal joint; the one
+    implementation, rust/description.rs), as plain data with every default filled in."""
+
+#: The defaults of the clearance-joint parameters, defined in the core (rust/description.rs):
+#: ``{"dry": {...}, "lubricated": {...}, "prismatic_clearance": {"corner_radius": ...}}``.
+DEFAULTS: Dict[str, Dict[str, Any]]
+
 def run_batch(
     descriptions: Sequence[Union[str, Mapping[str, Any]]],
     settings: Union[RunSettings, Mapping[str, Any], Sequence[Union[RunSettings, Mapping[str, Any]]]],

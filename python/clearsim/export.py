@@ -13,7 +13,7 @@ import numpy as np
 
 from .csvfile import write_columns
 from .errors import InputError
-from .schema import COMPONENTS, JOINT_COLUMN_UNITS, JOINT_COLUMNS
+from .schema import BODY_QUANTITY_UNITS, COMPONENTS, JOINT_COLUMN_UNITS, JOINT_COLUMNS, ascii_unit
 
 
 class Result(Protocol):
@@ -33,10 +33,16 @@ class Result(Protocol):
 #: Old name of :data:`clearsim.schema.COMPONENTS` here.
 COORDINATES = COMPONENTS
 #: (variable, raw key, long name, units of x, y, θ)
+def _units(quantity: str) -> Tuple[str, str, str]:
+    """The ASCII units of x, y and θ of a body quantity (:data:`clearsim.schema.BODY_QUANTITY_UNITS`)."""
+    xy, theta = (ascii_unit(u) for u in BODY_QUANTITY_UNITS[quantity])
+    return (xy, xy, theta)
+
+
 BODY_VARIABLES: Tuple[Tuple[str, str, str, Tuple[str, str, str]], ...] = (
-    ("position", "q", "centroid position and angle", ("m", "m", "rad")),
-    ("velocity", "qd", "centroid velocity and angular velocity", ("m/s", "m/s", "rad/s")),
-    ("acceleration", "qdd", "centroid acceleration and angular acceleration", ("m/s^2", "m/s^2", "rad/s^2")),
+    ("position", "q", "centroid position and angle", _units("displacement")),
+    ("velocity", "qd", "centroid velocity and angular velocity", _units("velocity")),
+    ("acceleration", "qdd", "centroid acceleration and angular acceleration", _units("acceleration")),
 )
 #: Units of the clearance-joint columns (old name of :data:`clearsim.schema.JOINT_COLUMN_UNITS`).
 JOINT_UNITS: Dict[str, str] = JOINT_COLUMN_UNITS

@@ -1,7 +1,9 @@
 """Force elements and loads (docs/physics.md §10): what a mechanism carries besides gravity.
 
-Each function here checks its inputs and returns the plain-data entry of the description's
-``"forces"`` list; the :class:`~clearsim.Mechanism` methods ``spring``, ``rotational_spring``,
+Each function here turns its inputs into the plain-data entry of the description's ``"forces"``
+list (numbers into floats, a load table's columns into the core's tables: what must be known to
+write the entry); the core checks their values when the mechanism compiles
+(``rust/compile/validate.rs``: signs, strictly increasing tables, periods), once; the :class:`~clearsim.Mechanism` methods ``spring``, ``rotational_spring``,
 ``force``, ``torque`` and ``motor`` call them. Everything is evaluated in the Rust core (tables
 too), so a load costs nanoseconds a step. SI units: N, N m, N/m, N s/m, rad, rad/s.
 
@@ -26,7 +28,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from .errors import InputError, check_finite, check_positive
+from .errors import InputError, check_finite
 
 #: A load: a constant, or a table (see the module docstring).
 Load = Union[float, Sequence[float], Mapping[str, Any]]
@@ -69,22 +71,10 @@ def _table(field: str, value: Mapping[str, Any], columns: Sequence[str]) -> Tupl
         raise InputError(f"invalid {field}: unknown key {unknown[0]!r} (known: {', '.join(sorted(allowed - {'driver'} if xkey == 't' else allowed))})", field=f"{field}.{unknown[0]}", value=unknown[0])
     if not any(c in keys for c in columns):
         raise InputError(f"invalid {field}: gives no values (expected {' and/or '.join(columns)})", field=field, value=dict(value))
-    if len(xs) < 2:
-        raise InputError(f"invalid {field}.{xkey} = {xs!r}: a table needs at least 2 points", field=f"{field}.{xkey}", value=xs)
-    for k in range(1, len(xs)):
-        if not xs[k] > xs[k - 1]:
-            raise InputError(f"invalid {field}.{xkey}[{k}] = {xs[k]!r}: must increase strictly (after {xs[k - 1]!r})", field=f"{field}.{xkey}", value=xs[k])
-    period = None
-    if value.get("period") is not None:
-        period = check_positive(f"{field}.period", value["period"])
-        if xs[-1] - xs[0] > period * (1 + 1e-12):
-            raise InputError(f"invalid {field}.period = {period!r}: must cover the table's span {xs[-1] - xs[0]!r}", field=f"{field}.period", value=period)
-    cols: Dict[str, List[float]] = {}
-    for c in columns:
-        ys = _numbers(f"{field}.{c}", value[c]) if c in value else [0.0] * len(xs)
-        if len(ys) != len(xs):
-            raise InputError(f"invalid {field}.{c}: has {len(ys)} values for {len(xs)} points of {xkey!r}", field=f"{field}.{c}", value=len(ys))
-        cols[c] = ys
+    period = None if value.get("period") is None else check_finite(f"{field}.period", value["period"])
+    # A column left out is zero at every point; the core checks the lengths, the order of the
+    # points and the period (validate_table).
+    cols = {c: _numbers(f"{field}.{c}", value[c]) if c in value else [0.0] * len(xs) for c in columns}
     return {"argument": argument, "x": xs, "period": period}, cols
 
 
@@ -109,22 +99,14 @@ def spring(
             raise InputError(
                 f"invalid force_table = {force_table!r}: must be {{'deflection': [m...], 'force': [N...]}}", field="force_table", value=force_table
             )
-        x = _numbers("force_table.deflection", force_table["deflection"])
-        y = _numbers("force_table.force", force_table["force"])
-        if len(x) < 2 or len(x) != len(y) or any(not b > a for a, b in zip(x, x[1:])):
-            raise InputError(
-                f"invalid force_table.deflection = {x!r}: needs at least 2 strictly increasing points, one force each",
-                field="force_table.deflection",
-                value=x,
-            )
-        table = {"x": x, "y": y, "period": None}
+        table = {"x": _numbers("force_table.deflection", force_table["deflection"]), "y": _numbers("force_table.force", force_table["force"]), "period": None}
         stiffness = 0.0
     elif stiffness is None:
         raise InputError("invalid stiffness = None: give a stiffness [N/m] or a force_table", field="stiffness", value=None)
     return {
         "kind": "spring_damper", "name": name, "body_a": body_a, "point_a": point_a, "body_b": body_b, "point_b": point_b,
-        "stiffness": _non_negative("stiffness", stiffness), "damping": _non_negative("damping", damping),
-        "free_length": None if free_length is None else _non_negative("free_length", free_length), "force_table": table,
+        "stiffness": check_finite("stiffness", stiffness), "damping": check_finite("damping", damping),
+        "free_length": None if free_length is None else check_finite("free_length", free_length), "force_table": table,
     }  # fmt: skip
 
 
@@ -132,15 +114,13 @@ def rotational_spring(name: str, body_a: BodyRef, body_b: BodyRef, stiffness: fl
     """The entry of a rotational spring-damper (see :meth:`Mechanism.rotational_spring`)."""
     return {
         "kind": "rotational_spring_damper", "name": name, "body_a": body_a, "body_b": body_b,
-        "stiffness": _non_negative("stiffness", stiffness), "damping": _non_negative("damping", damping),
+        "stiffness": check_finite("stiffness", stiffness), "damping": check_finite("damping", damping),
         "free_angle": None if angle0 is None else check_finite("angle0", angle0),
     }  # fmt: skip
 
 
 def applied_force(name: str, body: str, point: List[float], value: Load, frame: str) -> Dict[str, Any]:
     """The entry of an applied force (see :meth:`Mechanism.force`)."""
-    if frame not in ("global", "body"):
-        raise InputError(f"invalid frame = {frame!r}: must be 'global' or 'body'", field="frame", value=frame)
     if isinstance(value, Mapping):
         head, cols = _table("value", value, ("fx", "fy"))
         fx, fy = _profile(head, cols["fx"]), _profile(head, cols["fy"])
@@ -166,13 +146,4 @@ def applied_torque(name: str, body: str, value: Load, reaction: BodyRef) -> Dict
 def motor(name: str, body: str, reaction: BodyRef, stall_torque: float, no_load_speed: float) -> Dict[str, Any]:
     """The entry of a motor (see :meth:`Mechanism.motor`)."""
     w0 = check_finite("no_load_speed", no_load_speed)
-    if w0 == 0.0:
-        raise InputError("invalid no_load_speed = 0.0: must not be zero (its sign is the direction of rotation)", field="no_load_speed", value=w0)
-    return {"kind": "motor", "name": name, "body": body, "reaction": reaction, "stall_torque": check_positive("stall_torque", stall_torque), "no_load_speed": w0}
-
-
-def _non_negative(field: str, value: Any) -> float:
-    v = check_finite(field, value)
-    if v < 0:
-        raise InputError(f"invalid {field} = {v!r}: must not be negative", field=field, value=v)
-    return v
+    return {"kind": "motor", "name": name, "body": body, "reaction": reaction, "stall_torque": check_finite("stall_torque", stall_torque), "no_load_speed": w0}

@@ -1,6 +1,9 @@
 """Clearance-joint models: the parameters of a dry or lubricated revolute clearance (docs/physics.md §3–§4).
 
-All quantities in SI units.
+All quantities in SI units. The parameters' defaults are the core's (``_core.DEFAULTS``, the serde
+defaults of ``rust/description.rs``), and so are the checks of their values
+(``rust/compile/validate.rs``, when the mechanism compiles): the classes here check only what
+must be known to write the plain data (the type of a nested model, a choice that selects fields).
 """
 
 from __future__ import annotations
@@ -9,27 +12,26 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Dict, Optional, Tuple, Union
 
-from .errors import InputError, check_choice, check_finite, check_positive
+from . import _core
+from .errors import InputError, check_choice, check_finite
 
 NORMAL_LAWS = ("lankarani_nikravesh", "hertz", "hunt_crossley", "flores")
 #: Dry contact stiffness forms (docs/physics.md §3): point contacts, or a pin as a line contact.
 STIFFNESS_FORMS = ("internal", "paper_printed", "cylindrical")
 
 
-def _check_range(field: str, value: Any, lo: float, hi: float, lo_open: bool, hi_open: bool) -> float:
-    """``float(value)``, or :class:`InputError` naming ``field`` unless it lies in the interval."""
-    v = check_finite(field, value)
-    if (v > lo if lo_open else v >= lo) and (v < hi if hi_open else v <= hi):
-        return v
-    interval = f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
-    raise InputError(f"invalid {field} = {value!r}: must lie in {interval}", field=field, value=value)
+def _numbers(model: Any, fields: Tuple[str, ...], optional: Tuple[str, ...] = ()) -> None:
+    """Each of ``fields`` of ``model`` (and each of ``optional`` that is not ``None``) made a
+    float, or an :class:`InputError` naming the field if it is not a finite number: checked where it is given, because
+    inside a joint's model the core names a value's field for its range, not for its type
+    (serde's path stops at the model)."""
+    for name in fields + tuple(o for o in optional if getattr(model, o) is not None):
+        object.__setattr__(model, name, check_finite(name, getattr(model, name)))  # a float, as the core reads it
 
 
-def _check_non_negative(field: str, value: Any) -> float:
-    v = check_finite(field, value)
-    if v < 0.0:
-        raise InputError(f"invalid {field} = {value!r}: must not be negative", field=field, value=value)
-    return v
+#: The core's defaults of a dry law and of a lubricated joint's film (rust/description.rs).
+_DRY: Dict[str, Any] = _core.DEFAULTS["dry"]
+_FILM: Dict[str, Any] = _core.DEFAULTS["lubricated"]
 FILM_MODELS = ("long", "short", "long_paper", "finite")
 #: Where the finite film's pressure is ambient (docs/physics.md §4, finite bearing).
 FILM_SUPPLIES = ("widest_gap", "none")
@@ -75,9 +77,8 @@ class Archard:
     initial_journal: Optional[Tuple[float, ...]] = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
-        check_positive("wear.coefficient", self.coefficient)
-        check_positive("wear.hardness", self.hardness)
-        check_positive("wear.length", self.length)
+        for name in ("coefficient", "hardness", "length"):  # numbers (written as floats); the core checks their signs
+            check_finite(f"wear.{name}", getattr(self, name))
         if not isinstance(self.feedback, bool):
             raise InputError(f"invalid wear.feedback = {self.feedback!r}: must be True or False", field="wear.feedback", value=self.feedback)
         for name in ("initial_bearing", "initial_journal"):
@@ -98,17 +99,11 @@ WEAR_BINS = 360
 
 
 def _depths(field: str, value: Any) -> Tuple[float, ...]:
-    """A worn-depth profile: :data:`WEAR_BINS` finite depths ≥ 0 [m]."""
+    """A worn-depth profile as floats [m] (the core checks that it has :data:`WEAR_BINS` depths ≥ 0)."""
     try:
-        depths = tuple(float(v) for v in value)
+        return tuple(float(v) for v in value)
     except (TypeError, ValueError):
         raise InputError(f"invalid {field} = {value!r}: must be {WEAR_BINS} depths [m]", field=field, value=value) from None
-    if len(depths) != WEAR_BINS:
-        raise InputError(f"invalid {field}: {len(depths)} depths, must be {WEAR_BINS} (1° bins)", field=field, value=len(depths))
-    for k, d in enumerate(depths):
-        if not (math.isfinite(d) and d >= 0.0):
-            raise InputError(f"invalid {field}[{k}] = {d!r}: a depth must be finite and not negative [m]", field=f"{field}[{k}]", value=d)
-    return depths
 
 
 @dataclass(frozen=True)
@@ -148,53 +143,39 @@ class Dry:
         :class:`Archard` to accumulate wear (revolute clearance joints), or ``None``.
     """
 
-    normal_law: str = "lankarani_nikravesh"
-    youngs_modulus: float = 207e9
-    poisson_ratio: float = 0.3
+    normal_law: str = _DRY["normal_law"]
+    youngs_modulus: float = _DRY["youngs_bearing"]
+    poisson_ratio: float = _DRY["poisson_bearing"]
     journal_youngs_modulus: Optional[float] = None
     journal_poisson_ratio: Optional[float] = None
-    restitution: float = 0.9
-    exponent: float = 1.5
-    stiffness: Optional[float] = None
+    restitution: float = _DRY["restitution"]
+    exponent: float = _DRY["exponent"]
+    stiffness: Optional[float] = _DRY["stiffness"]
     stiffness_form: str = "internal"
-    friction: float = 0.1
-    v0: float = 1e-4
-    v1: float = 1e-2
-    impact_speed_floor: float = 1e-3
+    friction: float = _DRY["friction"]
+    v0: float = _DRY["v0"]
+    v1: float = _DRY["v1"]
+    impact_speed_floor: float = _DRY["impact_speed_floor"]
     wear: Optional[Archard] = None
     length: Optional[float] = None
 
     def __post_init__(self) -> None:
         if self.wear is not None and not isinstance(self.wear, Archard):
             raise InputError(f"invalid wear = {self.wear!r}: must be clearsim.Archard(...) or None", field="wear", value=self.wear)
-        check_choice("normal_law", self.normal_law, NORMAL_LAWS)
+        _numbers(self, ("youngs_modulus", "poisson_ratio", "restitution", "exponent", "friction", "v0", "v1", "impact_speed_floor"),
+                 ("journal_youngs_modulus", "journal_poisson_ratio", "stiffness", "length"))  # fmt: skip
+        # stiffness_form selects the fields it is written into (stiffness_paper_printed,
+        # cylinder_length): checked here, before they are written.
         check_choice("stiffness_form", self.stiffness_form, STIFFNESS_FORMS)
         if self.stiffness_form == "cylindrical":
             if self.length is None:
                 raise InputError("stiffness_form = 'cylindrical' needs the pin length: Dry(..., length=L) [m]", field="length", value=None)
-            check_positive("length", self.length)
         elif self.length is not None:
             raise InputError(
                 f"invalid length = {self.length!r}: a pin length is used only with stiffness_form = 'cylindrical'",
                 field="length",
                 value=self.length,
             )
-        check_positive("youngs_modulus", self.youngs_modulus)
-        _check_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, True, True)
-        if self.journal_youngs_modulus is not None:
-            check_positive("journal_youngs_modulus", self.journal_youngs_modulus)
-        if self.journal_poisson_ratio is not None:
-            _check_range("journal_poisson_ratio", self.journal_poisson_ratio, -1.0, 0.5, True, True)
-        _check_range("restitution", self.restitution, 0.0, 1.0, True, False)
-        check_positive("exponent", self.exponent)
-        if self.stiffness is not None:
-            check_positive("stiffness", self.stiffness)
-        _check_non_negative("friction", self.friction)
-        _check_non_negative("v0", self.v0)
-        check_positive("v1", self.v1)
-        if float(self.v1) <= float(self.v0):
-            raise InputError(f"invalid v1 = {self.v1!r}: must exceed v0 = {self.v0!r}", field="v1", value=self.v1)
-        check_positive("impact_speed_floor", self.impact_speed_floor)
 
     def _as_dict(self) -> Dict[str, Any]:
         e_j = self.youngs_modulus if self.journal_youngs_modulus is None else self.journal_youngs_modulus
@@ -240,9 +221,8 @@ class Vogel:
     c: float
 
     def __post_init__(self) -> None:
-        check_positive("viscosity.vogel.a", self.a)
-        _check_non_negative("viscosity.vogel.b", self.b)
-        check_finite("viscosity.vogel.c", self.c)
+        for name in ("a", "b", "c"):  # numbers (written as floats); the core checks a > 0, b ≥ 0
+            check_finite(f"viscosity.vogel.{name}", getattr(self, name))
 
     def viscosity(self, temperature: float) -> float:
         """μ [Pa s] at ``temperature`` [K] (> c)."""
@@ -278,11 +258,9 @@ class Thermal:
     initial: Optional[float] = None
 
     def __post_init__(self) -> None:
-        check_positive("thermal.ambient", self.ambient)
-        check_positive("thermal.heat_capacity", self.heat_capacity)
-        check_positive("thermal.heat_transfer", self.heat_transfer)
-        if self.initial is not None:
-            check_positive("thermal.initial", self.initial)
+        for name in ("ambient", "heat_capacity", "heat_transfer", "initial"):  # numbers; the core checks their signs
+            if getattr(self, name) is not None:
+                check_finite(f"thermal.{name}", getattr(self, name))
 
     def _as_dict(self) -> Dict[str, Any]:
         d: Dict[str, Any] = {"ambient": float(self.ambient), "heat_capacity": float(self.heat_capacity), "heat_transfer": float(self.heat_transfer)}
@@ -349,51 +327,27 @@ class Lubricated:
         a :class:`Vogel` viscosity; with a constant one the temperature is an output only.
     """
 
-    viscosity: Union[float, Vogel] = 0.4
+    viscosity: Union[float, Vogel] = 0.4  # the two values the core's description requires: defaults of this API only
     length: float = 0.05
-    film: str = "long"
-    eps0: float = 2e-6
-    m: float = 0.5
-    e0: Optional[float] = None
-    eps_max: float = 0.99
+    film: str = _FILM["film"]
+    eps0: float = _FILM["eps0"]
+    m: float = _FILM["m"]
+    e0: Optional[float] = _FILM["e0"]
+    eps_max: float = _FILM["eps_max"]
     dry: Dry = field(default_factory=Dry)
-    supply: str = "widest_gap"
+    supply: str = _FILM["supply"]
     roughness: Optional[float] = None
     boundary_friction: Optional[float] = None
     thermal: Optional[Thermal] = None
 
     def __post_init__(self) -> None:
-        check_choice("film", self.film, FILM_MODELS)
-        check_choice("supply", self.supply, FILM_SUPPLIES)
+        # The nested models must be these classes (they write themselves as plain data). The
+        # values' ranges, the choices of film and supply and what goes with what are the core's checks.
         if self.thermal is not None and not isinstance(self.thermal, Thermal):
             raise InputError(f"invalid thermal = {self.thermal!r}: must be clearsim.Thermal(...) or None", field="thermal", value=self.thermal)
-        if isinstance(self.viscosity, Vogel):
-            if self.thermal is None:
-                raise InputError(
-                    "invalid thermal = None: a Vogel viscosity needs the oil temperature: give thermal=clearsim.Thermal(ambient, heat_capacity, heat_transfer)",
-                    field="thermal",
-                    value=None,
-                )
-        else:
-            check_positive("viscosity", self.viscosity)
-        check_positive("length", self.length)
-        _check_range("eps0", self.eps0, 0.0, 1.0, False, True)
-        _check_range("m", self.m, 0.0, 1.0, True, True)
-        if self.e0 is not None:
-            check_positive("e0", self.e0)
-        _check_range("eps_max", self.eps_max, 0.0, 1.0, True, True)
         if not isinstance(self.dry, Dry):
             raise InputError(f"invalid dry = {self.dry!r}: must be clearsim.Dry(...)", field="dry", value=self.dry)
-        if self.roughness is not None:
-            check_positive("roughness", self.roughness)
-        if self.boundary_friction is not None:
-            _check_range("boundary_friction", self.boundary_friction, 0.0, math.inf, False, True)
-            if self.roughness is None:
-                raise InputError(
-                    f"invalid boundary_friction = {self.boundary_friction!r}: applies with roughness only (the friction on the asperity load): give roughness too",
-                    field="boundary_friction",
-                    value=self.boundary_friction,
-                )
+        _numbers(self, ("length", "eps0", "m", "eps_max") + (() if isinstance(self.viscosity, Vogel) else ("viscosity",)), ("e0", "roughness", "boundary_friction"))
 
     def _as_dict(self) -> Dict[str, Any]:
         d: Dict[str, Any] = {

@@ -14,8 +14,8 @@ import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import forces as _forces
-from . import plausibility, references
-from .errors import InputError, SimulationError, check_finite, check_positive
+from . import _core, plausibility, references
+from .errors import InputError, SimulationError, check_finite
 from .joints import Dry, Lubricated
 from .running import DEFAULT_OUTPUTS, INTEGRATORS, MAX_OUTPUTS, OUTPUTS, RunOptions, Running  # noqa: F401 (re-exported)
 
@@ -153,6 +153,8 @@ class Mechanism(Running):
                 raise InputError(f"invalid body '{name}'.ends = {ends!r}: the two ends coincide", field=f"body '{name}'.ends", value=ends)
             position = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
             angle = math.atan2(q[1] - p[1], q[0] - p[0])
+        # Names are checked here, not only in the core: elements refer to bodies by name until the
+        # description resolves them (clearsim.references), so a name must be unique and not "ground".
         if not isinstance(name, str) or not name:
             raise InputError(f"invalid body name = {name!r}: must be a non-empty string", field="name", value=name)
         if name == GROUND:
@@ -161,8 +163,10 @@ class Mechanism(Running):
             raise InputError(f"invalid body name = {name!r}: a body of that name exists already", field="name", value=name)
         body = {
             "name": name,
-            "mass": check_positive(f"body '{name}'.mass", mass),
-            "inertia": check_positive(f"body '{name}'.inertia", inertia),
+            # Numbers become floats here (the plausibility checks compute with them); their
+            # ranges (mass > 0, ...) are the core's checks (rust/compile/validate.rs), once.
+            "mass": check_finite(f"body '{name}'.mass", mass),
+            "inertia": check_finite(f"body '{name}'.inertia", inertia),
             "position": _point(f"body '{name}'.position", position),
             "angle": check_finite(f"body '{name}'.angle", angle),
         }
@@ -217,8 +221,6 @@ class Mechanism(Running):
         """
         a = self._ref("body_a", body_a)
         b = self._ref("body_b", body_b)
-        if a == b:
-            raise InputError(f"invalid body_b = {body_b!r}: a joint needs two different bodies", field="body_b", value=body_b)
         _insert(
             self._joints,
             {
@@ -246,11 +248,7 @@ class Mechanism(Running):
         ``axis`` (in body a's frame); the relative angle stays at its initial value."""
         a = self._ref("body_a", body_a)
         b = self._ref("body_b", body_b, allow_ground=False)
-        if a == b:
-            raise InputError(f"invalid body_b = {body_b!r}: a joint needs two different bodies", field="body_b", value=body_b)
         ax = _point("axis", axis)
-        if math.hypot(*ax) == 0.0:
-            raise InputError(f"invalid axis = {axis!r}: must be a non-zero direction", field="axis", value=axis)
         _insert(
             self._joints,
             {
@@ -324,43 +322,18 @@ class Mechanism(Running):
         """
         i = self._ref("bearing_body", bearing_body)
         j = self._ref("journal_body", journal_body)
-        if i == j:
-            raise InputError(
-                f"invalid journal_body = {journal_body!r}: bearing and journal must be on different bodies",
-                field="journal_body",
-                value=journal_body,
-            )
-        r_j = check_positive(f"clearance joint '{name}'.journal_radius", journal_radius)
+        r_j = check_finite(f"clearance joint '{name}'.journal_radius", journal_radius)
         c = check_finite(f"clearance joint '{name}'.clearance", clearance)
-        if c <= 0.0:
-            raise InputError(
-                f"invalid clearance joint '{name}'.clearance = {clearance!r}: must be positive "
-                f"(c = R_b − R_j: the journal radius R_j = {r_j!r} must be below the bearing radius R_b = R_j + c)",
-                field=f"clearance joint '{name}'.clearance",
-                value=clearance,
-            )
-        if c < 1e-9 * r_j:
-            raise InputError(
-                f"invalid clearance joint '{name}'.clearance = {clearance!r}: is too small against the journal radius "
-                f"R_j = {r_j!r}: c/R_j must be at least 1e-9 (R_b = R_j + c would round to R_j and the contact "
-                "stiffness diverge)",
-                field=f"clearance joint '{name}'.clearance",
-                value=clearance,
-            )
         e_init = _point(f"clearance joint '{name}'.initial_eccentricity", initial_eccentricity)
-        if math.hypot(*e_init) > 2.0 * c:
-            raise InputError(
-                f"invalid clearance joint '{name}'.initial_eccentricity = {initial_eccentricity!r}: its length "
-                f"must not exceed 2 × clearance = {2.0 * c!r} m (give e in metres, not in units of c)",
-                field=f"clearance joint '{name}'.initial_eccentricity",
-                value=initial_eccentricity,
-            )
         model = Dry() if model is None else model
+        # The model object becomes plain data here: only a Dry or Lubricated can (serde carries dicts).
         if not isinstance(model, (Dry, Lubricated)):
             raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
-        # Valid but implausible (a unit slip, a film outside its laws' range): PlausibilityWarning.
-        plausibility.warn_new(plausibility.joint_findings(name, r_j, c, model._as_dict()), self._warned, stacklevel=2)
-        note = plausibility.micrometre_film_note(name, r_j, c, model.film) if isinstance(model, Lubricated) else None
+        # Valid but implausible (a unit slip, a film outside its laws' range): PlausibilityWarning, for
+        # sizes that are valid (0 < c, R_j: invalid ones are the core's InputError when it compiles).
+        if r_j > 0.0 and c > 0.0:
+            plausibility.warn_new(plausibility.joint_findings(name, r_j, c, model._as_dict()), self._warned, stacklevel=2)
+        note = plausibility.micrometre_film_note(name, r_j, c, model.film) if isinstance(model, Lubricated) and r_j > 0.0 and c > 0.0 else None
         if note:
             warnings.warn(note, stacklevel=2)
         _insert(
@@ -390,7 +363,7 @@ class Mechanism(Running):
         model: Optional[Dry] = None,
         name: Optional[str] = None,
         *,
-        corner_radius: float = 1e-3,
+        corner_radius: float = _core.DEFAULTS["prismatic_clearance"]["corner_radius"],
     ) -> "Mechanism":
         """A prismatic (translational) joint with clearance (docs/physics.md §11).
 
@@ -406,11 +379,7 @@ class Mechanism(Running):
         """
         g = self._ref("guide_body", guide_body)
         s = self._ref("slider_body", slider_body, allow_ground=False)
-        if g == s:
-            raise InputError(f"invalid slider_body = {slider_body!r}: guide and slider must be different bodies", field="slider_body", value=slider_body)
         ax = _point("axis", axis)
-        if math.hypot(*ax) == 0.0:
-            raise InputError(f"invalid axis = {axis!r}: must be a non-zero direction", field="axis", value=axis)
         model = Dry() if model is None else model
         if not isinstance(model, Dry):
             raise InputError(f"invalid model = {model!r}: a prismatic clearance joint is dry: clearsim.Dry(...)", field="model", value=model)
@@ -419,9 +388,9 @@ class Mechanism(Running):
             self._prismatic_clearance,
             {
                 "name": jname, "guide_body": g, "guide_point": _point("guide_point", guide_point), "slider_body": s, "axis": ax,
-                "clearance": check_positive(f"clearance joint '{jname}'.clearance", clearance),
-                "slider_length": check_positive(f"clearance joint '{jname}'.slider_length", slider_length),
-                "corner_radius": check_positive(f"clearance joint '{jname}'.corner_radius", corner_radius),
+                "clearance": check_finite(f"clearance joint '{jname}'.clearance", clearance),
+                "slider_length": check_finite(f"clearance joint '{jname}'.slider_length", slider_length),
+                "corner_radius": check_finite(f"clearance joint '{jname}'.corner_radius", corner_radius),
                 "model": model._as_dict(),
             }
         )  # fmt: skip
@@ -434,10 +403,7 @@ class Mechanism(Running):
         return self
 
     def _pair(self, body_a: str, body_b: str) -> Tuple[str, str]:
-        a, b = self._ref("body_a", body_a), self._ref("body_b", body_b)
-        if a == b:
-            raise InputError(f"invalid body_b = {body_b!r}: a spring acts between two different bodies", field="body_b", value=body_b)
-        return a, b
+        return self._ref("body_a", body_a), self._ref("body_b", body_b)
 
     def spring(
         self,
@@ -500,8 +466,6 @@ class Mechanism(Running):
         that body."""
         b = self._ref("body", body, allow_ground=False)
         r = None if reaction is None else self._ref("reaction", reaction)
-        if r == b:
-            raise InputError(f"invalid reaction = {reaction!r}: must differ from the loaded body", field="reaction", value=reaction)
         return self._add_force(_forces.applied_torque(self._new_name("torque", name), b, value, r))
 
     def motor(
@@ -523,8 +487,6 @@ class Mechanism(Running):
         can follow its angle: ``{"driver": <motor name>, "angle": ...}``."""
         b = self._ref("body", body, allow_ground=False)
         r = self._ref("reaction", reaction)
-        if r == b:
-            raise InputError(f"invalid reaction = {reaction!r}: must differ from the rotor body", field="reaction", value=reaction)
         if angle0 is not None:
             self._motor_angles[b] = check_finite("angle0", angle0)
             if b in self._index:
@@ -608,28 +570,16 @@ class Mechanism(Running):
         return m
 
     def idealized(self) -> "Mechanism":
-        """A copy with every clearance joint replaced by an ideal revolute joint (docs/physics.md §5)."""
+        """A copy with every clearance joint replaced by an ideal joint (docs/physics.md §5): a
+        revolute one by a revolute joint, a prismatic one by a prismatic joint along its guide.
+        The core idealises (``_core.idealize``, ``MechanismDesc::idealized``: the one
+        implementation); the copy is rebuilt from the description it returns."""
+        ideal = references.unresolve(_core.idealize(self.description()))
         m = self.copy()
-        for c in m._clearance:
-            _insert(
-                m._joints,
-                {
-                    "kind": "revolute",
-                    "name": c["name"],
-                    "body_a": c["bearing_body"],
-                    "point_a": c["bearing_point"],
-                    "body_b": c["journal_body"],
-                    "point_b": c["journal_point"],
-                }
-            )
-        for p in m._prismatic_clearance:
-            _insert(
-                m._joints,
-                {"kind": "prismatic", "name": p["name"], "body_a": p["guide_body"], "point_a": p["guide_point"],
-                 "axis": p["axis"], "body_b": p["slider_body"], "point_b": [0.0, 0.0]}
-            )  # fmt: skip
-        m._clearance = []
-        m._prismatic_clearance = []
+        m.gravity, m.baumgarte = ideal["gravity"], ideal["baumgarte"]
+        m._bodies, m._joints, m._drivers, m._forces = ideal["bodies"], ideal["joints"], ideal["drivers"], ideal["forces"]
+        m._clearance, m._prismatic_clearance = ideal["clearance_joints"], ideal["prismatic_clearance_joints"]
+        m._index = {b["name"]: k for k, b in enumerate(m._bodies)}
         m._compiled = None
         return m
 

@@ -53,7 +53,7 @@ def joint_findings(name: str, r_j: float, c: float, model: Dict[str, Any]) -> Li
     if mu > hi:
         out.append((f"{j}.viscosity", f"{j}.viscosity = {mu:g} Pa·s is above {hi:g} Pa·s, thicker than lubricating oils at their working "
                     f"temperature (0.005–0.5 Pa·s): did you give centipoise (mPa·s)? clearsim takes Pa·s (1 cP = 0.001 Pa·s: {mu:g} cP = {mu * 1e-3:g} Pa·s)"))  # fmt: skip
-    elif mu < lo:
+    elif 0.0 < mu < lo:  # μ ≤ 0 is the core's InputError
         out.append((f"{j}.viscosity", f"{j}.viscosity = {mu:g} Pa·s is below {lo:g} Pa·s, thinner than water (0.001 Pa·s): the film laws "
                     "are for liquid lubricants; did you give a kinematic viscosity (m²/s) or Pa·s / 1000? clearsim takes the dynamic "
                     "viscosity in Pa·s (= kinematic viscosity × density)"))  # fmt: skip
@@ -131,7 +131,7 @@ def mechanism_findings(desc: Dict[str, Any]) -> List[Finding]:
     out: List[Finding] = []
     for b, d in zip(desc["bodies"], _point_spread(desc)):
         bar = float(b["mass"]) * d * d / 12.0
-        if bar > 0.0 and float(b["inertia"]) < BAR_INERTIA_RATIO * bar:
+        if bar > 0.0 and 0.0 < float(b["inertia"]) < BAR_INERTIA_RATIO * bar:  # invalid sizes are the core's errors
             i_b = f"body '{b['name']}'.inertia"
             out.append((i_b, f"{i_b} = {float(b['inertia']):g} kg m² is {float(b['inertia']) / bar:.1g} × a uniform bar's of its mass "
                         f"{float(b['mass']):g} kg between its joint points {d:.3g} m apart (m d²/12 = {bar:.3g} kg m²): are the points "

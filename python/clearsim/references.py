@@ -1,5 +1,6 @@
 """Resolve the names by which a mechanism's elements refer to one another (a joint's bodies, a
-driver's body, a load table's driver) into the indices of the Rust core's description.
+driver's body, a load table's driver) into the indices of the Rust core's description, and back
+(:func:`unresolve`, for a description the core hands back: the ideal counterpart).
 
 This runs when the mechanism compiles (:meth:`clearsim.Mechanism.description`), not when an
 element is added, so elements may be defined in any order. An unknown name is an
@@ -73,7 +74,9 @@ def resolve(desc: Dict[str, Any]) -> Dict[str, Any]:
     for entry in desc.get("forces", []):
         for key in _PROFILES:
             argument = (entry.get(key) or {}).get("argument") or {}
-            if argument.get("kind") == "angle" and "driver" in argument:
+            if argument.get("kind") == "angle" and isinstance(argument.get("body"), str):  # a body by name (unresolve)
+                argument["body"] = body(f"{label('forces', entry)}.{key}.argument.body", argument["body"], False)
+            elif argument.get("kind") == "angle" and "driver" in argument:
                 name = argument.pop("driver")
                 if name not in turned:
                     known = ", ".join(turned) or "none"
@@ -87,4 +90,30 @@ def resolve(desc: Dict[str, Any]) -> Dict[str, Any]:
     return desc
 
 
-__all__ = ["GROUND", "label", "resolve"]
+def unresolve(desc: Dict[str, Any]) -> Dict[str, Any]:
+    """The inverse of :func:`resolve` for a description the core hands back (its ideal
+    counterpart, ``_core.idealize``): body indices in ``desc`` (changed in place) replaced by the
+    bodies' names (``None``: ``"ground"``; a torque's or motor's ``reaction`` stays ``None``,
+    which :func:`resolve` reads alike), a load table's angle argument naming its body. Returns
+    ``desc``."""
+    names = [b["name"] for b in desc["bodies"]]
+
+    def name(i: Optional[int]) -> str:
+        return GROUND if i is None else names[i]
+
+    for group, fields in _BODY_FIELDS.items():
+        for entry in desc.get(group, []):
+            for key, _ in fields:
+                entry[key] = name(entry[key])
+    for entry in desc.get("forces", []):
+        for key, _ in _FORCE_FIELDS[entry["kind"]][1]:
+            if key in entry and not (key == "reaction" and entry[key] is None):
+                entry[key] = name(entry[key])
+        for key in _PROFILES:
+            argument = (entry.get(key) or {}).get("argument") or {}
+            if argument.get("kind") == "angle":
+                argument["body"] = name(argument["body"])
+    return desc
+
+
+__all__ = ["GROUND", "label", "resolve", "unresolve"]

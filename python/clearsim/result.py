@@ -11,18 +11,18 @@ import numpy as np
 from . import _core, display
 from .errors import InputError, check_choice
 from .joint_readings import JointReadings
-from .schema import COMPONENTS as _COMPONENTS, JOINT_COLUMNS
+from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMNS, JOINT_MONITOR_UNITS, READING_MONITOR_UNITS
 
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
 CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
 
 #: What :meth:`Result.extremes` reports, per body (each of x, y, theta) and per clearance joint,
-#: with the units (body: x and y | theta).
-BODY_QUANTITIES = {"displacement": ("m", "rad"), "velocity": ("m/s", "rad/s"), "acceleration": ("m/s²", "rad/s²")}
-JOINT_QUANTITIES = {"eccentricity": "1 (e/c)", "force": "N", "contact_force": "N", "film_force": "N"}
-#: Joint quantities :meth:`Result.extremes` also answers where the run tracked them (every
-#: lubricated joint's film thickness and power loss: :mod:`clearsim.joint_readings`).
-READING_QUANTITIES = {"film_thickness": "m", "friction_torque": "N m", "power_loss": "W"}
+#: with the units (clearsim.schema; old names kept): body quantities (x and y | theta), the joint's
+#: monitored quantities, and the bearing readings a run tracks at every lubricated joint
+#: (:mod:`clearsim.joint_readings`; ``film_thickness`` there is the reading h = c − |e|).
+BODY_QUANTITIES = BODY_QUANTITY_UNITS
+JOINT_QUANTITIES = JOINT_MONITOR_UNITS
+READING_QUANTITIES = READING_MONITOR_UNITS
 
 
 @dataclass(frozen=True)
@@ -39,7 +39,8 @@ class Extremes:
     unit: str
 
     def __str__(self) -> str:
-        return f"{self.quantity}: max {self.max:.6g} {self.unit} at t = {self.t_max:.6g} s, min {self.min:.6g} {self.unit} at t = {self.t_min:.6g} s"
+        u = "" if self.unit == "1" else f" {self.unit}"  # a ratio (e/c) has no unit to write
+        return f"{self.quantity}: max {self.max:.6g}{u} at t = {self.t_max:.6g} s, min {self.min:.6g}{u} at t = {self.t_min:.6g} s"
 
 
 def extreme_monitors(
@@ -268,7 +269,8 @@ class Result(JointReadings):
         """Largest and smallest value of a body's ``quantity`` (``"displacement"``,
         ``"velocity"`` or ``"acceleration"`` of ``component`` ``"x"``, ``"y"`` or ``"theta"``)
         or of a clearance joint's (``"eccentricity"`` ratio e/c, ``"force"`` on the journal,
-        ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]; ``"film_thickness"`` [m],
+        ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]; ``"film_thickness"`` [m], the
+        reading h = c − |e| (not a study's window minimum c (1 − ε_max), :data:`clearsim.schema.JOINT_QUANTITY_UNITS`),
         ``"friction_torque"`` on the journal [N m], ``"power_loss"`` [W]) and their times [s], over the run.
 
         Tracked at every accepted integration step and located between steps on the exact

@@ -2,9 +2,10 @@
 quantities a run reports of a body or a clearance joint with their SI units, the integrators
 and the output channels (the Rust core's names, ``rust/settings.rs``).
 
-Units: one spelling per layer. Python text (docstrings, labels, error messages) writes
-``m/s²`` and ``rad/s²``; files written for other tools (CSV headers, NetCDF attributes) write
-ASCII ``m/s^2`` and ``rad/s^2`` (:data:`ASCII_UNITS`); a unit inside a file name is ``m_per_s2``.
+Units: one vocabulary, written here once in Python text's spelling (``m/s²``, ``rad/s²``; ``1``
+for a dimensionless quantity); the forms other places need are derived from it: files for other
+tools (CSV headers, NetCDF attributes) write ASCII ``m/s^2`` (:func:`ascii_unit`), a unit inside
+a file or column name ``m_per_s2`` (:func:`unit_in_name`).
 """
 
 from __future__ import annotations
@@ -40,17 +41,27 @@ BODY_QUANTITY_UNITS: Dict[str, Tuple[str, str]] = {
     "acceleration": ("m/s²", "rad/s²"),
 }
 BODY_QUANTITIES: Tuple[str, ...] = tuple(BODY_QUANTITY_UNITS)
-#: The quantities of a clearance joint a study or the extremes watch, and their units.
-#: ``film_thickness`` is the smallest gap over a window, h_min = c (1 − ε_max) [m], from the
-#: monitored eccentricity's peak (docs/physics.md §4).
+#: The quantities of a clearance joint a study (:mod:`clearsim.reliability`) watches, and their
+#: units. Its ``film_thickness`` is the smallest gap over the study's window derived from the
+#: monitored eccentricity's peak, h_min = c (1 − ε_max) [m] (docs/physics.md §4), not the core's
+#: film-thickness reading of :data:`READING_MONITOR_UNITS`.
 JOINT_QUANTITY_UNITS: Dict[str, str] = {
-    "eccentricity": "-",
+    "eccentricity": "1",
     "force": "N",
     "contact_force": "N",
     "film_force": "N",
     "film_thickness": "m",
 }
 JOINT_QUANTITIES: Tuple[str, ...] = tuple(JOINT_QUANTITY_UNITS)
+#: The quantities of a clearance joint the core's monitors track for
+#: :meth:`clearsim.Result.extremes` (``rust/monitor.rs``, ``Quantity``), and their units: the
+#: eccentricity ratio e/c and the force magnitudes on the journal...
+JOINT_MONITOR_UNITS: Dict[str, str] = {"eccentricity": "1", "force": "N", "contact_force": "N", "film_force": "N"}
+#: ... and the bearing readings of a lubricated joint (:mod:`clearsim.joint_readings`). Here
+#: ``film_thickness`` is the reading h = c − |e| [m] itself, tracked at every step (its minimum:
+#: ``Result.bearing_summary``'s ``min_film_thickness``), not a study's h_min from ε_max.
+READING_MONITOR_UNITS: Dict[str, str] = {"film_thickness": "m", "friction_torque": "N m", "power_loss": "W"}
+
 
 def body_unit(quantity: str, component: str) -> str:
     """The SI unit of ``quantity`` (:data:`BODY_QUANTITIES`) of a body's ``component``."""
@@ -66,6 +77,11 @@ def ascii_unit(unit: str) -> str:
     return ASCII_UNITS.get(unit, unit)
 
 
+def unit_in_name(unit: str) -> str:
+    """``unit`` as part of a file or column name: ``m/s²`` → ``m_per_s2``, ``N m`` → ``N_m``."""
+    return ascii_unit(unit).replace("/", "_per_").replace("^", "").replace(" ", "_")
+
+
 __all__ = [
     "ASCII_UNITS",
     "BODY_QUANTITIES",
@@ -77,7 +93,10 @@ __all__ = [
     "JOINT_COLUMN_UNITS",
     "JOINT_QUANTITIES",
     "JOINT_QUANTITY_UNITS",
+    "JOINT_MONITOR_UNITS",
     "OUTPUTS",
+    "READING_MONITOR_UNITS",
     "ascii_unit",
     "body_unit",
+    "unit_in_name",
 ]

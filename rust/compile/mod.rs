@@ -5,6 +5,7 @@
 
 mod validate;
 
+pub(crate) use validate::num;
 pub use validate::{check_finite_bearing_ratio, FINITE_BEARING_L_OVER_D, MAX_FILM_CLEARANCE_RATIO};
 
 use crate::assembly::assemble;

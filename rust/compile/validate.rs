@@ -5,14 +5,22 @@ use std::collections::HashSet;
 use crate::description::*;
 use crate::error::{Error, Result};
 
-/// A number as it appears in a message: plain for ordinary magnitudes, scientific for very
-/// small or large ones (Rust's `Display` would print 1e-300 with 300 digits).
-fn num(v: f64) -> String {
+/// A number as it appears in a message: as Python writes it (`repr`), which is how the user gave
+/// it: `2.0`, `0.001`, `1e-06`, `1e+20`, `nan`, `-inf` (Rust's `Display` would print 1e-300 with
+/// 300 digits). Run settings' messages ([`crate::settings`]) write their numbers the same way.
+pub(crate) fn num(v: f64) -> String {
     let a = v.abs();
-    if a == 0.0 || !a.is_finite() || (1e-4..1e15).contains(&a) {
-        format!("{v}")
+    if v.is_nan() {
+        "nan".to_string()
+    } else if a.is_infinite() {
+        (if v > 0.0 { "inf" } else { "-inf" }).to_string()
+    } else if a == 0.0 || (1e-4..1e16).contains(&a) {
+        format!("{v:?}") // shortest round-trip digits, with ".0" on whole numbers
     } else {
-        format!("{v:e}")
+        let s = format!("{v:e}"); // 1e-6, 1.5e20
+        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
+        let (sign, digits) = exp.strip_prefix('-').map_or(("+", exp), |d| ("-", d));
+        format!("{mantissa}e{sign}{digits:0>2}")
     }
 }
 
@@ -492,4 +500,14 @@ pub fn check_finite_bearing_ratio(field: &str, l_over_d: f64) -> Result<()> {
         ));
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod num_tests {
+    #[test]
+    fn numbers_as_python_writes_them() {
+        for (v, text) in [(2.0, "2.0"), (0.0, "0.0"), (-0.001, "-0.001"), (1e-6, "1e-06"), (-1.5e-7, "-1.5e-07"), (1e20, "1e+20"), (1e-300, "1e-300"), (1e15, "1000000000000000.0"), (f64::NAN, "nan"), (f64::NEG_INFINITY, "-inf")] {
+            assert_eq!(super::num(v), text);
+        }
+    }
 }

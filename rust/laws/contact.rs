@@ -7,7 +7,7 @@
 
 /// Dissipative normal-contact law (choice of hysteresis factor `D`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(rename_all = "snake_case"))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize), serde(rename_all = "snake_case"))]
 pub enum NormalLaw {
     /// Hertz: purely elastic, `D = 0`.
     Hertz,

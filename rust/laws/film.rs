@@ -15,7 +15,7 @@ pub use super::geometry::{attitude_angle, BearingGeometry, FilmState, FilmSupply
 
 /// Which hydrodynamic film model a lubricated joint uses.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 pub enum FilmModel {
     /// Long (Pinkus–Sternlicht, infinitely long) bearing, pressure P12 corrected, Gümbel
     /// condition on the exact zeros of p (the paper's model; L/D > 2).

@@ -49,7 +49,7 @@ impl FilmState {
 /// Where the finite film's pressure is referred to the ambient (docs/physics.md §4, finite
 /// bearing): the two conventions of Butenschön's tables (1976).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 pub enum FilmSupply {
     /// Ambient pressure on the axial line of the widest gap (θ = 0), where a bearing is fed: the
     /// rotation table, the Raimondi–Boyd charts, DIN 31652 and the paper's long-bearing P12.

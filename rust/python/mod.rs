@@ -85,7 +85,9 @@ fn read_settings(d: &Bound<'_, PyAny>) -> PyResult<RunSettings> {
     let desc: RunSettingsDesc = serde_path_to_error::deserialize(de::PyData(d.clone())).map_err(|e| {
         let path = e.path().to_string();
         let field = if path == "." { "settings".to_string() } else { path };
-        to_pyerr(py, &Error::invalid(field, "…", e.inner().to_string()))
+        // The value as the user wrote it, for a top-level setting (`max_steps = True`).
+        let value = d.get_item(field.as_str()).ok().and_then(|v| v.repr().ok()).map_or_else(|| "…".to_string(), |r| r.to_string());
+        to_pyerr(py, &Error::invalid(field, value, e.inner().to_string()))
     })?;
     desc.into_settings().map_err(|e| to_pyerr(py, &e))
 }
@@ -124,7 +126,7 @@ fn plain_value(obj: &Bound<'_, PyAny>, field: &str, top: bool) -> PyResult<serde
     if let Ok(x) = obj.extract::<f64>() {
         return serde_json::Number::from_f64(x)
             .map(Value::Number)
-            .ok_or_else(|| input_error(py, if field.is_empty() { "description" } else { field }, x, "must be a finite number"));
+            .ok_or_else(|| input_error(py, if field.is_empty() { "description" } else { field }, crate::compile::num(x), "must be a finite number"));
     }
     if let Ok(d) = obj.cast::<PyDict>() {
         let mut map = serde_json::Map::with_capacity(d.len());
@@ -446,6 +448,51 @@ fn compile(py: Python<'_>, description: &Bound<'_, PyAny>) -> PyResult<CompiledM
     CompiledModel::build(py, desc)
 }
 
+/// Check run settings (the dict `Mechanism.run_settings` writes) as a run does, without running:
+/// for a scene file, whose mistakes are reported at load with their line.
+#[pyfunction]
+fn check_settings(settings: &Bound<'_, PyAny>) -> PyResult<()> {
+    read_settings(settings).map(|_| ())
+}
+
+/// The ideal counterpart of a description ([`MechanismDesc::idealized`], the one implementation
+/// of idealisation): read through serde, idealised, and handed back as plain data (written by
+/// serde with every default filled in, read by Python's `json`: floats round-trip exactly).
+#[pyfunction]
+fn idealize<'py>(py: Python<'py>, description: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    let desc = read_description(description)?.idealized();
+    to_plain(py, &desc)
+}
+
+/// A serde-serialisable value as Python plain data (dicts, lists, floats, strings, None).
+fn to_plain<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// The defaults of the clearance-joint parameters, where they are defined (the serde defaults of
+/// [`crate::description`]): `{"dry": {...}, "lubricated": {...}, "prismatic_clearance": {...}}`,
+/// for `clearsim.joints` and `clearsim.Mechanism.prismatic_clearance`.
+fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    let lubricated: crate::description::LubricatedDesc = serde_json::from_value(serde_json::json!({"viscosity": 1.0, "length": 1.0}))
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let mut lub = serde_json::to_value(&lubricated).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    if let Some(map) = lub.as_object_mut() {
+        for required in ["viscosity", "length", "dry"] {
+            map.remove(required);
+        }
+    }
+    let corner: crate::description::PrismaticClearanceDesc =
+        serde_json::from_value(serde_json::json!({"name": "", "guide_body": null, "guide_point": [0.0, 0.0], "slider_body": 0, "axis": [1.0, 0.0], "clearance": 1.0, "slider_length": 1.0}))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let all = serde_json::json!({
+        "dry": crate::description::DryDesc::default(),
+        "lubricated": lub,
+        "prismatic_clearance": {"corner_radius": corner.corner_radius},
+    });
+    to_plain(py, &all)
+}
+
 /// Run many descriptions in parallel (rayon; GIL released). `settings` is one dict shared by
 /// all runs or a list with one dict per description. Returns one result dict per description,
 /// or the exception that prevented that run.
@@ -528,6 +575,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ENERGY_COLUMNS", crate::energy::ENERGY_COLUMNS.to_vec())?;
     m.add_class::<CompiledModel>()?;
     m.add_function(wrap_pyfunction!(compile, m)?)?;
+    m.add_function(wrap_pyfunction!(idealize, m)?)?;
+    m.add_function(wrap_pyfunction!(check_settings, m)?)?;
+    m.add("DEFAULTS", defaults(m.py())?)?;
     m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;
     m.add_function(wrap_pyfunction!(film_force, m)?)?;
     m.add_function(wrap_pyfunction!(finite_table_counts, m)?)?;

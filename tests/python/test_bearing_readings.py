@@ -33,6 +33,14 @@ def petroff(length: float) -> float:
     return 2 * math.pi * MU * R**3 * length * OMEGA / C
 
 
+def in_a_joint(model: object) -> None:
+    """Compile ``model`` in a pinned body: its values are checked by the core (issue 29, validation once)."""
+    m = clearsim.Mechanism()
+    m.add_body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.0))
+    m.clearance_joint("pin", "ground", (0, 0), "b", (0, 0), journal_radius=0.01, clearance=1e-4, model=model)  # type: ignore[arg-type]
+    m.compile()
+
+
 @pytest.mark.parametrize(("film", "length", "supply"), [("long", 0.1, "widest_gap"), ("short", 0.01, "widest_gap"), ("finite", 0.04, "widest_gap"), ("finite", 0.04, "none")])
 def test_a_centred_unloaded_journal_gives_petroffs_torque(film: str, length: float, supply: str) -> None:
     res = rotor(film, length, supply=supply).simulate(0.02, dt_out=1e-3, progress=False)
@@ -195,9 +203,9 @@ def test_roughness_replaces_the_transition_band_and_is_checked() -> None:
     """Inside the band (c < e, a smooth joint's blend) a rough joint keeps its film in full and
     adds the asperities; without roughness nothing changes."""
     with pytest.raises(clearsim.InputError, match="roughness"):
-        clearsim.Lubricated(roughness=-1e-6)
+        in_a_joint(clearsim.Lubricated(roughness=-1e-6))
     with pytest.raises(clearsim.InputError, match="boundary_friction"):
-        clearsim.Lubricated(boundary_friction=0.1)
+        in_a_joint(clearsim.Lubricated(boundary_friction=0.1))
     m = rotor("short", 0.01)
     m.clearance_joint("pin2", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=clearsim.Lubricated(length=0.01, film="short", roughness=C / 3))
     with pytest.raises(clearsim.InputError, match=r"clearance joint 'pin2'.roughness.*quarter of the clearance"):

@@ -19,6 +19,13 @@ def sommerfeld(film, l_over_d, eps):
     return math.hypot(*f) * (C / R) ** 2 / (length * 2 * R * MU * 50.0)
 
 
+def in_a_joint(model: object) -> None:
+    """Compile ``model`` in a pinned body: its values are checked by the core (issue 29, validation once)."""
+    m = clearsim.Mechanism()
+    m.add_body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.0))
+    m.clearance_joint("pin", "ground", (0, 0), "b", (0, 0), journal_radius=0.01, clearance=1e-4, model=model)  # type: ignore[arg-type]
+    m.compile()
+
 def test_finite_tends_to_the_short_form_for_short_bearings_and_departs_from_it_for_long_ones():
     assert sommerfeld("finite", 1 / 16, 0.3) == pytest.approx(sommerfeld("short", 1 / 16, 0.3), rel=0.03)
     assert sommerfeld("short", 2.5, 0.5) > 3 * sommerfeld("finite", 2.5, 0.5)
@@ -62,8 +69,8 @@ def test_supply_line_is_the_default_and_changes_the_paper_bearing():
 
 def test_supply_is_checked_by_name():
     with pytest.raises(InputError) as e:
-        clearsim.Lubricated(film="finite", supply="feed_hole")
-    assert e.value.field == "supply"
+        in_a_joint(clearsim.Lubricated(film="finite", supply="feed_hole"))
+    assert e.value.field == "clearance joint 'pin'.model.supply"
     with pytest.raises(InputError) as e:
         _core.film_force("finite", MU, R, C, 0.05, 0.5, 0.0, 50.0, supply="feed_hole")
     # The long films have their own convention (P12); the short film has no flow around.

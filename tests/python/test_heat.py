@@ -32,6 +32,13 @@ def petroff_loss(mu: float) -> float:
     return 2 * math.pi * mu * R**3 * L * OMEGA**2 / C
 
 
+def in_a_joint(model: object) -> None:
+    """Compile ``model`` in a pinned body: its values are checked by the core (issue 29, validation once)."""
+    m = clearsim.Mechanism()
+    m.add_body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.0))
+    m.clearance_joint("pin", "ground", (0, 0), "b", (0, 0), journal_radius=0.01, clearance=1e-4, model=model)  # type: ignore[arg-type]
+    m.compile()
+
 def test_vogels_law_against_its_formula() -> None:
     for t in (280.0, 313.15, 373.15, 450.0):
         assert OIL.viscosity(t) == pytest.approx(6.4e-5 * math.exp(900.0 / (t - 164.0)), rel=1e-15)
@@ -39,7 +46,7 @@ def test_vogels_law_against_its_formula() -> None:
     with pytest.raises(clearsim.InputError, match="temperature"):
         OIL.viscosity(160.0)
     with pytest.raises(clearsim.InputError, match="vogel.a"):
-        clearsim.Vogel(-1.0, 900.0, 164.0)
+        in_a_joint(clearsim.Lubricated(viscosity=clearsim.Vogel(-1.0, 900.0, 164.0), thermal=clearsim.Thermal(300.0, 1.0, 1.0)))
 
 
 def test_a_steady_journal_settles_at_the_heat_balances_fixed_point() -> None:
@@ -89,9 +96,9 @@ def test_the_temperature_does_not_depend_on_the_output_grid() -> None:
 
 def test_bad_heat_input_names_its_field() -> None:
     with pytest.raises(clearsim.InputError, match="thermal"):
-        clearsim.Lubricated(viscosity=OIL, length=L)  # a Vogel law needs the temperature
+        in_a_joint(clearsim.Lubricated(viscosity=OIL, length=L))  # a Vogel law needs the temperature
     with pytest.raises(clearsim.InputError, match="heat_capacity"):
-        clearsim.Thermal(T_AMB, -1.0, 0.1)
+        in_a_joint(clearsim.Lubricated(thermal=clearsim.Thermal(T_AMB, -1.0, 0.1)))
     cold = clearsim.Thermal(ambient=150.0, heat_capacity=0.01, heat_transfer=0.1)
     with pytest.raises(clearsim.InputError, match="ambient"):
         rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=cold)).simulate(0.01, progress=False)
@@ -99,7 +106,7 @@ def test_bad_heat_input_names_its_field() -> None:
     with pytest.raises(clearsim.InputError, match=r"'pin'\.thermal\.initial"):
         rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=frozen)).simulate(0.01, progress=False)
     with pytest.raises(clearsim.InputError, match="vogel"):
-        clearsim.Lubricated(viscosity=clearsim.Vogel(1e-4, -5.0, 164.0), length=L, thermal=frozen)
+        in_a_joint(clearsim.Lubricated(viscosity=clearsim.Vogel(1e-4, -5.0, 164.0), length=L, thermal=frozen))
 
 
 def test_the_scene_keys(tmp_path: "object") -> None:

@@ -35,6 +35,13 @@ def resting_penetration(length: float) -> float:
     return float(np.mean(e[-10:]) - C)
 
 
+def in_a_joint(model: object) -> None:
+    """Compile ``model`` in a pinned body: its values are checked by the core (issue 29, validation once)."""
+    m = clearsim.Mechanism()
+    m.add_body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.0))
+    m.clearance_joint("pin", "ground", (0, 0), "b", (0, 0), journal_radius=0.01, clearance=1e-4, model=model)  # type: ignore[arg-type]
+    m.compile()
+
 def test_hand_value_of_johnsons_line_contact():
     # 8.5 kN on a 20 mm pin, R_j = 10 mm, c = 0.5 mm (R* = 0.21 m): δ = 14.83 µm by hand
     # (rust/laws/contact_line.rs); the point-contact form gives 12.6 µm whatever the length.
@@ -60,8 +67,8 @@ def test_cylindrical_form_is_checked_by_name():
     assert e.value.field == "length"
     with pytest.raises(InputError):
         Dry(stiffness_form="cylinder", length=0.02)
-    with pytest.raises(InputError):
-        Dry(stiffness_form="cylindrical", length=-1.0)
+    with pytest.raises(InputError, match="length"):
+        in_a_joint(Dry(stiffness_form="cylindrical", length=-1.0))
 
     def compile_with(dry: Dry) -> None:
         m = clearsim.Mechanism()

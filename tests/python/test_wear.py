@@ -27,6 +27,13 @@ def spinning_pin(dt_out=None) -> clearsim.Result:
     return m.simulate(T, dt_out=dt_out, rtol=1e-8, atol=1e-11, progress=False)
 
 
+def worn_joint(wear: Archard) -> None:
+    """Compile a dry joint with ``wear``: the core checks its values (issue 29, validation once)."""
+    m = clearsim.Mechanism()
+    m.add_body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.0))
+    m.clearance_joint("pin", "ground", (0, 0), "b", (0, 0), journal_radius=0.01, clearance=1e-4, model=clearsim.Dry(wear=wear))
+    m.compile()
+
 def test_worn_volume_and_depth_against_the_closed_form():
     res = spinning_pin()
     volume = K / H * M * 9.81 * R_J * OMEGA * T
@@ -53,8 +60,8 @@ def test_wear_plot_and_errors():
     fig = clearsim.plots.plot_wear(res, "J")
     assert len(fig.axes) == 2
     with pytest.raises(InputError) as err:
-        Archard(-1e-4, H, L)
-    assert err.value.field == "wear.coefficient"
+        worn_joint(Archard(-1e-4, H, L))
+    assert err.value.field == "clearance joint 'pin'.wear.coefficient"
     with pytest.raises(InputError, match="no wear"):
         clearsim.models.slider_crank("dry").simulate(1e-3, progress=False).wear("rod-slider")
     m = clearsim.Mechanism()
@@ -108,11 +115,11 @@ def test_a_run_continues_from_the_worn_state_of_an_earlier_one():
     assert second.wear_volume("J") == pytest.approx(first.wear_volume("J"), rel=1e-3)  # only its own
     assert second.position("pin")[-1, 1] == pytest.approx(whole.position("pin")[-1, 1], abs=0.02 * whole.wear("J")[1].max())
     with pytest.raises(InputError, match="360") as err:
-        Archard(K, H, L, initial_bearing=[0.0] * 10)
-    assert err.value.field == "wear.initial_bearing"
+        worn_joint(Archard(K, H, L, initial_bearing=[0.0] * 10))
+    assert err.value.field == "clearance joint 'pin'.wear.initial_bearing"
     with pytest.raises(InputError) as err:
-        Archard(K, H, L, initial_journal=[0.0] * 359 + [-1e-9])
-    assert err.value.field == "wear.initial_journal[359]"
+        worn_joint(Archard(K, H, L, initial_journal=[0.0] * 359 + [-1e-9]))
+    assert err.value.field == "clearance joint 'pin'.wear.initial_journal[359]"
 
 
 def test_the_wear_mark_reads_the_books_inside_a_run():

@@ -108,6 +108,10 @@ class _Builder:
             table = self.entries.get((kind, m.group(2)), table)
             fld = m.group(3)
         parts = [re.sub(r"\[\d+\]$", "", p) for p in fld.split(".")] if fld else []
+        while table is not None and len(parts) > 1 and isinstance(table.data.get(parts[0]), dict):  # a nested table: model.normal_law
+            table, parts = table.table(parts[0], tuple(table.data[parts[0]])), parts[1:]
+        if table is not None and parts and parts[-1] not in table.data:  # a model's field, named by the core without "model."
+            table = next((table.table(k, tuple(v)) for k, v in table.data.items() if isinstance(v, dict) and parts[-1] in v), table)
         # The deepest part that is a key of the table (value.driver → value), else the last.
         key = next((p for p in reversed(parts) if table is not None and p in table.data), parts[-1] if parts else None)
         key = key if key is None or (table is not None and key in table.data) else _FIELD_KEYS.get(key, key)

@@ -72,7 +72,7 @@ class Scene:
             t_end=self.simulation.t_end if t_end is None else float(t_end),
             integrator=self.simulation.integrator if integrator is None else integrator,
         )
-        self.mechanism.run_settings(sim.t_end, **sim.kwargs())  # raises InputError if invalid
+        _core.check_settings(self.mechanism.run_settings(sim.t_end, **sim.kwargs()))  # raises InputError if invalid (the core's checks)
         return dataclasses.replace(self, simulation=sim)
 
     def study_settings(self) -> Optional[StudySettings]:

@@ -8,6 +8,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
+from .. import _core
 from ..errors import InputError
 from ..mechanism import Mechanism
 from ..schema import COMPONENTS, OUTPUTS
@@ -136,7 +137,7 @@ def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationS
         h_min=t.number("h_min", None), max_steps=t.integer("max_steps", None), outputs=outputs, cycles=cycles, period=period,
     )  # fmt: skip
     try:
-        m.run_settings(sim.t_end, **sim.kwargs())
+        _core.check_settings(m.run_settings(sim.t_end, **sim.kwargs()))  # the core's checks, located in the file
     except InputError as err:
         field = err.field if err.field in t else ("cycles" if err.field == "t_end" and cycles is not None else None)
         raise t.error(field, err.reason, err.value) from None
