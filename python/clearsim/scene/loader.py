@@ -202,9 +202,10 @@ def load_scene_file(path: PathLike) -> Scene:
         warnings.simplefilter("always")
         mech = builder.build()
         try:
-            # The Rust core's checks, located in the file. Not mech.compile(): a cached compiled
-            # model would make Mechanism.idealized() (a deepcopy) fail.
-            _core.compile(mech.description())
+            # The Rust core's checks, located in the file; the compiled model is cached on the
+            # mechanism, so the scene's own run does not compile it again (Mechanism.copy()
+            # leaves it out of copies).
+            mech.compile()
         except InputError as err:
             failed = err
     # The warnings first: a unit slip they name (a journal radius in mm) is often the cause
@@ -220,8 +221,6 @@ def load_scene_file(path: PathLike) -> Scene:
     study = None
     if "study" in builder.top:
         study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech, builder.drivers))
-    # The ideal counterpart is made now: Mechanism.idealized() deep-copies, which fails once the
-    # mechanism holds a compiled Rust model (after a run).
     return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, _ideal=mech.idealized())
 
 
