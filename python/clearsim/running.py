@@ -19,7 +19,7 @@ from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, Pl
 from .joints import MICROMETRE_FILM_RATIO
 from .joint_readings import film_monitors
 from .result import Result, extreme_monitors
-from .schema import COMPONENTS, DEFAULT_OUTPUTS, INTEGRATORS, OUTPUTS
+from .schema import ATOL, COMPONENTS, DEFAULT_OUTPUTS, H_MIN, INTEGRATORS, MAX_STEPS, OUTPUTS, RTOL
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
@@ -196,16 +196,16 @@ class Running:
         t_end: float,
         *,
         integrator: str = "auto",
-        rtol: float = 1e-6,
-        atol: float = 1e-9,
+        rtol: float = RTOL,
+        atol: float = ATOL,
         step: Optional[float] = None,
         dt_out: Optional[float] = None,
         t_out: Optional[Sequence[float]] = None,
         t0: float = 0.0,
         outputs: Optional[Sequence[str]] = None,
         h_max: Optional[float] = None,
-        h_min: float = 1e-14,
-        max_steps: int = 50_000_000,
+        h_min: float = H_MIN,
+        max_steps: int = MAX_STEPS,
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[str]] = False,
         extremes_from: Optional[float] = None,

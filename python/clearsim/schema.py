@@ -22,6 +22,13 @@ INTEGRATORS: Tuple[str, ...] = ("auto", "rk45", "rk4", "dop853", "radau", "rodas
 #: The channels a run can store, and those it stores by default.
 OUTPUTS: Tuple[str, ...] = ("states", "accelerations", "reactions", "joints", "violation", "energy")
 DEFAULT_OUTPUTS: Tuple[str, ...] = ("states", "accelerations", "joints", "violation")
+#: The integrator's defaults, where they are defined (the core's ``Settings::default``):
+#: relative and absolute tolerance [-, SI], the smallest step [s] and the step budget.
+_RUN = _core.DEFAULTS["settings"]
+RTOL: float = float(_RUN["rtol"])
+ATOL: float = float(_RUN["atol"])
+H_MIN: float = float(_RUN["h_min"])
+MAX_STEPS: int = int(_RUN["max_steps"])
 
 #: The columns of a clearance joint's stored channel (``Result.joint``), the core's order.
 JOINT_COLUMNS: List[str] = list(_core.JOINT_COLUMNS)

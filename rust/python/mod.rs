@@ -472,7 +472,8 @@ fn to_plain<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bo
 
 /// The defaults of the clearance-joint parameters, where they are defined (the serde defaults of
 /// [`crate::description`]): `{"dry": {...}, "lubricated": {...}, "prismatic_clearance": {...}}`,
-/// for `clearsim.joints` and `clearsim.Mechanism.prismatic_clearance`.
+/// for `clearsim.joints` and `clearsim.Mechanism.prismatic_clearance`; and the integrator's
+/// (`crate::integrate::Settings::default`): `{"settings": {rtol, atol, h_min, max_steps}}`.
 fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     let lubricated: crate::description::LubricatedDesc = serde_json::from_value(serde_json::json!({"viscosity": 1.0, "length": 1.0}))
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
@@ -485,10 +486,12 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     let corner: crate::description::PrismaticClearanceDesc =
         serde_json::from_value(serde_json::json!({"name": "", "guide_body": null, "guide_point": [0.0, 0.0], "slider_body": 0, "axis": [1.0, 0.0], "clearance": 1.0, "slider_length": 1.0}))
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let ode = crate::integrate::Settings::default();
     let all = serde_json::json!({
         "dry": crate::description::DryDesc::default(),
         "lubricated": lub,
         "prismatic_clearance": {"corner_radius": corner.corner_radius},
+        "settings": {"rtol": ode.rtol, "atol": ode.atol, "h_min": ode.h_min, "max_steps": ode.max_steps},
     });
     to_plain(py, &all)
 }

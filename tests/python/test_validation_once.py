@@ -124,3 +124,17 @@ def test_numbers_are_still_numbers_at_once() -> None:
     with pytest.raises(cs.InputError, match="stiffness_form"):
         Dry(stiffness_form="round")
     assert math.isfinite(Dry().restitution)
+
+
+def test_run_defaults_are_the_cores() -> None:
+    """The integrator's defaults are defined once, in the core (Settings::default): the Python
+    signatures show the same numbers."""
+    import inspect
+
+    from clearsim import _core, schema
+    from clearsim.mechanism import Mechanism
+
+    core = _core.DEFAULTS["settings"]
+    assert (schema.RTOL, schema.ATOL, schema.H_MIN, schema.MAX_STEPS) == (core["rtol"], core["atol"], core["h_min"], core["max_steps"])
+    sig = inspect.signature(Mechanism.run_settings).parameters
+    assert (sig["rtol"].default, sig["atol"].default, sig["h_min"].default, sig["max_steps"].default) == (1e-6, 1e-9, 1e-14, 50_000_000)

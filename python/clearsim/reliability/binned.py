@@ -21,7 +21,7 @@ import numpy as np
 from .. import display
 from ..errors import InputError, SimulationError, check_choice, check_positive, renamed
 from ..mechanism import Mechanism
-from ..schema import BODY_QUANTITY_UNITS, COMPONENTS
+from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, RTOL
 from .bridge import check_on_failure
 from .distributions import Distribution, sample_inputs
 from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, mc_bin_reliability, wilson_interval
@@ -160,8 +160,8 @@ def monte_carlo(
     chunk_size: Optional[int] = None,
     progress: bool = True,
     integrator: str = "auto",
-    rtol: float = 1e-6,
-    atol: float = 1e-9,
+    rtol: float = RTOL,
+    atol: float = ATOL,
     axis: Optional[str] = None,
 ) -> MonteCarloResult:
     """Monte Carlo reliability of one output of a mechanism with random inputs.

@@ -26,7 +26,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import InputError, SimulationError, check_finite, check_positive
-from ..schema import COMPONENTS
+from ..schema import ATOL, COMPONENTS, RTOL
 from .bridge import check_on_failure
 from .distributions import input_stream
 from .estimates import failure_reasons, wilson_interval
@@ -214,8 +214,8 @@ class Study(ReliabilityModel, Modes):
         skip_cycles: float = 0.0,
         bin_width: float = BIN_WIDTH,
         integrator: str = "auto",
-        rtol: float = 1e-6,
-        atol: float = 1e-9,
+        rtol: float = RTOL,
+        atol: float = ATOL,
         max_steps: Optional[int] = None,
         max_seconds: Optional[float] = None,
         executor: Any = None,

@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 from .. import _core
 from ..errors import InputError
 from ..mechanism import Mechanism
-from ..schema import COMPONENTS, OUTPUTS
+from ..schema import ATOL, COMPONENTS, OUTPUTS, RTOL
 from .builder import _Builder
 from .toml_reader import Table
 
@@ -56,8 +56,8 @@ class SimulationSettings:
 
     t_end: float
     integrator: str = "auto"
-    rtol: float = 1e-6
-    atol: float = 1e-9
+    rtol: float = RTOL
+    atol: float = ATOL
     t0: float = 0.0
     step: Optional[float] = None
     dt_out: Optional[float] = None
@@ -132,7 +132,7 @@ def _simulation(b: _Builder, m: Mechanism, needed: Sequence[str]) -> SimulationS
     extra = t.strings("outputs", [], choices=OUTPUTS)
     outputs = tuple(k for k in OUTPUTS if k in set(extra) | set(needed))
     sim = SimulationSettings(
-        t_end=t_end, integrator=t.string("integrator", "auto"), rtol=t.number("rtol", 1e-6), atol=t.number("atol", 1e-9),
+        t_end=t_end, integrator=t.string("integrator", "auto"), rtol=t.number("rtol", RTOL), atol=t.number("atol", ATOL),
         t0=t0, step=t.number("step", None), dt_out=t.number("dt_out", None), h_max=t.number("h_max", None),
         h_min=t.number("h_min", None), max_steps=t.integer("max_steps", None), outputs=outputs, cycles=cycles, period=period,
     )  # fmt: skip
