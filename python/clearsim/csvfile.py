@@ -31,7 +31,7 @@ QUANTITY = "<quantity>"
 #: rows of ``reliability.csv``) carries its unit as a suffix or is spelled otherwise in the
 #: tables → (column name, unit or None). Keys not listed keep their name and have no unit.
 REPORT_COLUMNS: Dict[str, Tuple[str, Optional[str]]] = {
-    "angle_deg": ("bin_start", "deg"), "centre_deg": ("bin_centre", "deg"), "count": ("samples", None),
+    "angle_deg": ("bin_start", "deg"), "centre_deg": ("bin_centre", "deg"), "count": ("samples", None), "n_samples": ("samples", None),
     "mu_s": ("mu_s", QUANTITY), "sigma_s": ("sigma_s", QUANTITY), "mu_S": ("mu_S", QUANTITY), "sigma_S": ("sigma_S", QUANTITY),
     "wall_time_s": ("wall_time", "s"), "mean_peak": ("mean_peak", QUANTITY), "max_peak": ("max_peak", QUANTITY),
     "mean_depth_m": ("mean_depth", "m"), "max_depth_m": ("max_depth", "m"),
