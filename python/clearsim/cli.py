@@ -34,10 +34,10 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tupl
 import numpy as np
 
 from . import __version__, models
-from .csvfile import write_columns, write_rows
+from .csvfile import column_name, report_header, write_columns, write_rows
 from .errors import ClearsimError
 from .joint_readings import summary_markdown
-from .schema import INTEGRATORS
+from .schema import INTEGRATORS, body_unit
 from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
 
 #: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
@@ -120,7 +120,7 @@ def _body_columns(run: SceneRun, which: str) -> Columns:
                 data, name = getattr(result, quantity)(body), quantity
             for component in out.components:
                 c = COMPONENTS.index(component)
-                cols.append((f"{body}.{name}.{component} [{_unit(quantity, component)}]", data[:, c]))
+                cols.append((column_name(f"{body}.{name}.{component}", _unit(quantity, component)), data[:, c]))
     return cols
 
 
@@ -150,9 +150,9 @@ def _joint_columns(run: SceneRun) -> Columns:
             else:
                 data = getters[quantity](joint)
             for k, (name, unit) in enumerate(JOINT_CHANNELS[quantity]):
-                cols.append((f"{joint}.{name} [{unit}]", data[:, k]))
+                cols.append((column_name(f"{joint}.{name}", unit), data[:, k]))  # ε, state: [1] (csvfile.DIMENSIONLESS)
         if joint in heated:
-            cols.append((f"{joint}.temperature [K]", result.temperature(joint)))
+            cols.append((column_name(f"{joint}.temperature", "K"), result.temperature(joint)))
     return cols
 
 
@@ -370,7 +370,7 @@ def write_run(
         if scene.outputs.joints:
             step("joints.csv", lambda: write_csv(out_dir / "joints.csv", result.t, _joint_columns(run)))
         for quantity, fosm in run.reliability.items():
-            step(f"reliability_{quantity}.csv", lambda: _fosm_csv(out_dir / f"reliability_{quantity}.csv", fosm))
+            step(f"reliability_{quantity}.csv", lambda: _fosm_csv(out_dir / f"reliability_{quantity}.csv", fosm, _fosm_unit(scene, quantity)))
     if plots and scene.outputs.plots:
         _figures(run, out_dir, step)
     for what, write in extra:
@@ -395,9 +395,17 @@ def _errors_csv(run: SceneRun, out_dir: Path) -> List[Path]:
     return [write_csv(out_dir / "errors.csv", run.result.t, errors)] if errors else []
 
 
-def _fosm_csv(path: Path, fosm: Any) -> Path:
+def _fosm_unit(scene: Scene, quantity: str) -> str:
+    """The unit of the error FOSM analyses: ``quantity``'s (displacement, ...) of ``[reliability]``'s component."""
+    assert scene.reliability is not None
+    return body_unit(quantity, scene.reliability.component)
+
+
+def _fosm_csv(path: Path, fosm: Any, unit: str) -> Path:
+    """``FosmResult.to_rows()`` under the headers of every FOSM table (``bin_start [deg]``,
+    ``mu_s [m]``, ...: :func:`clearsim.csvfile.report_header`)."""
     rows = fosm.to_rows()
-    return write_rows(path, list(rows[0]), [list(r.values()) for r in rows])
+    return write_rows(path, report_header(rows[0], unit), [list(r.values()) for r in rows])
 
 
 # ====================================================================== commands

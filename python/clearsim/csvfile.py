@@ -1,8 +1,10 @@
 """Every CSV file clearsim writes goes through this writer: a header row, one row per record,
 numbers as the shortest text that reads back to the same float (Python's ``repr``: no digit
 lost, none invented). A column with a unit is headed ``name [unit]`` with the unit in ASCII
-(``m/s^2``, :func:`clearsim.schema.ascii_unit`), as ``Result.save``, ``clearsim run`` and
-``clearsim reliability`` write them.
+(``m/s^2``, :func:`clearsim.schema.ascii_unit`), as ``Result.save``, ``clearsim run``,
+``clearsim reliability`` and ``clearsim paper`` write them. A dimensionless quantity of the
+physics (ε, a contact state) is headed ``name [1]``; labels, counts, probabilities and
+reliability indices (``method``, ``runs``, ``pf``, ``beta``, ``reliability``) by a bare name.
 """
 
 from __future__ import annotations
@@ -10,18 +12,56 @@ from __future__ import annotations
 import csv
 import math
 from pathlib import Path
-from typing import Any, Iterable, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from .errors import InputError
 from .schema import ascii_unit
 
-__all__ = ["column_name", "write_rows", "write_columns"]
+__all__ = ["DIMENSIONLESS", "QUANTITY", "REPORT_COLUMNS", "column_name", "file_unit", "report_header", "write_rows", "write_columns"]
+
+#: The unit of a dimensionless quantity in a file header: ``1`` (the SI unit one, SI Brochure
+#: §2.3.3; what CF/UDUNITS and pint read, and what ``Result.save(".nc")`` writes), never ``-``,
+#: which Python text (axis labels, docstrings: ``R [-]``) may still use, as it writes ``m/s²``.
+DIMENSIONLESS = "1"
+#: Stands, in :data:`REPORT_COLUMNS`, for the unit of the analysed quantity (m, m/s, ...).
+QUANTITY = "<quantity>"
+#: Report columns whose Python key (a dict key of the public API: ``FosmResult.to_rows()``, the
+#: rows of ``reliability.csv``) carries its unit as a suffix or is spelled otherwise in the
+#: tables → (column name, unit or None). Keys not listed keep their name and have no unit.
+REPORT_COLUMNS: Dict[str, Tuple[str, Optional[str]]] = {
+    "angle_deg": ("bin_start", "deg"), "centre_deg": ("bin_centre", "deg"), "count": ("samples", None), "n_samples": ("samples", None),
+    "mu_s": ("mu_s", QUANTITY), "sigma_s": ("sigma_s", QUANTITY), "mu_S": ("mu_S", QUANTITY), "sigma_S": ("sigma_S", QUANTITY),
+    "wall_time_s": ("wall_time", "s"), "mean_peak": ("mean_peak", QUANTITY), "max_peak": ("max_peak", QUANTITY),
+    "mean_depth_m": ("mean_depth", "m"), "max_depth_m": ("max_depth", "m"),
+}  # fmt: skip
+
+
+def file_unit(unit: str) -> str:
+    """``unit`` as a file header writes it: ASCII (:func:`clearsim.schema.ascii_unit`), a
+    dimensionless one (``-``, ``1`` or empty) as :data:`DIMENSIONLESS`."""
+    return DIMENSIONLESS if unit in ("-", "1", "") else ascii_unit(unit)
 
 
 def column_name(name: str, unit: Optional[str]) -> str:
-    """``name [unit]`` (``slider9.y [m]``; the unit in ASCII), or ``name`` without a unit."""
-    return name if unit is None else f"{name} [{ascii_unit(unit)}]"
+    """``name [unit]`` (``slider9.y [m]``, ``A.eps [1]``; the unit in ASCII), or ``name``
+    without a unit."""
+    return name if unit is None else f"{name} [{file_unit(unit)}]"
+
+
+def report_header(keys: Iterable[str], quantity_unit: Optional[str] = None) -> List[str]:
+    """The CSV header of report rows with these dict ``keys`` (:data:`REPORT_COLUMNS`):
+    ``angle_deg`` → ``bin_start [deg]``, ``mu_s`` → ``mu_s [m]`` for ``quantity_unit="m"``."""
+    out = []
+    for key in keys:
+        name, unit = REPORT_COLUMNS.get(key, (key, None))
+        if unit == QUANTITY:
+            if quantity_unit is None:
+                raise InputError(f"invalid quantity_unit = None: column {key!r} has the unit of the analysed quantity", field="quantity_unit", value=None)
+            unit = quantity_unit
+        out.append(column_name(name, unit))
+    return out
 
 
 def _cell(value: Any, blank_nonfinite: bool) -> Any:

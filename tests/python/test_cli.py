@@ -33,7 +33,7 @@ def test_run_nine_bar(tmp_path, capsys):
         "slider9.velocity_error.y [m/s]",
         "slider9.acceleration_error.y [m/s^2]",
     ]
-    assert _header(out / "joints.csv")[:6] == ["t [s]", "A.ex [m]", "A.ey [m]", "A.eps [-]", "A.fx [N]", "A.fy [N]"]
+    assert _header(out / "joints.csv")[:6] == ["t [s]", "A.ex [m]", "A.ey [m]", "A.eps [1]", "A.fx [N]", "A.fy [N]"]
     assert len((out / "bodies.csv").read_text().splitlines()) == 1 + 2001  # header + 0.4 s / 2e-4 s + 1
     summary = json.loads((out / "summary.json").read_text())
     assert summary["run"]["t_reached"] == pytest.approx(0.4) and summary["run"]["failure"] is None
@@ -51,7 +51,7 @@ def test_run_slider_crank_without_plots(tmp_path, capsys):
     assert main(["run", str(SCENES / "slider_crank.toml"), "-o", str(out), "--t-end", "0.002", "--no-plots", "--integrator", "dop853"]) == 0
     assert not list(out.glob("*.png"))
     assert _header(out / "joints.csv") == [
-        "t [s]", "rod-slider.ex [m]", "rod-slider.ey [m]", "rod-slider.eps [-]", "rod-slider.fx [N]", "rod-slider.fy [N]",
+        "t [s]", "rod-slider.ex [m]", "rod-slider.ey [m]", "rod-slider.eps [1]", "rod-slider.fx [N]", "rod-slider.fy [N]",
         "rod-slider.normal [N]", "rod-slider.tangential [N]",
     ]  # fmt: skip
     summary = json.loads((out / "summary.json").read_text())

@@ -29,7 +29,7 @@ def test_run_with_a_lubricated_and_a_dry_joint_in_the_outputs(tmp_path, capsys):
     summary = json.loads((out / "summary.json").read_text())
     assert "orbits.png" in summary["files"] and "not_written" not in summary
     header = (out / "joints.csv").read_text().splitlines()[0]
-    assert "crank-pin.eps [-]" in header and "wrist-pin.eps [-]" in header
+    assert "crank-pin.eps [1]" in header and "wrist-pin.eps [1]" in header
 
 
 def _broken(*args, **kwargs):

@@ -30,7 +30,7 @@ def test_cli_writes_tables_figure_and_report(tmp_path):
     form = rows[1]
     assert 1e-5 < float(form["pf"]) < 1e-3 and int(form["runs"]) > 10  # the scene's limit: p_f ≈ 1e-4
     samples = list(csv.DictReader((out / "samples.csv").open()))
-    assert len(samples) == 16 and {"A.clearance", "B.clearance", "peak [m]"} <= set(samples[0])
+    assert len(samples) == 16 and {"A.clearance [m]", "B.clearance [m]", "peak [m]"} <= set(samples[0])
     assert (out / "reliability.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "FOSM" in (out / "report.md").read_text()
 

@@ -191,7 +191,7 @@ reliability = 0.5
     rows = list(csv.DictReader((out / "life.csv").open()))
     assert [float(r["cycles"]) for r in rows] == [0.0, 20.0, 40.0]
     pf = [float(r["pf"]) for r in rows]
-    assert pf == sorted(pf) and float(rows[-1]["max_depth_m"]) > float(rows[1]["max_depth_m"]) > 0
+    assert pf == sorted(pf) and float(rows[-1]["max_depth [m]"]) > float(rows[1]["max_depth [m]"]) > 0
     assert (out / "life.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     methods = [r["method"] for r in csv.DictReader((out / "reliability.csv").open())]
     assert methods == ["ak_mcs"]

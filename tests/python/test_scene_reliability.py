@@ -265,9 +265,9 @@ def test_one_monitored_run_gives_every_quantity_bit_for_bit(tmp_path, monkeypatc
 
 def _fosm_rows(path: Path) -> Dict[str, np.ndarray]:
     rows = list(csv.reader(path.open(encoding="utf-8")))
-    assert rows[0] == ["output", "bin_start_deg", "mu_s", "sigma_s", "beta", "reliability"]
+    assert rows[0] == ["output", "error_unit", "bin_start [deg]", "mu_s_error_unit", "sigma_s_error_unit", "beta", "reliability"]
     names = sorted({r[0] for r in rows[1:]}, key=[r[0] for r in rows[1:]].index)
-    return {name: np.array([[float(x) for x in r[1:]] for r in rows[1:] if r[0] == name]) for name in names}
+    return {name: np.array([[float(x) for x in r[2:]] for r in rows[1:] if r[0] == name]) for name in names}
 
 
 def test_clearsim_reliability_runs_the_alias(tmp_path, capsys):
@@ -290,8 +290,9 @@ def test_clearsim_reliability_runs_the_alias(tmp_path, capsys):
         assert f"slider.x.{q}: min R = {shown[1]} (β = {shown[2]}) at {shown[3]}°" in printed, q
         rows = list(csv.reader((tmp_path / "run" / f"reliability_{q}.csv").open(encoding="utf-8")))
         by_run = {name: np.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0])}
-        table = written[f"slider.x.{q}"]  # bin_start_deg, mu_s, sigma_s, beta, reliability: full precision
-        for k, name in enumerate(("angle_deg", "mu_s", "sigma_s", "beta", "reliability")):
+        table = written[f"slider.x.{q}"]  # bin_start, mu_s, sigma_s, beta, reliability: full precision
+        unit = {"displacement": "m", "velocity": "m/s", "acceleration": "m/s^2"}[q]
+        for k, name in enumerate(("bin_start [deg]", f"mu_s [{unit}]", f"sigma_s [{unit}]", "beta", "reliability")):
             np.testing.assert_array_equal(table[:, k], by_run[name], err_msg=f"{q} {name}")
         assert table[:, 4].min() == summary[q]["reliability"]
     report = (out / "report.md").read_text()

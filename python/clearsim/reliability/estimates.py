@@ -241,7 +241,8 @@ def compare_fosm_mc(mc: MonteCarloBins, nominal: Optional[FosmResult] = None) ->
     ``mc_lo``, ``mc_hi`` (Monte Carlo with Wilson interval), ``fosm_beta``, ``fosm_R`` (FOSM on
     the pooled Monte Carlo samples), ``fosm_in_ci`` (whether ``fosm_R`` lies in the interval) and,
     when ``nominal`` (e.g. :func:`fosm` of the nominal run, same bins) is given, ``nominal_beta``
-    and ``nominal_R``.
+    and ``nominal_R``. In a CSV file, :func:`clearsim.csvfile.report_header` heads them as
+    clearsim's files do (``bin_start [deg]``, ``bin_centre [deg]``, ``samples``, the rest bare).
     """
     if nominal is not None and (
         len(nominal.bin_starts) != len(mc.bin_starts) or not np.allclose(nominal.bin_starts, mc.bin_starts)

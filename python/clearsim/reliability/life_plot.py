@@ -11,7 +11,9 @@ import numpy as np
 
 __all__ = ["plot_life", "life_rows", "LIFE_HEADER"]
 
-#: Columns of ``life.csv`` (one row per requested cycle count).
+#: The keys of :func:`life_rows`'s columns (one row per requested cycle count); ``life.csv``
+#: heads them ``name [unit]`` (:func:`clearsim.csvfile.report_header`: ``mean_peak [m]``,
+#: ``mean_depth [m]``).
 LIFE_HEADER = ["cycles", "pf", "interval_low", "interval_high", "reliability", "mean_peak", "max_peak", "mean_depth_m", "max_depth_m"]
 
 

@@ -12,7 +12,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
-from ..csvfile import write_rows
+from ..csvfile import column_name, file_unit, report_header, write_rows
 from ..errors import ClearsimError, InputError
 
 FOSM_NOTE = (
@@ -129,7 +129,7 @@ def _life(r: Run, out_dir: Path, plots: bool) -> List[Path]:
             r.found["life_at"] = res.life_at(ls.reliability)
         except Exception as err:  # the samples do not reach R within the cycles: say so
             r.found["life_at"] = str(err)
-    files = [_write(out_dir / "life.csv", LIFE_HEADER, life_rows(res))]
+    files = [_write(out_dir / "life.csv", report_header(LIFE_HEADER, r.study.output.unit), life_rows(res))]
     if plots:
         plot_life(res, limit=r.study.limit, unit=r.study.output.unit, reliability=[ls.reliability] if ls.reliability else None, path=out_dir / "life.png")
         files.append(out_dir / "life.png")
@@ -176,7 +176,7 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
         except ClearsimError as err:  # the other methods' results are still written, then it is raised
             life_error = found["life_error"] = err
     if rows:
-        files.append(_write(out_dir / "reliability.csv", list(rows[0]), [[row[k] for k in rows[0]] for row in rows]))
+        files.append(_write(out_dir / "reliability.csv", report_header(rows[0]), [[row[k] for k in rows[0]] for row in rows]))
     if "sobol" in found:
         s = found["sobol"]
         conv = sorted(s.convergence)[:-1]
@@ -188,15 +188,18 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
         peaks = np.asarray(mc.peaks).reshape(mc.peaks.shape[0], -1)
         first = np.asarray(mc.first_passage_times).reshape(peaks.shape[0], -1)
         if len(study.outputs) == 1:
-            head = [f"peak [{study.output.unit}]", "first_passage_time [s]"]
+            head = [column_name("peak", study.output.unit), column_name("first_passage_time", "s")]
         else:
-            head = [f"{o.name} [{o.unit}]" for o in study.outputs] + [f"{o.name} first_passage_time [s]" for o in study.outputs]
-        files.append(_write(out_dir / "samples.csv", names + head, [[mc.inputs[k][i] for k in names] + list(peaks[i]) + list(first[i]) for i in range(peaks.shape[0])]))
+            head = [column_name(o.name, o.unit) for o in study.outputs] + [column_name(f"{o.name}.first_passage_time", "s") for o in study.outputs]
+        files.append(_write(out_dir / "samples.csv", [input_column(k) for k in names] + head, [[mc.inputs[k][i] for k in names] + list(peaks[i]) + list(first[i]) for i in range(peaks.shape[0])]))
     if "fosm" in found:
-        # One output: its bins; several (a system, or [reliability]'s quantities): a row per output and bin.
+        # One output: its bins, mu_s [unit]; several (a system, or [reliability]'s quantities): a row
+        # per output and bin, the unit in an error_unit column as in clearsim paper's tables.
         several = len(study.outputs) > 1
-        files.append(_write(out_dir / "fosm.csv", ["output"] * several + ["bin_start_deg", "mu_s", "sigma_s", "beta", "reliability"],
-                            [[name] * several + [a, m, s, b, rr] for name, fo in found["fosm_outputs"].items()
+        units = {o.name: file_unit(o.unit) for o in study.outputs}
+        stats = ["mu_s_error_unit", "sigma_s_error_unit"] if several else report_header(["mu_s", "sigma_s"], study.output.unit)
+        files.append(_write(out_dir / "fosm.csv", ["output", "error_unit"] * several + report_header(["angle_deg"]) + stats + ["beta", "reliability"],
+                            [[name, units[name]] * several + [a, m, s, b, rr] for name, fo in found["fosm_outputs"].items()
                              for a, m, s, b, rr in zip(fo.bin_starts, fo.mu_s, fo.sigma_s, fo.beta, fo.reliability)]))  # fmt: skip
     if plots:
         files.append(plot_study(study, found, out_dir / "reliability.png"))
@@ -208,6 +211,23 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
 
 def _write(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> Path:
     return write_rows(path, header, rows)
+
+
+#: Units of the numbers a ``[[study.input]]`` path names (``B.clearance``), by field (the SI
+#: units of rust/description.rs), for samples.csv's header. A field not listed is headed by its
+#: path alone. (Belongs with the other units in clearsim.schema.)
+INPUT_UNITS: Dict[str, str] = {
+    "clearance": "m", "journal_radius": "m", "length": "m", "cylinder_length": "m", "slider_length": "m", "corner_radius": "m",
+    "roughness": "m", "e0": "m", "mass": "kg", "inertia": "kg m^2", "angle": "rad", "omega": "rad/s", "v0": "m/s", "v1": "m/s",
+    "impact_speed_floor": "m/s", "youngs_bearing": "Pa", "youngs_journal": "Pa", "hardness": "Pa", "poisson_bearing": "1",
+    "poisson_journal": "1", "restitution": "1", "friction": "1", "boundary_friction": "1", "coefficient": "1", "eps0": "1",
+    "eps_max": "1", "ambient": "K", "initial": "K", "viscosity": "Pa s", "angle0": "rad", "heat_capacity": "J/K", "heat_transfer": "W/K",
+}  # fmt: skip
+
+
+def input_column(path: str) -> str:
+    """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`INPUT_UNITS`)."""
+    return column_name(path, INPUT_UNITS.get(path.rpartition(".")[2]))
 
 
 def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
