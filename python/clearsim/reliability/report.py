@@ -14,6 +14,7 @@ import numpy as np
 
 from ..csvfile import column_name, file_unit, report_header, write_rows
 from ..errors import ClearsimError, InputError
+from ..schema import INPUT_UNITS
 
 FOSM_NOTE = (
     "FOSM (the paper's method, Eqs. P27–P32) is pointwise in time: per crank-angle bin it compares the "
@@ -216,17 +217,10 @@ def _write(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> 
 #: Units of the numbers a ``[[study.input]]`` path names (``B.clearance``), by field (the SI
 #: units of rust/description.rs), for samples.csv's header. A field not listed is headed by its
 #: path alone. (Belongs with the other units in clearsim.schema.)
-INPUT_UNITS: Dict[str, str] = {
-    "clearance": "m", "journal_radius": "m", "length": "m", "cylinder_length": "m", "slider_length": "m", "corner_radius": "m",
-    "roughness": "m", "e0": "m", "mass": "kg", "inertia": "kg m^2", "angle": "rad", "omega": "rad/s", "v0": "m/s", "v1": "m/s",
-    "impact_speed_floor": "m/s", "youngs_bearing": "Pa", "youngs_journal": "Pa", "hardness": "Pa", "poisson_bearing": "1",
-    "poisson_journal": "1", "restitution": "1", "friction": "1", "boundary_friction": "1", "coefficient": "1", "eps0": "1",
-    "eps_max": "1", "ambient": "K", "initial": "K", "viscosity": "Pa s", "angle0": "rad", "heat_capacity": "J/K", "heat_transfer": "W/K",
-}  # fmt: skip
 
 
 def input_column(path: str) -> str:
-    """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`INPUT_UNITS`)."""
+    """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`clearsim.schema.INPUT_UNITS`)."""
     return column_name(path, INPUT_UNITS.get(path.rpartition(".")[2]))
 
 

@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 from .. import _core
 from ..errors import InputError
 from ..mechanism import Mechanism
-from ..schema import ATOL, COMPONENTS, OUTPUTS, RTOL
+from ..schema import ATOL, COMPONENTS, JOINT_COLUMN_UNITS, OUTPUTS, RTOL
 from .builder import _Builder
 from .toml_reader import Table
 
@@ -24,16 +24,21 @@ BODY_CHANNELS: Dict[str, Tuple[str, str, str]] = {
     "acceleration": ("m/s^2", "m/s^2", "rad/s^2"),
 }
 #: The clearance-joint channels ``[outputs].joint_quantities`` names: their columns (name, unit).
+_JOINT_CHANNEL_COLUMNS: Dict[str, Tuple[str, ...]] = {
+    "eccentricity": ("ex", "ey", "eps"),
+    "eccentricity_rate": ("ex_dot", "ey_dot"),
+    "force": ("fx", "fy"),
+    "contact_force": ("normal", "tangential"),
+    "film_force": ("film_xi", "film_eta"),
+    "state": ("state", "w_dry"),
+    "film_thickness": ("film_thickness",),
+    "friction_torque": ("friction_torque", "friction_torque_bearing"),
+    "power_loss": ("power_loss",),
+}
+#: ``[outputs] joint_quantities`` → the CSV columns it writes, each with its unit (the units
+#: of :data:`clearsim.schema.JOINT_COLUMN_UNITS`; ``eps`` = |e|/c is dimensionless).
 JOINT_CHANNELS: Dict[str, Tuple[Tuple[str, str], ...]] = {
-    "eccentricity": (("ex", "m"), ("ey", "m"), ("eps", "-")),
-    "eccentricity_rate": (("ex_dot", "m/s"), ("ey_dot", "m/s")),
-    "force": (("fx", "N"), ("fy", "N")),
-    "contact_force": (("normal", "N"), ("tangential", "N")),
-    "film_force": (("film_xi", "N"), ("film_eta", "N")),
-    "state": (("state", "-"), ("w_dry", "-")),
-    "film_thickness": (("film_thickness", "m"),),
-    "friction_torque": (("friction_torque", "N m"), ("friction_torque_bearing", "N m")),
-    "power_loss": (("power_loss", "W"),),
+    quantity: tuple((c, {**JOINT_COLUMN_UNITS, "eps": "1"}[c]) for c in columns) for quantity, columns in _JOINT_CHANNEL_COLUMNS.items()
 }
 #: Body quantity → the name of its error against the ideal mechanism (as in
 #: :meth:`Result.error` and the reliability analysis).
