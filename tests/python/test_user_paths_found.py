@@ -5,6 +5,7 @@ own, docs/examples.md): each is a focused test here, and its cell in the user-pa
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from pathlib import Path
 
@@ -268,3 +269,43 @@ def test_walked_scenes_run_and_study_from_the_cli(tmp_path, scene, t_end, joint,
     head, samples = _csv(rel / "samples.csv")
     assert samples.shape[0] == 2 and np.all(np.isfinite(samples[:, head.index("A.film_thickness [m]")]))
     assert "| monte_carlo | system |" in (rel / "report.md").read_text(encoding="utf-8")
+
+
+# ---------------------------------------------------------------- walk 3: a walking-beam pump of our own
+PUMP = Path(__file__).resolve().parents[1] / "data" / "scenes" / "beam_pump.toml"
+
+
+def _pump_scene(tmp_path: Path, methods: str) -> Path:
+    """The pump's scene with the [study]'s methods replaced and no [study.life] (its minutes of
+    worn cycles are not what these tests look at)."""
+    text = PUMP.read_text(encoding="utf-8")
+    text = re.sub(r"^methods = \[[^]]*\]", f"methods = {methods}", text[: text.index("\n[study.life]")], count=1, flags=re.M)
+    path = tmp_path / "pump.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_a_reliability_method_that_stops_keeps_what_the_others_found(tmp_path, capsys, monkeypatch):
+    """``clearsim reliability`` with methods monte_carlo, form, fosm where FORM finds no design
+    point (as on the pump's noisy plunger error, after 2 min): the Monte Carlo rows are written,
+    report.md names the method that stopped and the ones it left unrun, and the command exits
+    with the error. Before: the ReliabilityError escaped run_study, and report.md said
+    "Written before it stopped: nothing"."""
+    import csv
+
+    from clearsim.cli import main
+    from clearsim.errors import ReliabilityError
+
+    def no_design_point(self, *args, **kwargs):
+        raise ReliabilityError("FORM did not converge: no design point after 50 iterations")
+
+    monkeypatch.setattr(Study, "form", no_design_point)
+    scene = _pump_scene(tmp_path, '["monte_carlo", "form", "fosm"]')
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q", "--samples", "2", "--no-plots"]) != 0
+    assert "no design point" in capsys.readouterr().err
+    assert {r["method"] for r in csv.DictReader((out / "reliability.csv").open(encoding="utf-8"))} == {"monte_carlo"}
+    assert (out / "samples.csv").exists()
+    report = (out / "report.md").read_text(encoding="utf-8")
+    assert "Stopped at form: FORM did not converge" in report and "Not run: fosm." in report and "| monte_carlo |" in report
+
