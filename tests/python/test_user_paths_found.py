@@ -309,3 +309,17 @@ def test_a_reliability_method_that_stops_keeps_what_the_others_found(tmp_path, c
     report = (out / "report.md").read_text(encoding="utf-8")
     assert "Stopped at form: FORM did not converge" in report and "Not run: fosm." in report and "| monte_carlo |" in report
 
+
+def test_fosm_all_by_default_takes_the_outputs_fosm_applies_to():
+    """``Study.fosm_all()`` on a series system of an error and a film thickness (a lower limit)
+    analyses the error, bit for bit as ``fosm_all(outputs=[0])``; it analysed "every output" and
+    so raised ``invalid output = 1`` for an output the user never named."""
+    m_study = Study(lambda c: models.slider_crank("lubricated", clearance=c), {"c": Normal(0.5e-3, 0.01e-3)},
+                    [Output(body="slider", component="x", quantity="displacement"), Output(joint="rod-slider", quantity="film_thickness")],
+                    [1e-4, clearsim.reliability.Limit.below(1e-6)], cycles=0.25, progress=False)  # fmt: skip
+    (res,) = m_study.fosm_all()
+    (named,) = m_study.fosm_all(outputs=[0])
+    np.testing.assert_array_equal(res.reliability, named.reliability)
+    with pytest.raises(clearsim.InputError, match="lower limit"):
+        m_study.fosm_all(outputs=[1])
+

@@ -506,13 +506,14 @@ class Study(ReliabilityModel, Modes):
     def fosm_all(
         self, bin_width: Optional[float] = None, outputs: Optional[Sequence[int]] = None, allowable: Optional[Sequence[Optional[Tuple[float, float]]]] = None
     ) -> List[FosmResult]:  # fmt: skip
-        """:meth:`fosm` of several outputs (``outputs``: their numbers, default every output)
-        from one monitored run of the nominal mechanism, each output against its own allowable
-        range (``allowable[i]`` for ``outputs[i]``: ``(Δv, Δu)`` in its unit, ``None`` for
-        ``(0, limit)``). The monitors do not steer the integrator, so each result is bit for bit
+        """:meth:`fosm` of several outputs (``outputs``: their numbers, default every output FOSM
+        applies to: one with an upper limit, not a film thickness) from one monitored run of the
+        nominal mechanism, each output against its own allowable range (``allowable[i]`` for
+        ``outputs[i]``: ``(Δv, Δu)`` in its unit, ``None`` for ``(0, limit)``). The monitors do not steer the integrator, so each result is bit for bit
         the one :meth:`fosm` gives for that output alone."""
         width = check_positive("bin_width", bin_width) if bin_width is not None else self.bin_width
-        chosen = list(range(len(self.outputs))) if outputs is None else list(outputs)
+        fits = [i for i, (o, lim) in enumerate(zip(self.outputs, self.limits)) if lim.side == "above" and o.quantity != "film_thickness"]
+        chosen = (fits or [0]) if outputs is None else list(outputs)  # none fits: output 0's error below says why
         ranges: List[Optional[Tuple[float, float]]] = [None] * len(chosen) if allowable is None else list(allowable)
         if not chosen:
             raise InputError(f"invalid outputs = {outputs!r}: give the number of at least one output", field="outputs", value=outputs)
