@@ -323,3 +323,17 @@ def test_fosm_all_by_default_takes_the_outputs_fosm_applies_to():
     with pytest.raises(clearsim.InputError, match="lower limit"):
         m_study.fosm_all(outputs=[1])
 
+
+def test_a_bad_lubricated_field_in_a_scene_names_its_joint(tmp_path):
+    """A negative viscosity (or a restitution above 1) in ``[clearance_joint.lubricated]`` /
+    ``[clearance_joint.dry]`` names the joint, the field and the value, as ``with_values`` does.
+    Before: ``invalid viscosity = -0.2: must be positive`` (which of the joints?)."""
+    text = PUMP.read_text(encoding="utf-8")
+    for old, new, said in (("viscosity = 0.2 ", "viscosity = -0.2 ", "invalid clearance joint 'A'.viscosity = -0.2: must be positive"),
+                           ("restitution = 0.8", "restitution = 1.8", "invalid clearance joint 'O4'.restitution = 1.8")):  # fmt: skip
+        path = tmp_path / "bad.toml"
+        path.write_text(text.replace(old, new, 1), encoding="utf-8")
+        with pytest.raises(clearsim.InputError) as info:
+            clearsim.load_scene(path)
+        assert said in str(info.value) and str(info.value).startswith(f"{path}:")
+
