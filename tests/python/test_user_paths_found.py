@@ -337,3 +337,12 @@ def test_a_bad_lubricated_field_in_a_scene_names_its_joint(tmp_path):
             clearsim.load_scene(path)
         assert said in str(info.value) and str(info.value).startswith(f"{path}:")
 
+
+def test_the_old_paper_runs_module_keeps_its_public_names():
+    """``clearsim.study.paper_runs`` (deprecated) still has every public name it had before the
+    paper study moved to clearsim.paper. Before: ``CSV_UNIT`` was gone (ImportError)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        from clearsim.study.paper_runs import CSV_UNIT
+    assert CSV_UNIT["acceleration"] == "m_per_s2"
+
