@@ -347,6 +347,20 @@ def test_the_old_paper_runs_module_keeps_its_public_names():
     assert CSV_UNIT["acceleration"] == "m_per_s2"
 
 
+def test_journal_orbits_given_a_result_say_what_they_take():
+    """``plots.plot_journal_orbits(res, c)`` (a Result where ``{label: (e_x, e_y)}`` belongs) and a
+    clearance mapping without an orbit's label are InputErrors saying what to give. Before:
+    ``TypeError: 'Result' object is not iterable`` and ``KeyError: 'pin'``."""
+    from clearsim import plots
+
+    res = models.slider_crank("dry").simulate(0.001, dt_out=1e-4, progress=False)
+    with pytest.raises(clearsim.InputError, match=r"invalid orbits = Result: must be a mapping .*res.eccentricity"):
+        plots.plot_journal_orbits(res, 0.5e-3)
+    with pytest.raises(clearsim.InputError, match="invalid clearance: no value for 'pin'"):
+        plots.plot_journal_orbits({"pin": res.eccentricity("rod-slider").T}, {"rod-slider": 0.5e-3})
+    assert plots.plot_journal_orbits({"pin": res.eccentricity("rod-slider").T}, {"pin": 0.5e-3}).axes
+
+
 def test_the_pump_runs_studies_and_animates_from_the_cli(tmp_path, capsys):
     """The walking-beam pump (a Watt-type six-bar with a plunger; a lubricated short-bearing crank
     pin and a dry, worn saddle bearing) through ``clearsim run`` over its first turn and a bit
