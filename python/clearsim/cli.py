@@ -34,10 +34,10 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tupl
 import numpy as np
 
 from . import __version__, models
-from .csvfile import write_columns, write_rows
+from .csvfile import column_name, write_columns, write_rows
 from .errors import ClearsimError
 from .joint_readings import summary_markdown
-from .schema import INTEGRATORS
+from .schema import INTEGRATORS, body_unit
 from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
 
 #: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
@@ -370,7 +370,8 @@ def write_run(
         if scene.outputs.joints:
             step("joints.csv", lambda: write_csv(out_dir / "joints.csv", result.t, _joint_columns(run)))
         for quantity, fosm in run.reliability.items():
-            step(f"reliability_{quantity}.csv", lambda: _fosm_csv(out_dir / f"reliability_{quantity}.csv", fosm))
+            unit = body_unit(quantity, scene.reliability.component) if scene.reliability is not None else None
+            step(f"reliability_{quantity}.csv", lambda: _fosm_csv(out_dir / f"reliability_{quantity}.csv", fosm, unit))
     if plots and scene.outputs.plots:
         _figures(run, out_dir, step)
     for what, write in extra:
@@ -395,9 +396,18 @@ def _errors_csv(run: SceneRun, out_dir: Path) -> List[Path]:
     return [write_csv(out_dir / "errors.csv", run.result.t, errors)] if errors else []
 
 
-def _fosm_csv(path: Path, fosm: Any) -> Path:
+#: ``reliability_<quantity>.csv``'s header for :meth:`FosmResult.to_rows`'s keys: ``name [unit]``,
+#: "" for none, ``None`` for the error's own (the statistics of |error|; as the paper's CSV files).
+FOSM_COLUMNS: Dict[str, Tuple[str, Optional[str]]] = {
+    "cycle": ("cycle", ""), "angle_deg": ("bin_start", "deg"), "centre_deg": ("bin_centre", "deg"), "count": ("samples", ""),
+    "mu_s": ("mu_s", None), "sigma_s": ("sigma_s", None), "mu_S": ("mu_S", None), "sigma_S": ("sigma_S", None), "beta": ("beta", ""), "reliability": ("reliability", ""),
+}  # fmt: skip
+
+
+def _fosm_csv(path: Path, fosm: Any, unit: Optional[str]) -> Path:
     rows = fosm.to_rows()
-    return write_rows(path, list(rows[0]), [list(r.values()) for r in rows])
+    header = [column_name(name, unit if u is None else (u or None)) for name, u in (FOSM_COLUMNS[k] for k in rows[0])]
+    return write_rows(path, header, [list(r.values()) for r in rows])
 
 
 # ====================================================================== commands

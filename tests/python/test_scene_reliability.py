@@ -291,7 +291,8 @@ def test_clearsim_reliability_runs_the_alias(tmp_path, capsys):
         rows = list(csv.reader((tmp_path / "run" / f"reliability_{q}.csv").open(encoding="utf-8")))
         by_run = {name: np.array([float(r[k]) for r in rows[1:]]) for k, name in enumerate(rows[0])}
         table = written[f"slider.x.{q}"]  # bin_start_deg, mu_s, sigma_s, beta, reliability: full precision
-        for k, name in enumerate(("angle_deg", "mu_s", "sigma_s", "beta", "reliability")):
+        unit = {"displacement": "m", "velocity": "m/s", "acceleration": "m/s^2"}[q]
+        for k, name in enumerate(("bin_start [deg]", f"mu_s [{unit}]", f"sigma_s [{unit}]", "beta", "reliability")):
             np.testing.assert_array_equal(table[:, k], by_run[name], err_msg=f"{q} {name}")
         assert table[:, 4].min() == summary[q]["reliability"]
     report = (out / "report.md").read_text()

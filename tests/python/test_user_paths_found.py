@@ -385,7 +385,10 @@ def test_the_pump_runs_studies_and_animates_from_the_cli(tmp_path, capsys):
         printed[dt_out] = re.findall(r"FOSM \w+: min R = .*", capsys.readouterr().out)
     assert len(printed["1e-3"]) == 3 and printed["1e-3"] == printed["4e-3"]
     out = tmp_path / "run_1e-3"
-    assert Image.open(out / "run.gif").n_frames == 50
+    with Image.open(out / "run.gif") as gif:
+        assert gif.n_frames == 50
+    head, _ = _csv(out / "reliability_acceleration.csv")  # name [unit], as every clearsim CSV file (was angle_deg, mu_s, ...)
+    assert head == ["cycle", "bin_start [deg]", "bin_centre [deg]", "samples", "mu_s [m/s^2]", "sigma_s [m/s^2]", "mu_S [m/s^2]", "sigma_S [m/s^2]", "beta", "reliability"]
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     assert summary["run"]["failure"] is None and 0 < summary["run"]["bearings"]["A"]["min_film_thickness"] < 30e-6
     head, data = _csv(out / "joints.csv")
