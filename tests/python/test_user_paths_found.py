@@ -347,6 +347,24 @@ def test_the_old_paper_runs_module_keeps_its_public_names():
     assert CSV_UNIT["acceleration"] == "m_per_s2"
 
 
+def test_fosm_of_a_film_only_study_is_refused_before_anything_runs(tmp_path, capsys):
+    """A [study] whose only output is a film thickness (a lower limit) with methods = ["form",
+    "fosm"]: an InputError naming methods before any run. Before: FORM ran (12 s), then FOSM
+    stopped with ``invalid output = 0``."""
+    from clearsim.cli import EXIT_ERROR, main
+
+    text = _pump_scene(tmp_path, '["form", "fosm"]').read_text(encoding="utf-8")
+    start = text.index('[[study.output]]\nbody = "plunger"')
+    text = text[:start] + text[text.index("[[study.output]]", start + 1) :]
+    scene = tmp_path / "film.toml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q"]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert "invalid methods = ['form', 'fosm']: fosm compares an error" in err and len(err.strip().splitlines()) == 1
+    assert not (out / "reliability.csv").exists()
+
+
 def test_journal_orbits_given_a_result_say_what_they_take():
     """``plots.plot_journal_orbits(res, c)`` (a Result where ``{label: (e_x, e_y)}`` belongs) and a
     clearance mapping without an orbit's label are InputErrors saying what to give. Before:

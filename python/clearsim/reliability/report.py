@@ -157,6 +157,9 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     if not settings.inputs and set(chosen) != {"fosm"}:
         raise InputError(f"invalid methods = {chosen!r}: {scene.path or 'the scene'} has only [reliability] (the FOSM of the nominal mechanism, no random inputs): "
                          "give a [study] with [[study.input]] for the other methods", field="methods", value=chosen)  # fmt: skip
+    if "fosm" in chosen and not any(lim.side == "above" and o.quantity != "film_thickness" for o, lim in zip(study.outputs, study.limits)):
+        raise InputError(f"invalid methods = {chosen!r}: fosm compares an error with an allowable range [0, limit], and no output of {scene.path or 'the scene'} has an upper limit "
+                         "(a film thickness's is a lower one): drop fosm", field="methods", value=chosen)  # fmt: skip
     r = Run(study, settings, int(samples or settings.samples), echo)
     out_dir.mkdir(parents=True, exist_ok=True)
     echo(f"{scene.name}: {study}")
