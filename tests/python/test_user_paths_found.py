@@ -324,6 +324,16 @@ def test_fosm_all_by_default_takes_the_outputs_fosm_applies_to():
         m_study.fosm_all(outputs=[1])
 
 
+def test_a_study_whose_build_does_not_take_an_input_says_so():
+    """``Study(lambda cA: ..., {"cB": ...})`` (an input renamed in one place) is an InputError
+    naming the inputs and build's parameters when the study is made. Before: ``TypeError:
+    <lambda>() got an unexpected keyword argument 'cB'`` from building the nominal mechanism."""
+    with pytest.raises(clearsim.InputError, match=r"invalid inputs = \['cB'\]: build\(cA\) does not take them by name"):
+        Study(lambda cA: _dry(cA), {"cB": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
+    study = Study(lambda cA, **rest: _dry(cA), {"cA": Normal(0.5e-3, 0.01e-3), "speed": 1.0}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
+    assert study.omega == pytest.approx(OMEGA)
+
+
 def test_a_bad_lubricated_field_in_a_scene_names_its_joint(tmp_path):
     """A negative viscosity (or a restitution above 1) in ``[clearance_joint.lubricated]`` /
     ``[clearance_joint.dry]`` names the joint, the field and the value, as ``with_values`` does.

@@ -17,6 +17,7 @@ sampling, subset simulation, Sobol indices, tolerance design) runs the model thr
 
 from __future__ import annotations
 
+import inspect
 import math
 import time
 from collections import OrderedDict
@@ -164,6 +165,19 @@ def _driver_speed(m: Any) -> float:
     return next(iter(speeds.values()))
 
 
+def _check_takes(build: Callable[..., Any], names: Sequence[str]) -> None:
+    """``build(**inputs)`` must take every input by name: a mismatch (an input renamed in one
+    place) is an InputError here, not a TypeError from the first run."""
+    try:
+        signature = inspect.signature(build)
+    except (TypeError, ValueError):  # no signature to read (a builtin): the first call will say
+        return
+    try:
+        signature.bind(**{n: None for n in names})
+    except TypeError as err:
+        raise InputError(f"invalid inputs = {list(names)!r}: build{signature} does not take them by name ({err})", field="inputs", value=list(names)) from None
+
+
 class Study(ReliabilityModel, Modes):
     """Reliability of one or several outputs of a mechanism with random inputs.
 
@@ -229,6 +243,7 @@ class Study(ReliabilityModel, Modes):
             raise InputError("missing inputs: give at least one {name: distribution or number}", field="inputs", value=inputs)
         self.build = build
         self._set_inputs(inputs)
+        _check_takes(build, list(self.nominal()))
         if omega is None:
             omega = _driver_speed(build(**self.nominal()))
         if isinstance(omega, str) and omega not in self.inputs:
