@@ -334,6 +334,18 @@ def test_a_study_whose_build_does_not_take_an_input_says_so():
     assert study.omega == pytest.approx(OMEGA)
 
 
+def test_monte_carlo_without_omega_takes_the_driver_speed_as_study_does():
+    """``clearsim.monte_carlo`` without ``omega`` (and no input named omega) takes the nominal
+    mechanism's constant-speed driver's, as ``Study`` does: the same bins as ``omega=OMEGA``.
+    Before: ``invalid omega = 'omega': not a sampled input`` for an omega never given."""
+    kwargs = dict(body="slider", component="x", allowable={"displacement": (0.0, 1e-3)}, cycles=0.25, progress=False)
+    mc = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, **kwargs)
+    given = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, omega=OMEGA, **kwargs)
+    np.testing.assert_array_equal(mc.bins["displacement"].reliability, given.bins["displacement"].reliability)
+    for q in mc.peaks:
+        np.testing.assert_array_equal(mc.peaks[q], given.peaks[q])
+
+
 def test_a_bad_lubricated_field_in_a_scene_names_its_joint(tmp_path):
     """A negative viscosity (or a restitution above 1) in ``[clearance_joint.lubricated]`` /
     ``[clearance_joint.dry]`` names the joint, the field and the value, as ``with_values`` does.
