@@ -326,10 +326,15 @@ def test_fosm_all_by_default_takes_the_outputs_fosm_applies_to():
 
 def test_a_study_whose_build_does_not_take_an_input_says_so():
     """``Study(lambda cA: ..., {"cB": ...})`` (an input renamed in one place) is an InputError
-    naming the inputs and build's parameters when the study is made. Before: ``TypeError:
-    <lambda>() got an unexpected keyword argument 'cB'`` from building the nominal mechanism."""
+    naming the inputs and build's parameters when the study is made, and a build that returns
+    something else than a Mechanism one naming what it returned. Before: ``TypeError: <lambda>()
+    got an unexpected keyword argument 'cB'``; ``AttributeError: 'tuple' object has no attribute
+    'description'`` (or ``'check_assembly'``)."""
     with pytest.raises(clearsim.InputError, match=r"invalid inputs = \['cB'\]: build\(cA\) does not take them by name"):
         Study(lambda cA: _dry(cA), {"cB": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
+    for omega in (None, OMEGA):  # the nominal mechanism read at once, or first built by a method
+        with pytest.raises(clearsim.InputError, match=r"invalid build: it returned a tuple, not a clearsim.Mechanism"):
+            Study(lambda cA: (_dry(cA),), {"cA": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3, omega=omega, progress=False).fosm()
     study = Study(lambda cA, **rest: _dry(cA), {"cA": Normal(0.5e-3, 0.01e-3), "speed": 1.0}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
     assert study.omega == pytest.approx(OMEGA)
 

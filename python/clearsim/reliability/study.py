@@ -245,7 +245,7 @@ class Study(ReliabilityModel, Modes):
         self._set_inputs(inputs)
         _check_takes(build, list(self.nominal()))
         if omega is None:
-            omega = _driver_speed(build(**self.nominal()))
+            omega = _driver_speed(self.built(self.nominal()))
         if isinstance(omega, str) and omega not in self.inputs:
             raise InputError(f"invalid omega = {omega!r}: not an input; give the drive speed [rad/s] or an input's name", field="omega", value=omega)
         if not isinstance(omega, str) and (check_finite("omega", omega) == 0.0):
@@ -301,6 +301,13 @@ class Study(ReliabilityModel, Modes):
         if output.joint not in names:
             raise InputError(f"invalid Output.joint = {output.joint!r}: no such clearance joint (known: {', '.join(names) or 'none'})", field="Output.joint", value=output.joint)
         return names.index(output.joint)
+
+    def built(self, params: Mapping[str, float]) -> Any:
+        """``build(**params)``, which must be a Mechanism (an InputError naming what it was)."""
+        m = self.build(**params)
+        if not hasattr(m, "run_settings"):  # duck-typed: reliability sits above the mechanism
+            raise InputError(f"invalid build: it returned a {type(m).__name__}, not a clearsim.Mechanism (inputs {dict(params)})", field="build", value=type(m).__name__)
+        return m
 
     def _check_first_assembly(self, m: Any, t0: float) -> None:
         """The pose check of ``Mechanism.simulate`` (a joint point in the wrong frame is an
@@ -416,7 +423,7 @@ class Study(ReliabilityModel, Modes):
         need_reference = any(o.body is not None for o in self.outputs)
         for k in range(start, stop):
             params = {name: float(v[k]) for name, v in points.items()}
-            m = self.build(**params)
+            m = self.built(params)
             t0, t1, period = self._window(params)
             if check_assembly:
                 self._check_first_assembly(m, t0)  # the pose at t = 0, then the drivers followed to the window's start
