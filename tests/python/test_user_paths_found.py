@@ -5,6 +5,7 @@ own, docs/examples.md): each is a focused test here, and its cell in the user-pa
 from __future__ import annotations
 
 import math
+import re
 import warnings
 from pathlib import Path
 
@@ -268,3 +269,180 @@ def test_walked_scenes_run_and_study_from_the_cli(tmp_path, scene, t_end, joint,
     head, samples = _csv(rel / "samples.csv")
     assert samples.shape[0] == 2 and np.all(np.isfinite(samples[:, head.index("A.film_thickness [m]")]))
     assert "| monte_carlo | system |" in (rel / "report.md").read_text(encoding="utf-8")
+
+
+# ---------------------------------------------------------------- walk 3: a walking-beam pump of our own
+PUMP = Path(__file__).resolve().parents[1] / "data" / "scenes" / "beam_pump.toml"
+
+
+def _pump_scene(tmp_path: Path, methods: str) -> Path:
+    """The pump's scene with the [study]'s methods replaced and no [study.life] (its minutes of
+    worn cycles are not what these tests look at)."""
+    text = PUMP.read_text(encoding="utf-8")
+    text = re.sub(r"^methods = \[[^]]*\]", f"methods = {methods}", text[: text.index("\n[study.life]")], count=1, flags=re.M)
+    path = tmp_path / "pump.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_a_reliability_method_that_stops_keeps_what_the_others_found(tmp_path, capsys, monkeypatch):
+    """``clearsim reliability`` with methods monte_carlo, form, fosm where FORM finds no design
+    point (as on the pump's noisy plunger error, after 2 min): the Monte Carlo rows are written,
+    report.md names the method that stopped and the ones it left unrun, and the command exits
+    with the error. Before: the ReliabilityError escaped run_study, and report.md said
+    "Written before it stopped: nothing"."""
+    import csv
+
+    from clearsim.cli import main
+    from clearsim.errors import ReliabilityError
+
+    def no_design_point(self, *args, **kwargs):
+        raise ReliabilityError("FORM did not converge: no design point after 50 iterations")
+
+    monkeypatch.setattr(Study, "form", no_design_point)
+    scene = _pump_scene(tmp_path, '["monte_carlo", "form", "fosm"]')
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q", "--samples", "2", "--no-plots"]) != 0
+    assert "no design point" in capsys.readouterr().err
+    assert {r["method"] for r in csv.DictReader((out / "reliability.csv").open(encoding="utf-8"))} == {"monte_carlo"}
+    assert (out / "samples.csv").exists()
+    report = (out / "report.md").read_text(encoding="utf-8")
+    assert "Stopped at form: FORM did not converge" in report and "Not run: fosm." in report and "| monte_carlo |" in report
+
+
+def test_fosm_all_by_default_takes_the_outputs_fosm_applies_to():
+    """``Study.fosm_all()`` on a series system of an error and a film thickness (a lower limit)
+    analyses the error, bit for bit as ``fosm_all(outputs=[0])``; it analysed "every output" and
+    so raised ``invalid output = 1`` for an output the user never named."""
+    m_study = Study(lambda c: models.slider_crank("lubricated", clearance=c), {"c": Normal(0.5e-3, 0.01e-3)},
+                    [Output(body="slider", component="x", quantity="displacement"), Output(joint="rod-slider", quantity="film_thickness")],
+                    [1e-4, clearsim.reliability.Limit.below(1e-6)], cycles=0.25, progress=False)  # fmt: skip
+    (res,) = m_study.fosm_all()
+    (named,) = m_study.fosm_all(outputs=[0])
+    np.testing.assert_array_equal(res.reliability, named.reliability)
+    with pytest.raises(clearsim.InputError, match="lower limit"):
+        m_study.fosm_all(outputs=[1])
+
+
+def test_a_study_whose_build_does_not_take_an_input_says_so():
+    """``Study(lambda cA: ..., {"cB": ...})`` (an input renamed in one place) is an InputError
+    naming the inputs and build's parameters when the study is made, and a build that returns
+    something else than a Mechanism one naming what it returned. Before: ``TypeError: <lambda>()
+    got an unexpected keyword argument 'cB'``; ``AttributeError: 'tuple' object has no attribute
+    'description'`` (or ``'check_assembly'``)."""
+    with pytest.raises(clearsim.InputError, match=r"invalid inputs = \['cB'\]: build\(cA\) does not take them by name"):
+        Study(lambda cA: _dry(cA), {"cB": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
+    for omega in (None, OMEGA):  # the nominal mechanism read at once, or first built by a method
+        with pytest.raises(clearsim.InputError, match=r"invalid build: it returned a tuple, not a clearsim.Mechanism"):
+            Study(lambda cA: (_dry(cA),), {"cA": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3, omega=omega, progress=False).fosm()
+    study = Study(lambda cA, **rest: _dry(cA), {"cA": Normal(0.5e-3, 0.01e-3), "speed": 1.0}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
+    assert study.omega == pytest.approx(OMEGA)
+
+
+def test_monte_carlo_without_omega_takes_the_driver_speed_as_study_does():
+    """``clearsim.monte_carlo`` without ``omega`` (and no input named omega) takes the nominal
+    mechanism's constant-speed driver's, as ``Study`` does: the same bins as ``omega=OMEGA``.
+    Before: ``invalid omega = 'omega': not a sampled input`` for an omega never given."""
+    kwargs = dict(body="slider", component="x", allowable={"displacement": (0.0, 1e-3)}, cycles=0.25, progress=False)
+    mc = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, **kwargs)
+    given = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, omega=OMEGA, **kwargs)
+    np.testing.assert_array_equal(mc.bins["displacement"].reliability, given.bins["displacement"].reliability)
+    for q in mc.peaks:
+        np.testing.assert_array_equal(mc.peaks[q], given.peaks[q])
+
+
+def test_a_bad_lubricated_field_in_a_scene_names_its_joint(tmp_path):
+    """A negative viscosity (or a restitution above 1) in ``[clearance_joint.lubricated]`` /
+    ``[clearance_joint.dry]`` names the joint, the field and the value, as ``with_values`` does.
+    Before: ``invalid viscosity = -0.2: must be positive`` (which of the joints?)."""
+    text = PUMP.read_text(encoding="utf-8")
+    for old, new, said in (("viscosity = 0.2 ", "viscosity = -0.2 ", "invalid clearance joint 'A'.viscosity = -0.2: must be positive"),
+                           ("restitution = 0.8", "restitution = 1.8", "invalid clearance joint 'O4'.restitution = 1.8")):  # fmt: skip
+        path = tmp_path / "bad.toml"
+        path.write_text(text.replace(old, new, 1), encoding="utf-8")
+        with pytest.raises(clearsim.InputError) as info:
+            clearsim.load_scene(path)
+        assert said in str(info.value) and str(info.value).startswith(f"{path}:")
+
+
+def test_the_old_paper_runs_module_keeps_its_public_names():
+    """``clearsim.study.paper_runs`` (deprecated) still has every public name it had before the
+    paper study moved to clearsim.paper. Before: ``CSV_UNIT`` was gone (ImportError)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        from clearsim.study.paper_runs import CSV_UNIT
+    assert CSV_UNIT["acceleration"] == "m_per_s2"
+
+
+def test_fosm_of_a_film_only_study_is_refused_before_anything_runs(tmp_path, capsys):
+    """A [study] whose only output is a film thickness (a lower limit) with methods = ["form",
+    "fosm"]: an InputError naming methods before any run. Before: FORM ran (12 s), then FOSM
+    stopped with ``invalid output = 0``."""
+    from clearsim.cli import EXIT_ERROR, main
+
+    text = _pump_scene(tmp_path, '["form", "fosm"]').read_text(encoding="utf-8")
+    start = text.index('[[study.output]]\nbody = "plunger"')
+    text = text[:start] + text[text.index("[[study.output]]", start + 1) :]
+    scene = tmp_path / "film.toml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q"]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert "invalid methods = ['form', 'fosm']: fosm compares an error" in err and len(err.strip().splitlines()) == 1
+    assert not (out / "reliability.csv").exists()
+
+
+def test_journal_orbits_given_a_result_say_what_they_take():
+    """``plots.plot_journal_orbits(res, c)`` (a Result where ``{label: (e_x, e_y)}`` belongs) and a
+    clearance mapping without an orbit's label are InputErrors saying what to give. Before:
+    ``TypeError: 'Result' object is not iterable`` and ``KeyError: 'pin'``."""
+    from clearsim import plots
+
+    res = models.slider_crank("dry").simulate(0.001, dt_out=1e-4, progress=False)
+    with pytest.raises(clearsim.InputError, match=r"invalid orbits = Result: must be a mapping .*res.eccentricity"):
+        plots.plot_journal_orbits(res, 0.5e-3)
+    with pytest.raises(clearsim.InputError, match="invalid clearance: no value for 'pin'"):
+        plots.plot_journal_orbits({"pin": res.eccentricity("rod-slider").T}, {"rod-slider": 0.5e-3})
+    assert plots.plot_journal_orbits({"pin": res.eccentricity("rod-slider").T}, {"pin": 0.5e-3}).axes
+
+
+def test_the_pump_runs_studies_and_animates_from_the_cli(tmp_path, capsys):
+    """The walking-beam pump (a Watt-type six-bar with a plunger; a lubricated short-bearing crank
+    pin and a dry, worn saddle bearing) through ``clearsim run`` over its first turn and a bit
+    with ``--animate`` (a turn is 24 frames: the 50-frame floor) and ``clearsim reliability``
+    (2 Monte Carlo samples and FOSM of its [study], skip_cycles = 1). The film thickness in
+    joints.csv is c − |e|; [reliability]'s FOSM printed by ``run`` does not change with dt_out."""
+    import json
+    import re
+
+    from PIL import Image
+
+    from clearsim.cli import main
+
+    scene = _pump_scene(tmp_path, '["monte_carlo", "fosm"]')
+    printed = {}
+    for dt_out in ("1e-3", "4e-3"):
+        path = tmp_path / f"pump_{dt_out}.toml"
+        path.write_text(scene.read_text(encoding="utf-8").replace("dt_out = 1e-3 ", f"dt_out = {dt_out} "), encoding="utf-8")
+        out = tmp_path / f"run_{dt_out}"
+        args = ["run", str(path), "-o", str(out), "--no-plots"] + (["--animate", str(out / "run.gif")] if dt_out == "1e-3" else [])
+        assert main(args) == 0
+        printed[dt_out] = re.findall(r"FOSM \w+: min R = .*", capsys.readouterr().out)
+    assert len(printed["1e-3"]) == 3 and printed["1e-3"] == printed["4e-3"]
+    out = tmp_path / "run_1e-3"
+    with Image.open(out / "run.gif") as gif:
+        assert gif.n_frames == 50
+    head, _ = _csv(out / "reliability_acceleration.csv")  # name [unit], as every clearsim CSV file (was angle_deg, mu_s, ...)
+    assert head == ["cycle", "bin_start [deg]", "bin_centre [deg]", "samples", "mu_s [m/s^2]", "sigma_s [m/s^2]", "mu_S [m/s^2]", "sigma_S [m/s^2]", "beta", "reliability"]
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert summary["run"]["failure"] is None and 0 < summary["run"]["bearings"]["A"]["min_film_thickness"] < 30e-6
+    head, data = _csv(out / "joints.csv")
+    col = {h: k for k, h in enumerate(head)}
+    e = np.hypot(data[:, col["A.ex [m]"]], data[:, col["A.ey [m]"]])
+    assert np.allclose(data[:, col["A.film_thickness [m]"]], 30e-6 - e, rtol=0.0, atol=1e-15)
+    rel = tmp_path / "rel"
+    assert main(["reliability", str(scene), "-o", str(rel), "-q", "--samples", "2", "--no-plots"]) == 0
+    head, samples = _csv(rel / "samples.csv")
+    assert samples.shape[0] == 2 and np.all(np.isfinite(samples[:, head.index("A.film_thickness [m]")]))
+    report = (rel / "report.md").read_text(encoding="utf-8")
+    assert "| monte_carlo | system |" in report and "FOSM `plunger.y.displacement`" in report

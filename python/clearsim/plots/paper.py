@@ -116,9 +116,15 @@ def plot_journal_orbits(
     ncols:
         Panels per row (default: 2, or 1 for a single orbit).
     """
+    if not isinstance(orbits, Mapping):
+        raise InputError(f"invalid orbits = {type(orbits).__name__}: must be a mapping {{panel label: (e_x, e_y)}} [m], e.g. {{'A': res.eccentricity('A').T}}",
+                         field="orbits", value=type(orbits).__name__)  # fmt: skip
     if not orbits:
         raise InputError("invalid orbits: no orbit to plot", field="orbits", value=orbits)
     labels = list(orbits)
+    missing = [k for k in labels if isinstance(clearance, Mapping) and k not in clearance]
+    if missing:
+        raise InputError(f"invalid clearance: no value for {', '.join(map(repr, missing))} (one per orbit, or one number) [m]", field="clearance", value=missing)
     n = len(labels)
     ncols = ncols or (1 if n == 1 else 2)
     nrows = int(math.ceil(n / ncols))

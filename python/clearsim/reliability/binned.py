@@ -142,7 +142,7 @@ def monte_carlo(
     distributions: Mapping[str, Union[Distribution, float]],
     n: int,
     *,
-    omega: Union[str, float] = "omega",
+    omega: Union[str, float, None] = None,
     cycles: float = 1.0,
     skip_cycles: float = 0.0,
     body: Optional[str] = None,
@@ -177,7 +177,8 @@ def monte_carlo(
         Number of samples.
     omega:
         The drive speed [rad/s] that defines the crank angle: the name of a sampled input, or a
-        number. Each sample runs ``skip_cycles + cycles`` crank turns; the first ``skip_cycles``
+        number; by default the input named ``omega`` if there is one, else the nominal
+        mechanism's constant-speed driver's (as :class:`~clearsim.reliability.Study`). Each sample runs ``skip_cycles + cycles`` crank turns; the first ``skip_cycles``
         (start-up transient) are not analysed.
     body, component:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
@@ -241,11 +242,10 @@ def monte_carlo(
             raise InputError(f"invalid allowable[{q!r}] = {pair!r}: give (lower, upper) with lower < upper [{unit}]", field=f"allowable.{q}", value=pair)
         limits[q] = (lo, hi)
     inputs = sample_inputs(distributions, n, seed)
+    if omega is None and "omega" in inputs:  # the old default: the input named omega
+        omega = "omega"
     if isinstance(omega, str) and omega not in inputs:
         raise InputError(f"invalid omega = {omega!r}: not a sampled input; give the drive speed [rad/s]", field="omega", value=omega)
-    omegas = np.asarray(inputs[omega], dtype=float) if isinstance(omega, str) else np.full(n, float(omega))
-    if np.any(omegas == 0) or not np.all(np.isfinite(omegas)):
-        raise InputError("invalid omega: the drive speed must be finite and non-zero", field="omega", value=omega)
     budget: Dict[str, Any] = {}
     if max_steps is not None:
         budget["max_steps"] = max_steps
@@ -256,6 +256,10 @@ def monte_carlo(
         omega=omega, cycles=cycles, skip_cycles=skip_cycles, bin_width=bin_width, integrator=integrator, rtol=rtol, atol=atol,
         executor=executor, chunk_size=chunk_size, progress=progress, **budget,
     )  # fmt: skip
+    omega = study.omega if omega is None else omega  # None: the nominal constant-speed driver's
+    omegas = np.asarray(inputs[omega], dtype=float) if isinstance(omega, str) else np.full(n, float(omega))
+    if np.any(omegas == 0) or not np.all(np.isfinite(omegas)):
+        raise InputError("invalid omega: the drive speed must be finite and non-zero", field="omega", value=omega)
     outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
     ev, traces = study.run_samples(
         inputs, keep_traces=n, points_per_cycle=points_per_cycle, trace_outputs=outputs, raw_traces=True, keep_monitors=True,

@@ -399,7 +399,7 @@ class StudyBlocks:
             raise InputError(f"invalid settle = {settle!r}: must be a finite number of turns ≥ 0", field="settle", value=settle)
         self.study.skip_cycles = self.settle_cycles
         self.window_cycles = float(study.cycles)
-        m = study.build(**study.nominal())
+        m = study.built(study.nominal())
         entries = _wear_entries(m.description())
         if not entries:
             raise InputError(

@@ -149,29 +149,41 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     """Run the study's methods, write ``reliability.csv`` (one row per method, and per failure
     mode on a series system), ``sobol.csv``, ``samples.csv`` (Monte Carlo: inputs, each output's
     peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
-    ``out_dir``; returns the files. A life (``[study.life]``) that stops with a clearsim error
-    (e.g. more blocks than ``max_blocks``) is named in report.md after the other methods'
-    results are written, then raised."""
+    ``out_dir``; returns the files. A method that stops with a clearsim error (FORM without a
+    design point; a life, ``[study.life]``, over ``max_blocks``) is named in report.md, with the
+    methods it left unrun, after the results found before it are written, then raised."""
     settings = scene.study_settings()
     study = scene.study_model(progress=progress)
     chosen = list(methods or settings.methods)
     if not settings.inputs and set(chosen) != {"fosm"}:
         raise InputError(f"invalid methods = {chosen!r}: {scene.path or 'the scene'} has only [reliability] (the FOSM of the nominal mechanism, no random inputs): "
                          "give a [study] with [[study.input]] for the other methods", field="methods", value=chosen)  # fmt: skip
+    if "fosm" in chosen and not any(lim.side == "above" and o.quantity != "film_thickness" for o, lim in zip(study.outputs, study.limits)):
+        raise InputError(f"invalid methods = {chosen!r}: fosm compares an error with an allowable range [0, limit], and no output of {scene.path or 'the scene'} has an upper limit "
+                         "(a film thickness's is a lower one): drop fosm", field="methods", value=chosen)  # fmt: skip
     r = Run(study, settings, int(samples or settings.samples), echo)
     out_dir.mkdir(parents=True, exist_ok=True)
     echo(f"{scene.name}: {study}")
+    stop: Optional[ClearsimError] = None
     for name, runner in METHOD_RUNNERS.items():
         if name in chosen and not (name == "form" and name in r.found):
-            runner(r)
-    if settings.tolerance is not None:
+            try:
+                runner(r)
+            except ClearsimError as err:  # what the methods before it found is still written, then it is raised
+                stop = err
+                order = list(METHOD_RUNNERS)
+                left = [m for m in order[order.index(name) + 1 :] if m in chosen]
+                left += ["tolerance"] * (settings.tolerance is not None) + ["life"] * (settings.life is not None)
+                r.found["method_error"] = (name, err, left)
+                break
+    if stop is None and settings.tolerance is not None:
         name, rel_target, bracket = settings.tolerance
         r.found["tolerance"] = tol = study.tolerance(name, rel_target, bracket=bracket, cov=settings.cov, seed=settings.seed, step=settings.step)
         echo(f"{'tolerance':20s} largest mean {name} = {tol.value:.6g} (95 % [{tol.interval[0]:.6g}, {tol.interval[1]:.6g}]) for R = {rel_target}  runs = {tol.n_runs}")
     rows, found = r.rows, r.found
     files: List[Path] = []
     life_error: Optional[ClearsimError] = None
-    if settings.life is not None:
+    if settings.life is not None and stop is None:
         try:
             files = _life(r, out_dir, plots)
         except ClearsimError as err:  # the other methods' results are still written, then it is raised
@@ -205,6 +217,8 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     if plots:
         files.append(plot_study(study, found, out_dir / "reliability.png"))
     files.append(_report(scene, study, rows, found, out_dir / "report.md", files))
+    if stop is not None:
+        raise stop
     if life_error is not None:
         raise life_error
     return files
@@ -359,6 +373,9 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
             lines += ["", f"Reliability falls to {study_settings_reliability(scene)} at {at[0]:.4g} cycles (95 % [{at[1][0]:.4g}, {at[1][1]:.4g}])."]
         elif at is not None:
             lines += ["", f"Life at R = {study_settings_reliability(scene)}: {at}"]
+    if "method_error" in found:
+        name, err, left = found["method_error"]
+        lines += ["", f"Stopped at {name}: {err}" + (f" Not run: {', '.join(left)}." if left else "")]
     if "life_error" in found:
         lines += ["", f"Reliability over life: not run to the end: {found['life_error']}"]
     if "fosm" in found:

@@ -17,6 +17,7 @@ sampling, subset simulation, Sobol indices, tolerance design) runs the model thr
 
 from __future__ import annotations
 
+import inspect
 import math
 import time
 from collections import OrderedDict
@@ -164,6 +165,19 @@ def _driver_speed(m: Any) -> float:
     return next(iter(speeds.values()))
 
 
+def _check_takes(build: Callable[..., Any], names: Sequence[str]) -> None:
+    """``build(**inputs)`` must take every input by name: a mismatch (an input renamed in one
+    place) is an InputError here, not a TypeError from the first run."""
+    try:
+        signature = inspect.signature(build)
+    except (TypeError, ValueError):  # no signature to read (a builtin): the first call will say
+        return
+    try:
+        signature.bind(**{n: None for n in names})
+    except TypeError as err:
+        raise InputError(f"invalid inputs = {list(names)!r}: build{signature} does not take them by name ({err})", field="inputs", value=list(names)) from None
+
+
 class Study(ReliabilityModel, Modes):
     """Reliability of one or several outputs of a mechanism with random inputs.
 
@@ -229,8 +243,9 @@ class Study(ReliabilityModel, Modes):
             raise InputError("missing inputs: give at least one {name: distribution or number}", field="inputs", value=inputs)
         self.build = build
         self._set_inputs(inputs)
+        _check_takes(build, list(self.nominal()))
         if omega is None:
-            omega = _driver_speed(build(**self.nominal()))
+            omega = _driver_speed(self.built(self.nominal()))
         if isinstance(omega, str) and omega not in self.inputs:
             raise InputError(f"invalid omega = {omega!r}: not an input; give the drive speed [rad/s] or an input's name", field="omega", value=omega)
         if not isinstance(omega, str) and (check_finite("omega", omega) == 0.0):
@@ -286,6 +301,13 @@ class Study(ReliabilityModel, Modes):
         if output.joint not in names:
             raise InputError(f"invalid Output.joint = {output.joint!r}: no such clearance joint (known: {', '.join(names) or 'none'})", field="Output.joint", value=output.joint)
         return names.index(output.joint)
+
+    def built(self, params: Mapping[str, float]) -> Any:
+        """``build(**params)``, which must be a Mechanism (an InputError naming what it was)."""
+        m = self.build(**params)
+        if not hasattr(m, "run_settings"):  # duck-typed: reliability sits above the mechanism
+            raise InputError(f"invalid build: it returned a {type(m).__name__}, not a clearsim.Mechanism (inputs {dict(params)})", field="build", value=type(m).__name__)
+        return m
 
     def _check_first_assembly(self, m: Any, t0: float) -> None:
         """The pose check of ``Mechanism.simulate`` (a joint point in the wrong frame is an
@@ -401,7 +423,7 @@ class Study(ReliabilityModel, Modes):
         need_reference = any(o.body is not None for o in self.outputs)
         for k in range(start, stop):
             params = {name: float(v[k]) for name, v in points.items()}
-            m = self.build(**params)
+            m = self.built(params)
             t0, t1, period = self._window(params)
             if check_assembly:
                 self._check_first_assembly(m, t0)  # the pose at t = 0, then the drivers followed to the window's start
@@ -506,13 +528,14 @@ class Study(ReliabilityModel, Modes):
     def fosm_all(
         self, bin_width: Optional[float] = None, outputs: Optional[Sequence[int]] = None, allowable: Optional[Sequence[Optional[Tuple[float, float]]]] = None
     ) -> List[FosmResult]:  # fmt: skip
-        """:meth:`fosm` of several outputs (``outputs``: their numbers, default every output)
-        from one monitored run of the nominal mechanism, each output against its own allowable
-        range (``allowable[i]`` for ``outputs[i]``: ``(Δv, Δu)`` in its unit, ``None`` for
-        ``(0, limit)``). The monitors do not steer the integrator, so each result is bit for bit
+        """:meth:`fosm` of several outputs (``outputs``: their numbers, default every output FOSM
+        applies to: one with an upper limit, not a film thickness) from one monitored run of the
+        nominal mechanism, each output against its own allowable range (``allowable[i]`` for
+        ``outputs[i]``: ``(Δv, Δu)`` in its unit, ``None`` for ``(0, limit)``). The monitors do not steer the integrator, so each result is bit for bit
         the one :meth:`fosm` gives for that output alone."""
         width = check_positive("bin_width", bin_width) if bin_width is not None else self.bin_width
-        chosen = list(range(len(self.outputs))) if outputs is None else list(outputs)
+        fits = [i for i, (o, lim) in enumerate(zip(self.outputs, self.limits)) if lim.side == "above" and o.quantity != "film_thickness"]
+        chosen = (fits or [0]) if outputs is None else list(outputs)  # none fits: output 0's error below says why
         ranges: List[Optional[Tuple[float, float]]] = [None] * len(chosen) if allowable is None else list(allowable)
         if not chosen:
             raise InputError(f"invalid outputs = {outputs!r}: give the number of at least one output", field="outputs", value=outputs)

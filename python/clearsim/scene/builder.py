@@ -41,8 +41,16 @@ def _model_fields(cls: type) -> Tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(cls))
 
 
-def _read_model(table: Table, cls: type) -> Any:
-    """A :class:`Dry` or :class:`Lubricated` from a sub-table using the dataclass's field names."""
+def _named(owner: str, err: InputError) -> str:
+    """``err``'s reason with its field named as the element's (``invalid viscosity = -0.2`` →
+    ``invalid clearance joint 'A'.viscosity = -0.2``): the model is built before its joint."""
+    head = f"invalid {err.field} ="
+    return f"invalid {owner}.{err.reason[len('invalid '):]}" if err.field and err.reason.startswith(head) else err.reason
+
+
+def _read_model(table: Table, cls: type, owner: str) -> Any:
+    """A :class:`Dry` or :class:`Lubricated` from a sub-table using the dataclass's field names;
+    ``owner`` names it in errors (``clearance joint 'A'``)."""
     kwargs: Dict[str, Any] = {}
     for f in dataclasses.fields(cls):
         if f.name not in table:
@@ -50,7 +58,7 @@ def _read_model(table: Table, cls: type) -> Any:
         if f.name == "dry":
             sub = table.table("dry", _model_fields(Dry))
             assert sub is not None
-            kwargs["dry"] = _read_model(sub, Dry)
+            kwargs["dry"] = _read_model(sub, Dry, f"{owner}.dry")
         elif f.name == "wear":
             sub = table.table("wear", ("coefficient", "hardness", "length", "feedback"))
             assert sub is not None
@@ -79,7 +87,7 @@ def _read_model(table: Table, cls: type) -> Any:
     try:
         return cls(**kwargs)
     except InputError as err:
-        raise table.error(err.field or None, err.reason, err.value) from None
+        raise table.error(err.field or None, _named(owner, err), err.value) from None
 
 
 class _Builder:
@@ -251,7 +259,7 @@ class _Builder:
         if kind == "prismatic":
             t.string("model", "dry", choices=("dry",))
             sub = t.table("dry", _model_fields(Dry))
-            model = Dry() if sub is None else _read_model(sub, Dry)
+            model = Dry() if sub is None else _read_model(sub, Dry, f"clearance joint '{name}'")
             self.call(
                 t, m.prismatic_clearance, t.string("guide_body"), t.point("guide_point"), t.string("slider_body"), t.point("axis"),
                 t.number("clearance"), t.number("slider_length"), model, name, corner_radius=t.number("corner_radius", 1e-3),
@@ -262,7 +270,7 @@ class _Builder:
         if other in t:
             raise t.error(other, f"[clearance_joint.{other}] given but model = {kind!r} (set model = {other!r} or remove the table)")
         sub = t.table(kind, _model_fields(Dry if kind == "dry" else Lubricated))
-        model = (Dry() if kind == "dry" else Lubricated()) if sub is None else _read_model(sub, Dry if kind == "dry" else Lubricated)
+        model = (Dry() if kind == "dry" else Lubricated()) if sub is None else _read_model(sub, Dry if kind == "dry" else Lubricated, f"clearance joint '{name}'")
         self.call(
             t, m.clearance_joint, name, t.string("bearing_body"), t.point("bearing_point"),
             t.string("journal_body"), t.point("journal_point"), journal_radius=t.number("journal_radius"),
