@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _core
 from .batch import run_descriptions
-from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
+from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
 from .joint_readings import film_monitors
 from .result import Result, extreme_monitors
