@@ -43,10 +43,11 @@ STAT_KEYS = ("steps", "rejected_steps", "steps_to_switch", "rhs_evaluations", "j
 
 
 def digest(value: Any, h: "hashlib._Hash", path: str = "") -> None:
-    """Feed every number below ``value`` into ``h`` (keys sorted; wall times left out)."""
+    """Feed every number below ``value`` into ``h`` (keys sorted; wall times and the integrator's
+    name, which the raw result carries since the core resolves ``"auto"``, left out)."""
     if isinstance(value, dict):
         for key in sorted(value):
-            if "wall" in str(key):
+            if "wall" in str(key) or key == "integrator":
                 continue
             h.update(str(key).encode())
             digest(value[key], h, f"{path}.{key}")

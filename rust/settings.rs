@@ -1,6 +1,8 @@
 //! Run settings: what one run is asked ([`RunSettings`]) and every check of them, in one place:
 //! [`RunSettings::validate`] (once per run or batch, when the settings arrive) and
-//! [`RunSettings::validate_for`] (the monitors against the compiled model, once per run). With
+//! [`RunSettings::validate_for`] (the monitors against the compiled model, once per run); the
+//! policies that complete them: the output grid from a spacing ([`RunSettings::grid`]) and the
+//! integrator `auto` picks for a model ([`default_method`]). With
 //! the `serde` feature also the settings as they arrive from Python (`RunSettingsDesc`: a plain
 //! dict, through serde like the mechanism description, the keys `clearsim.Mechanism.run_settings`
 //! writes; an unknown key is an error, not ignored) and their conversion.
@@ -15,7 +17,9 @@ use crate::record::Channels;
 /// What to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
-    pub method: Method,
+    /// The integrator; `None` is `integrator = "auto"`, resolved per model by [`default_method`]
+    /// when the run starts (so one batch of dry and lubricated mechanisms picks per mechanism).
+    pub method: Option<Method>,
     pub ode: Settings,
     pub t0: f64,
     pub t_end: f64,
@@ -32,23 +36,81 @@ pub struct RunSettings {
     pub wear_mark: Option<f64>,
 }
 
+/// Most output times a spacing `dt_out` may ask for (each holds every stored channel).
+pub const MAX_OUTPUTS: f64 = 1e7;
+
+/// The integrator `integrator = "auto"` picks for a model: `radau` when a clearance joint is
+/// lubricated (the film makes the problem stiff: README, "Choosing an integrator"), else `rk45`.
+pub fn default_method(model: &Model) -> Method {
+    if model.clearance.iter().any(|c| c.film.is_some()) {
+        Method::Radau
+    } else {
+        Method::Rk45
+    }
+}
+
+/// t0 and t_end finite, t_end after t0: checked before anything is built from them.
+fn check_times(t0: f64, t_end: f64) -> Result<()> {
+    let fin = |f: &str, v: f64| if v.is_finite() { Ok(()) } else { Err(Error::invalid(f, num(v), "must be a finite number")) };
+    fin("t0", t0)?;
+    fin("t_end", t_end)?;
+    if t_end <= t0 {
+        return Err(Error::invalid("t_end", num(t_end), format!("must be greater than t0 = {}", num(t0))));
+    }
+    Ok(())
+}
+
+/// `v` as Python's `format(v, ".3g")` writes it (three significant digits), for messages.
+fn g3(v: f64) -> String {
+    if !v.is_finite() || v == 0.0 {
+        return num(v);
+    }
+    let exp = v.abs().log10().floor() as i32;
+    if (-4..3).contains(&exp) {
+        let s = format!("{:.*}", (2 - exp).max(0) as usize, v);
+        return if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+    }
+    let s = format!("{v:.2e}");
+    let (mantissa, e) = s.split_once('e').unwrap_or((&s, "0"));
+    let mantissa = if mantissa.contains('.') { mantissa.trim_end_matches('0').trim_end_matches('.') } else { mantissa };
+    let (sign, digits) = e.strip_prefix('-').map_or(("+", e), |d| ("-", d));
+    format!("{mantissa}e{sign}{digits:0>2}")
+}
+
 impl RunSettings {
-    /// Output grid t0, t0 + dt, … up to t_end (inclusive when it lands on the grid).
-    pub fn grid(t0: f64, t_end: f64, dt_out: f64) -> Vec<f64> {
-        let n = ((t_end - t0) / dt_out * (1.0 + 1e-12)).floor() as usize;
-        (0..=n).map(|k| t0 + k as f64 * dt_out).filter(|t| *t <= t_end * (1.0 + 1e-14) + 1e-300).collect()
+    /// The integrator this run uses on `model`: the one named, or [`default_method`]'s.
+    pub fn method_for(&self, model: &Model) -> Method {
+        self.method.unwrap_or_else(|| default_method(model))
+    }
+
+    /// Output grid t0, t0 + dt_out, … up to t_end \[s\]: `t0 + k dt_out` for k = 0 … n, n =
+    /// ⌊(t_end − t0)/dt_out · (1 + 1e-12)⌋ (t_end inclusive when it lands on the grid within
+    /// rounding), without the times past t_end (a run records none there). `dt_out` must be
+    /// positive and finite and give at most [`MAX_OUTPUTS`] outputs; t0 and t_end as in
+    /// [`Self::validate`]. The one implementation: `clearsim.Mechanism.run_settings` sends
+    /// `dt_out` and the grid is built here.
+    pub fn grid(t0: f64, t_end: f64, dt_out: f64) -> Result<Vec<f64>> {
+        check_times(t0, t_end)?;
+        if !dt_out.is_finite() {
+            return Err(Error::invalid("dt_out", num(dt_out), "must be a finite number"));
+        }
+        if dt_out <= 0.0 {
+            return Err(Error::invalid("dt_out", num(dt_out), "must be positive"));
+        }
+        let count = (t_end - t0) / dt_out;
+        if !(count <= MAX_OUTPUTS) {
+            let why = format!("gives {} outputs over [{}, {}] s, more than {}; choose a coarser grid", g3(count), num(t0), num(t_end), g3(MAX_OUTPUTS));
+            return Err(Error::invalid("dt_out", num(dt_out), why));
+        }
+        let n = (count * (1.0 + 1e-12)).floor() as usize;
+        Ok((0..=n).map(|k| t0 + k as f64 * dt_out).filter(|t| *t <= t_end).collect())
     }
 
     /// Every check of the settings on their own (times, tolerances, step limits, output times,
     /// monitor specs): done once, by `RunSettingsDesc::into_settings` for what comes from Python;
     /// a Rust caller that builds [`RunSettings`] itself calls it before [`crate::simulate::simulate`].
     pub fn validate(&self) -> Result<()> {
-        let fin = |f: &str, v: f64| if v.is_finite() { Ok(()) } else { Err(Error::invalid(f, num(v), "must be a finite number")) };
-        fin("t0", self.t0)?;
-        fin("t_end", self.t_end)?;
-        if self.t_end <= self.t0 {
-            return Err(Error::invalid("t_end", num(self.t_end), format!("must be greater than t0 = {}", num(self.t0))));
-        }
+        check_times(self.t0, self.t_end)?;
         if !(self.ode.rtol > 0.0 && self.ode.rtol < 1.0) {
             return Err(Error::invalid("rtol", num(self.ode.rtol), "must lie in (0, 1)"));
         }
@@ -75,7 +137,7 @@ impl RunSettings {
         if !(self.ode.h_max > 0.0) {
             return Err(Error::invalid("h_max", num(self.ode.h_max), "must be positive"));
         }
-        if let Method::Rk4 { step } = self.method {
+        if let Some(Method::Rk4 { step }) = self.method {
             if !(step > 0.0 && step.is_finite()) {
                 return Err(Error::invalid("step", num(step), "must be positive and finite"));
             }
@@ -113,6 +175,8 @@ impl RunSettings {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum IntegratorName {
+    /// The model's choice, [`default_method`] (resolved when the run starts).
+    Auto,
     /// Dormand–Prince 5(4).
     Rk45,
     Dop853,
@@ -147,9 +211,13 @@ pub struct RunSettingsDesc {
     #[serde(default)]
     pub t0: f64,
     pub t_end: f64,
-    /// Output times (increasing, within `[t0, t_end]`).
+    /// Output times \[s\] (increasing, within `[t0, t_end]`); absent: the grid of `dt_out`.
     #[serde(default)]
-    pub t_out: Vec<f64>,
+    pub t_out: Option<Vec<f64>>,
+    /// Output spacing \[s\] ([`RunSettings::grid`]; default (t_end − t0)/1000), when `t_out`
+    /// is absent.
+    #[serde(default)]
+    pub dt_out: Option<f64>,
     /// Which outputs to store (`None`: [`Channels::default`]).
     #[serde(default)]
     pub outputs: Option<Channels>,
@@ -168,11 +236,17 @@ impl RunSettingsDesc {
     /// The settings the core runs with, validated ([`RunSettings::validate`]).
     pub fn into_settings(self) -> Result<RunSettings> {
         let method = match self.integrator {
-            IntegratorName::Rk45 => Method::Rk45,
-            IntegratorName::Dop853 => Method::Dop853,
-            IntegratorName::Rodas4 => Method::Rodas4,
-            IntegratorName::Radau => Method::Radau,
-            IntegratorName::Rk4 => Method::Rk4 { step: self.step.ok_or_else(|| Error::invalid("step", "None", "the rk4 integrator needs a fixed step [s]"))? },
+            IntegratorName::Auto => None,
+            IntegratorName::Rk45 => Some(Method::Rk45),
+            IntegratorName::Dop853 => Some(Method::Dop853),
+            IntegratorName::Rodas4 => Some(Method::Rodas4),
+            IntegratorName::Radau => Some(Method::Radau),
+            IntegratorName::Rk4 => Some(Method::Rk4 { step: self.step.ok_or_else(|| Error::invalid("step", "None", "the rk4 integrator needs a fixed step [s]"))? }),
+        };
+        let t_out = match (self.t_out, self.dt_out) {
+            (Some(_), Some(dt)) => return Err(Error::invalid("dt_out", num(dt), "give dt_out or t_out, not both")),
+            (Some(t_out), None) => t_out,
+            (None, dt) => RunSettings::grid(self.t0, self.t_end, dt.unwrap_or((self.t_end - self.t0) / 1000.0))?,
         };
         let base = Settings::default();
         let ode = Settings {
@@ -188,7 +262,7 @@ impl RunSettingsDesc {
             ode,
             t0: self.t0,
             t_end: self.t_end,
-            t_out: self.t_out,
+            t_out,
             channels: self.outputs.unwrap_or_default(),
             max_wall_time: self.max_seconds,
             monitors: self.monitors,
@@ -212,13 +286,13 @@ mod tests {
     #[test]
     fn defaults_and_names() {
         let rs = read(serde_json::json!({"integrator": "radau", "t_end": 0.1})).unwrap();
-        assert_eq!(rs.method, Method::Radau);
+        assert_eq!(rs.method, Some(Method::Radau));
         assert_eq!(rs.ode, Settings::default());
         assert_eq!(rs.channels, Channels::default());
         let rs = read(serde_json::json!({"integrator": "rk4", "step": 1e-4, "t_end": 0.1, "outputs": {"energy": true},
             "monitors": [{"coordinate": 3, "quantity": "contact_force", "t_start": 0.0, "bin_width": 0.01}]}))
         .unwrap();
-        assert_eq!(rs.method, Method::Rk4 { step: 1e-4 });
+        assert_eq!(rs.method, Some(Method::Rk4 { step: 1e-4 }));
         assert!(rs.channels.energy && rs.channels.states, "unnamed outputs keep their defaults");
         assert_eq!(rs.monitors[0].quantity, Quantity::ContactForce);
         assert_eq!((rs.monitors[0].bins, rs.monitors[0].samples_per_step), (1, 8));
@@ -233,5 +307,58 @@ mod tests {
         let e = err(serde_json::json!({"integrator": "rk45", "t_end": 0.1, "monitors": [{"coordinate": 0, "quantity": "displacement",
             "t_start": 0.0, "bin_width": 0.01, "reference": {"t": [0.0, 1.0], "value": [0.0], "rate": [0.0, 0.0]}}]}));
         assert!(e.contains("monitors[0].reference") && e.contains("same length"), "{e}");
+    }
+
+    /// The grid Python built before the core did (clearsim 0.x `Mechanism.run_settings`):
+    /// `t0 + dt_out * numpy.arange(n + 1)`, n = floor((t_end − t0)/dt_out · (1 + 1e-12)), of which
+    /// a run recorded the times t ≤ t_end (`simulate`'s filter).
+    fn python_grid(t0: f64, t_end: f64, dt: f64) -> Vec<f64> {
+        let count = (t_end - t0) / dt;
+        let n = (count * (1.0 + 1e-12)).floor() as i64;
+        (0..=n).map(|k| t0 + dt * (k as f64)).filter(|t| *t <= t_end).collect()
+    }
+
+    #[test]
+    fn grid_is_the_old_python_grid_bit_for_bit() {
+        // Deterministic triples: round and awkward spacings, negative and large start times,
+        // spacings that land on t_end within rounding (0.1 × 3 > 0.3) and ones that do not.
+        let mut state = 0x9e3779b97f4a7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut triples = vec![(0.0, 0.3, 0.1), (0.0, 1.0, 0.001), (-2.0, -1.0, 0.1), (-1.0, 1e-3, 1e-4), (0.1, 0.7, 0.2), (1e3, 1e3 + 1.0, 1e-3), (0.0, 0.05, 0.05 / 1000.0)];
+        for _ in 0..3000 {
+            let t0 = [0.0, -10.0 * next(), 100.0 * next(), 1e-3 * next()][(next() * 4.0) as usize];
+            let span = 10f64.powf(-4.0 + 6.0 * next());
+            let count = [10.0, 7.0, 1000.0, 3.0 + 5000.0 * next(), 1.0 + 37.0 * next()][(next() * 5.0) as usize];
+            let dt = if next() < 0.5 { span / count } else { (span / count * 1e4).round().max(1.0) / 1e4 };
+            triples.push((t0, t0 + span, dt));
+        }
+        for (t0, t_end, dt) in triples {
+            let ours = RunSettings::grid(t0, t_end, dt).unwrap();
+            let old = python_grid(t0, t_end, dt);
+            assert_eq!(ours.len(), old.len(), "({t0}, {t_end}, {dt})");
+            assert!(ours.iter().zip(&old).all(|(a, b)| a.to_bits() == b.to_bits()), "({t0}, {t_end}, {dt})");
+        }
+    }
+
+    #[test]
+    fn bad_spacings_are_named() {
+        let msg = |dt: f64| RunSettings::grid(0.0, 1.0, dt).unwrap_err().to_string();
+        assert_eq!(msg(0.0), "invalid dt_out = 0.0: must be positive");
+        assert_eq!(msg(-0.1), "invalid dt_out = -0.1: must be positive");
+        assert_eq!(msg(f64::NAN), "invalid dt_out = nan: must be a finite number");
+        assert_eq!(msg(1e-8), "invalid dt_out = 1e-08: gives 1e+08 outputs over [0.0, 1.0] s, more than 1e+07; choose a coarser grid");
+        assert_eq!(msg(3e-8), "invalid dt_out = 3e-08: gives 3.33e+07 outputs over [0.0, 1.0] s, more than 1e+07; choose a coarser grid");
+        assert_eq!(msg(5e-324), "invalid dt_out = 5e-324: gives inf outputs over [0.0, 1.0] s, more than 1e+07; choose a coarser grid");
+        let read_err = |v| read(v).unwrap_err().to_string();
+        assert!(read_err(serde_json::json!({"integrator": "auto", "t_end": 0.1, "dt_out": 0.01, "t_out": [0.0]})).contains("not both"));
+        assert!(read_err(serde_json::json!({"integrator": "auto", "t_end": 0.1, "dt_out": -1.0})).starts_with("invalid dt_out = -1.0"));
+        // No spacing and no times: (t_end − t0)/1000.
+        let rs = read(serde_json::json!({"integrator": "auto", "t0": 0.5, "t_end": 1.5})).unwrap();
+        assert_eq!((rs.method, rs.t_out.len(), rs.t_out[1]), (None, 1001, 0.5 + 1e-3));
     }
 }

@@ -46,7 +46,10 @@ class RunSettings(TypedDict):
     """The settings dict of one run (rust/settings.rs; built by ``Mechanism.run_settings``).
     Unknown keys are an ``InputError``."""
 
-    integrator: str  # rk45 (dopri5), dop853, rodas4, radau (radau5), rk4
+    # auto (radau when a clearance joint is lubricated, else rk45: resolved per mechanism, also in
+    # a batch), rk45 (dopri5), dop853, rodas4, radau (radau5), rk4; the result's
+    # stats["integrator"] names the one that ran.
+    integrator: str
     t_end: float
     t0: NotRequired[float]
     step: NotRequired[float]
@@ -56,7 +59,11 @@ class RunSettings(TypedDict):
     h_max: NotRequired[float]
     h_min: NotRequired[float]
     max_steps: NotRequired[int]
+    # Output times [s]; without them the core builds the grid t0 + k dt_out up to t_end
+    # (dt_out [s], default (t_end - t0)/1000, at most 1e7 outputs: DEFAULTS["settings"]["max_outputs"]).
+    # Giving both is an InputError.
     t_out: NotRequired[Sequence[float]]
+    dt_out: NotRequired[float]
     outputs: NotRequired[Outputs]
     max_seconds: NotRequired[float]
     monitors: NotRequired[List[Monitor]]
@@ -71,6 +78,10 @@ ENERGY_COLUMNS: List[str]
 class CompiledModel:
     """A validated, compiled mechanism."""
 
+    @property
+    def default_integrator(self) -> str:
+        """What integrator="auto" picks for this model: "radau" when a clearance joint is
+        lubricated, else "rk45" (rust/settings.rs, default_method)."""
     @property
     def state_dim(self) -> int: ...
     @property
@@ -98,7 +109,9 @@ def idealize(description: Union[str, Mapping[str, Any]]) -> Dict[str, Any]:
     implementation, rust/description.rs), as plain data with every default filled in."""
 
 #: The defaults of the clearance-joint parameters, defined in the core (rust/description.rs):
-#: ``{"dry": {...}, "lubricated": {...}, "prismatic_clearance": {"corner_radius": ...}}``.
+#: ``{"dry": {...}, "lubricated": {...}, "prismatic_clearance": {"corner_radius": ...}}``; and
+#: the run settings' (rust/integrate, rust/settings.rs): ``{"settings": {"rtol", "atol",
+#: "h_min", "max_steps", "max_outputs"}}``.
 DEFAULTS: Dict[str, Dict[str, Any]]
 
 def run_batch(

@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _core
 from .batch import run_descriptions
-from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite, check_positive
+from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
 from .joint_readings import film_monitors
 from .result import Result, extreme_monitors
@@ -42,8 +42,9 @@ class RunOptions(TypedDict, total=False):
     extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
 
-#: Most outputs a dt_out grid may ask for (each holds every stored channel).
-MAX_OUTPUTS = 1e7
+#: Most outputs a dt_out grid may ask for (each holds every stored channel; the core's
+#: ``MAX_OUTPUTS``, which checks it).
+MAX_OUTPUTS: float = float(_core.DEFAULTS["settings"]["max_outputs"])
 
 
 #: Largest rotation [rad] of a body by the assembly before the pose given counts as wrong.
@@ -187,9 +188,9 @@ class Running:
     @property
     def default_integrator(self) -> str:
         """What ``integrator="auto"`` picks: ``"radau"`` when a clearance joint is lubricated (the
-        film makes the problem stiff), else ``"rk45"``."""
-        lubricated = any(cj["model"].get("kind") == "lubricated" for cj in self._clearance)
-        return "radau" if lubricated else "rk45"
+        film makes the problem stiff), else ``"rk45"`` (decided by the core for the compiled model,
+        ``rust/settings.rs``, ``default_method``)."""
+        return str(self.compile().default_integrator)
 
     def run_settings(
         self,
@@ -213,30 +214,17 @@ class Running:
         """The settings dict of a run (see :meth:`simulate`).
 
         The Rust core validates every setting, once per run or batch (``rust/settings.rs``,
-        ``RunSettings::validate``): the integrator's name, tolerances, step limits, budgets.
-        Python checks only what it must know to write the dict: t0, t_end and dt_out (they make
-        the output grid), the output channels named (written as flags) and the extremes' window."""
+        ``RunSettings::validate``): the integrator's name, tolerances, step limits, budgets, and
+        it builds the output grid from ``dt_out`` (``RunSettings::grid``, default (t_end − t0)/1000)
+        and resolves ``integrator="auto"`` per mechanism. Python checks only what it must know to
+        write the dict: t0 and t_end (they bound the monitors written here), the times ``t_out``
+        (sent as one buffer), the output channels named (written as flags) and the extremes' window."""
         t0 = check_finite("t0", t0)
         t_end = check_finite("t_end", t_end)
         if t_end <= t0:
             raise InputError(f"invalid t_end = {t_end!r}: must be greater than t0 = {t0}", field="t_end", value=t_end)
-        if integrator == "auto":
-            integrator = self.default_integrator
-        if t_out is None:
-            if dt_out is None:
-                dt_out = (t_end - t0) / 1000.0
-            dt_out = check_positive("dt_out", dt_out)
-            count = (t_end - t0) / dt_out
-            if not count <= MAX_OUTPUTS:
-                raise InputError(
-                    f"invalid dt_out = {dt_out!r}: gives {count:.3g} outputs over [{t0}, {t_end}] s, more than "
-                    f"{MAX_OUTPUTS:.0e}; choose a coarser grid",
-                    field="dt_out",
-                    value=dt_out,
-                )
-            n = int(math.floor(count * (1 + 1e-12)))
-            grid = t0 + dt_out * np.arange(n + 1)
-        else:
+        grid: Optional[np.ndarray] = None
+        if t_out is not None:
             grid = np.asarray(t_out, dtype=float)
             # Sent as one buffer of times (the core checks that they increase strictly; a NaN there
             # would read as "must increase", so it is named here).
@@ -254,11 +242,14 @@ class Running:
             "atol": atol,
             "t0": t0,
             "t_end": t_end,
-            "t_out": np.ascontiguousarray(grid),
             "h_min": h_min,
             "max_steps": max_steps,
             "outputs": {k: (k in wanted) for k in OUTPUTS},
         }
+        if grid is not None:
+            settings["t_out"] = np.ascontiguousarray(grid)
+        elif dt_out is not None:
+            settings["dt_out"] = dt_out
         if step is not None:
             settings["step"] = step
         if h_max is not None:
@@ -469,8 +460,6 @@ class Running:
         res = Result(raw, self.body_names, self.clearance_joint_names)
         res.description = self.description()
         res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []
-        if settings is not None:
-            res.stats["integrator"] = settings["integrator"]
         err = raw.get("error")
         if err is not None:
             err.result = res

@@ -23,6 +23,19 @@ pub enum Method {
     Radau,
 }
 
+impl Method {
+    /// The method's name, as the Python API, the CLI and scene files write it (`"rk45"`, …).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Method::Rk4 { .. } => "rk4",
+            Method::Rk45 => "rk45",
+            Method::Dop853 => "dop853",
+            Method::Rodas4 => "rodas4",
+            Method::Radau => "radau",
+        }
+    }
+}
+
 /// Tolerances and limits for adaptive methods (ignored by RK4 except `max_steps`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Settings {

@@ -256,6 +256,7 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
     s.set_item("max_step", out.stats.h_max_used)?;
     s.set_item("t_reached", out.stats.t_reached)?;
     s.set_item("wall_time", out.wall_time)?;
+    s.set_item("integrator", out.method.name())?;
     d.set_item("stats", s)?;
     match &out.error {
         None => d.set_item("error", py.None())?,
@@ -336,6 +337,13 @@ pub struct CompiledModel {
 
 #[pymethods]
 impl CompiledModel {
+    /// What `integrator = "auto"` picks for this model (`crate::settings::default_method`):
+    /// `"radau"` when a clearance joint is lubricated, else `"rk45"`.
+    #[getter]
+    fn default_integrator(&self) -> &'static str {
+        crate::settings::default_method(&self.model).name()
+    }
+
     /// Length of the state y = (q, q̇).
     #[getter]
     fn state_dim(&self) -> usize {
@@ -473,7 +481,8 @@ fn to_plain<'py, T: serde::Serialize>(py: Python<'py>, value: &T) -> PyResult<Bo
 /// The defaults of the clearance-joint parameters, where they are defined (the serde defaults of
 /// [`crate::description`]): `{"dry": {...}, "lubricated": {...}, "prismatic_clearance": {...}}`,
 /// for `clearsim.joints` and `clearsim.Mechanism.prismatic_clearance`; and the integrator's
-/// (`crate::integrate::Settings::default`): `{"settings": {rtol, atol, h_min, max_steps}}`.
+/// (`crate::integrate::Settings::default`) and the most outputs a `dt_out` grid may ask for
+/// (`crate::settings::MAX_OUTPUTS`): `{"settings": {rtol, atol, h_min, max_steps, max_outputs}}`.
 fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     let lubricated: crate::description::LubricatedDesc = serde_json::from_value(serde_json::json!({"viscosity": 1.0, "length": 1.0}))
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
@@ -491,7 +500,7 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
         "dry": crate::description::DryDesc::default(),
         "lubricated": lub,
         "prismatic_clearance": {"corner_radius": corner.corner_radius},
-        "settings": {"rtol": ode.rtol, "atol": ode.atol, "h_min": ode.h_min, "max_steps": ode.max_steps},
+        "settings": {"rtol": ode.rtol, "atol": ode.atol, "h_min": ode.h_min, "max_steps": ode.max_steps, "max_outputs": crate::settings::MAX_OUTPUTS},
     });
     to_plain(py, &all)
 }

@@ -18,7 +18,7 @@ use crate::clearance::{ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::energy::EnergyBook;
 use crate::error::{Error, Result};
-use crate::integrate::{integrate, DenseOutput, OdeSystem, Stats};
+use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Stats};
 use crate::model::Model;
 use crate::monitor::{Monitor, MonitorResult};
 use crate::record::{Channels, Recording};
@@ -34,6 +34,8 @@ pub type StopCheck<'a> = &'a (dyn Fn(f64) -> bool + Sync);
 /// The result of a run, complete or partial.
 #[derive(Debug, Clone)]
 pub struct RunOutput {
+    /// The integrator that ran ([`RunSettings::method_for`]: `auto` resolved for the model).
+    pub method: Method,
     pub recording: Recording,
     pub stats: Stats,
     /// Why the run stopped early, if it did; the recording holds everything before.
@@ -243,11 +245,13 @@ impl OdeSystem for MechanismSystem<'_> {
 /// `error` says why, with everything recorded until then.
 pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
     rs.validate_for(model)?;
+    let method = rs.method_for(model);
     let start = Instant::now();
     let (q0, qd0) = match assemble(model, rs.t0) {
         Ok(v) => v,
         Err(e) => {
             return Ok(RunOutput {
+                method,
                 recording: Recording::new(rs.channels, 0, model),
                 stats: Stats::default(),
                 error: Some(e),
@@ -278,7 +282,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     sys.heat_start(rs.t0);
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
-    let (stats, error, failure_joint) = match integrate(&mut sys, rs.method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
+    let (stats, error, failure_joint) = match integrate(&mut sys, method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
         Ok(s) => (s, None, None),
         Err((e, s)) => {
             let e = sys.lock_up(&e).unwrap_or(e);
@@ -293,6 +297,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         max_violation[1] = max_violation[1].max(v[1]);
     }
     Ok(RunOutput {
+        method,
         impacts: sys.memory.iter().map(|m| m.impacts).collect(),
         recording: sys.recording,
         stats,

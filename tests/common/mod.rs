@@ -29,11 +29,11 @@ pub fn cycle(name: &str) -> f64 {
 pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize) -> clearsim::simulate::RunSettings {
     use clearsim::simulate::RunSettings;
     RunSettings {
-        method,
+        method: Some(method),
         ode: clearsim::integrate::Settings { rtol: 1e-6, atol: 1e-9, ..Default::default() },
         t0: 0.0,
         t_end,
-        t_out: RunSettings::grid(0.0, t_end, t_end / outputs as f64),
+        t_out: RunSettings::grid(0.0, t_end, t_end / outputs as f64).unwrap(),
         channels: clearsim::record::Channels::default(),
         max_wall_time: None,
         monitors: Vec::new(),
