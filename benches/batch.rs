@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use clearsim::batch::run_batch;
 use clearsim::integrate::Method;
-use clearsim::description::ClearanceModelDesc;
+use clearsim::description::{ClearanceModelDesc, ViscosityDesc};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 
 const RUNS: usize = 8;
@@ -21,7 +21,9 @@ fn bench_batch(c: &mut Criterion) {
             let mut d = base.clone();
             for cj in &mut d.clearance_joints {
                 if let ClearanceModelDesc::Lubricated(l) = &mut cj.model {
-                    l.viscosity *= 0.9 + 0.2 * k as f64 / (RUNS - 1) as f64;
+                    if let ViscosityDesc::Constant(mu) = &mut l.viscosity {
+                        *mu *= 0.9 + 0.2 * k as f64 / (RUNS - 1) as f64;
+                    }
                 }
             }
             d
