@@ -23,3 +23,22 @@ def test_a_dry_joint_is_not_a_bearing_with_a_film():
     assert res.bearing_summary()["A"]["min_film_thickness"] > 0.0
     assert "O4: h_min" not in repr(res) and "A: h_min" in repr(res)
     assert res.extremes("O4", "film_thickness").min < 0.0  # the penetration, under its own name
+
+
+def test_the_reliability_report_says_fosm_skipped_the_film_output(tmp_path, capsys):
+    """``clearsim reliability`` on the pump's series [study] (the plunger's error and the crank
+    pin's film thickness, a lower limit) with ``--methods fosm``: FOSM analyses the error and
+    says, on stdout and in report.md, that it skipped ``A.film_thickness`` and why. Before: the
+    film output vanished from the FOSM results without a word."""
+    from clearsim.cli import main
+
+    text = PUMP.read_text(encoding="utf-8")
+    scene = tmp_path / "pump.toml"
+    scene.write_text(text[: text.index("\n[study.life]")], encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "--methods", "fosm", "--no-plots"]) == 0
+    said = capsys.readouterr().out
+    assert "fosm                 skips A.film_thickness (film thickness of joint A ≥ 5e-06 m): FOSM compares an error" in said
+    report = (out / "report.md").read_text(encoding="utf-8")
+    assert "FOSM skipped `A.film_thickness` (film thickness of joint A ≥ 5e-06 m): FOSM compares an error with an allowable range [0, limit]" in report
+    assert "FOSM `plunger.y.displacement` (nominal mechanism, 18° bins" in report
