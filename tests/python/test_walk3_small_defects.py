@@ -42,3 +42,17 @@ def test_the_reliability_report_says_fosm_skipped_the_film_output(tmp_path, caps
     report = (out / "report.md").read_text(encoding="utf-8")
     assert "FOSM skipped `A.film_thickness` (film thickness of joint A ≥ 5e-06 m): FOSM compares an error with an allowable range [0, limit]" in report
     assert "FOSM `plunger.y.displacement` (nominal mechanism, 18° bins" in report
+
+
+def test_plot_mechanism_outside_the_run_echoes_the_time_given():
+    """``res.plot_mechanism(t)`` at a t outside the run (or NaN) is an InputError that names the
+    t given and the run's span. Before: ``invalid t: the run covers [0, 0.05] s`` (which t?), and
+    NaN drew a figure of NaN positions."""
+    res = clearsim.load_scene(PUMP).simulate(0.05, dt_out=1e-3, progress=False)
+    with pytest.raises(clearsim.InputError, match=r"invalid t = 0\.7 s: outside the run, which covers \[0, 0\.05\] s") as info:
+        res.plot_mechanism(0.7)
+    assert info.value.value == 0.7
+    with pytest.raises(clearsim.InputError, match=r"invalid t = -0\.01 s: outside the run"):
+        res.plot_mechanism(-0.01)
+    with pytest.raises(clearsim.InputError, match=r"invalid t = nan: must be a finite time"):
+        res.plot_mechanism(float("nan"))
