@@ -440,8 +440,12 @@ def states_at(result: Any, times: np.ndarray) -> np.ndarray:
     q = result._channel("q", "states")
     t = result.t
     times = np.asarray(times, dtype=float)
+    if times.size and not np.all(np.isfinite(times)):
+        bad = float(times[~np.isfinite(times)][0])
+        raise InputError(f"invalid t = {bad!r}: must be a finite time [s] in the run, which covers [{t[0]:g}, {t[-1]:g}] s", field="t", value=bad)
     if times.size and (times.min() < t[0] - 1e-12 or times.max() > t[-1] + 1e-12):
-        raise InputError(f"invalid t: the run covers [{t[0]:g}, {t[-1]:g}] s", field="t", value=float(times.min() if times.min() < t[0] else times.max()))
+        bad = float(times.min() if times.min() < t[0] - 1e-12 else times.max())
+        raise InputError(f"invalid t = {bad:g} s: outside the run, which covers [{t[0]:g}, {t[-1]:g}] s", field="t", value=bad)
     return np.column_stack([np.interp(times, t, q[:, k]) for k in range(q.shape[1])])
 
 

@@ -124,7 +124,8 @@ class JointReadings:
         return float(np.degrees(np.interp(t, self.t, q[:, 3 * b + 2])))
 
     def bearing_summary(self) -> Dict[str, Dict[str, Any]]:
-        """Per lubricated joint: ``min_film_thickness`` [m] with ``t_min_film`` [s] and
+        """Per lubricated joint (a dry one has no film: it is left out even when ``extremes``
+        tracks its gap, whose negative minimum is its penetration): ``min_film_thickness`` [m] with ``t_min_film`` [s] and
         ``min_film_crank_angle_deg`` (the first driver's angle then, if any), ``peak_power_loss``
         and ``mean_power_loss`` [W] over the run, tracked at every integration step (independent
         of ``dt_out``); with ``roughness`` σ also ``lambda`` = min film / σ (below ~3 the
@@ -134,6 +135,8 @@ class JointReadings:
         out: Dict[str, Dict[str, Any]] = {}
         models = {cj["name"]: cj["model"] for cj in (self.description or {}).get("clearance_joints", [])}
         for j, name in enumerate(self.joint_names):
+            if self.description is not None and models.get(name, {}).get("kind") != "lubricated":
+                continue  # a dry joint has no film (its gap's minimum, the penetration, is in Result.extremes)
             h, p = self._tracked(j, "film_thickness"), self._tracked(j, "power_loss")
             if h is None or p is None:
                 continue

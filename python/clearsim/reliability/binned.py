@@ -25,7 +25,7 @@ from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, RTOL
 from .bridge import check_on_failure
 from .distributions import Distribution, sample_inputs
 from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, mc_bin_reliability, wilson_interval
-from .fosm import BIN_WIDTH, fosm_from_monitors
+from .fosm import BIN_WIDTH, bin_fold, crank_angle_at, fosm_from_monitors, window_start_turns
 from .outputs import Limit, Output
 from .study import Study
 
@@ -56,7 +56,8 @@ class MonteCarloResult:
         within / left the range: the honest range of the answer when failures are excluded (with
         ``"fail"`` the estimate is the high end).
     crank_angle:
-        (n_ok, n_times) crank angle [deg] of each analysed output sample.
+        (n_ok, n_times) crank angle [deg] of each analysed output sample: |ω| t with t from
+        t = 0, unwrapped (the bins take it modulo 360°; docs/physics.md §6).
     errors:
         ``{quantity: (n_ok, n_times) array}`` of signed errors (clearance − ideal response).
     bins:
@@ -179,7 +180,9 @@ def monte_carlo(
         The drive speed [rad/s] that defines the crank angle: the name of a sampled input, or a
         number; by default the input named ``omega`` if there is one, else the nominal
         mechanism's constant-speed driver's (as :class:`~clearsim.reliability.Study`). Each sample runs ``skip_cycles + cycles`` crank turns; the first ``skip_cycles``
-        (start-up transient) are not analysed.
+        (start-up transient) are not analysed; the window opens at the first bin edge of the
+        crank angle |ω| t at or after them, and bins are crank angles |ω| t modulo 360° with t
+        from t = 0, as :meth:`Study.fosm <clearsim.reliability.Study.fosm>`'s.
     body, component:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
         error against the ideal mechanism. (``axis=`` is the old name of ``component=``.)
@@ -284,7 +287,7 @@ def monte_carlo(
             channel = QUANTITIES[q]
             errs[q].append(actual[channel][:, col] - ideal[channel][:, col])
             monitored[q].append(ev.monitors[k][i])
-        angles.append(np.degrees(abs(omegas[k]) * (actual["t"] - actual["t"][0])))
+        angles.append(crank_angle_at(actual["t"], omegas[k]))
     if failures and on_failure == "raise":
         k, reason = failures[0]
         sample_text = ", ".join(f"{name}={float(v[k]):.6g}" for name, v in inputs.items())
@@ -304,7 +307,7 @@ def monte_carlo(
         bins[q] = mc_bin_reliability(np.abs(errors[q]), crank, hi, lo, bin_width=bin_width, confidence=confidence, failed=n_failed)
         # Exceedances from the integrator's every step (the monitor), not from the stored grid.
         exceed_bins = np.array([(mon["bin_max"] > hi) | (mon["bin_min"] < lo) for mon in monitored[q]])
-        _fold_into_bins(bins[q], exceed_bins, monitored[q], bin_width, n_failed, confidence)
+        _fold_into_bins(bins[q], exceed_bins, monitored[q], window_start_turns(skip_cycles, bin_width), bin_width, n_failed, confidence)
         exceed = exceed_bins.any(axis=1)
         k_out = int(exceed.sum())
         n_all = int(exceed.size) + n_failed
@@ -331,17 +334,15 @@ def monte_carlo(
     )
 
 
-def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], bin_width: float, failed: int, confidence: float) -> None:
+def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], start_turns: float, bin_width: float, failed: int, confidence: float) -> None:
     """Per crank-angle bin (cycles folded modulo 360°, as ``b`` numbers its bins), from the
-    monitor's time bins: the fraction of samples whose |error| stays in range over the whole
+    monitor's time bins of a window opening at ``start_turns`` crank turns: the fraction of samples whose |error| stays in range over the whole
     bin, and FOSM (P27–P32) from the time-averaged mean and standard deviation of |error| over
     the completed samples and the analysed cycles (μ_s = Σ∫|e|dt / Σ∫dt, σ_s² = Σ∫e²dt / Σ∫dt −
     μ_s²), so neither depends on the stored output grid."""
     n_s, n_time_bins = exceed_bins.shape
-    per_cycle = max(1, int(math.ceil(360.0 / bin_width - 1e-9)))
-    starts = np.asarray(b.bin_starts, dtype=float)
-    n_bins = len(starts)
-    fold = np.array([k % per_cycle if n_bins == per_cycle else int(np.argmin(np.abs(starts - (k * bin_width) % 360.0))) for k in range(n_time_bins)])
+    n_bins = len(b.bin_starts)
+    fold = bin_fold(start_turns, bin_width, n_time_bins)
     left = np.zeros((n_s, n_bins), dtype=bool)
     for k in range(n_time_bins):
         left[:, fold[k]] |= exceed_bins[:, k]

@@ -13,6 +13,11 @@ say how ``μ_s, σ_s`` are formed; ours (docs/physics.md §6) is: per crank-angl
 and the population standard deviation of |error| over the analysed cycles in that bin (crank
 angle taken modulo 360°).
 
+Crank angle: ``|ω| t`` [deg] with t measured from t = 0, the time of the pose the user gives
+(:func:`crank_angle_at`), whatever time a run starts from and however many turns it skips — not the
+driver's own angle θ0 + ω t. A window of monitor time bins opens on a bin edge of that angle
+(:func:`window_start_turns`) and :func:`bin_fold` says which crank-angle bin each time bin is.
+
 Bin convention: bin edges are at ``k · bin_width`` degrees; a sample at angle ``a`` belongs to
 ``[k·w, (k+1)·w)`` with ``k = floor(a / w)``. A bin is reported by its **start angle**
 (``bin_starts``, the "angle" of the paper's 198°, 216°, 270°, … minima) and, for plotting, by its
@@ -178,6 +183,33 @@ def _assign_bins(angle: np.ndarray, width: float, per_cycle: bool) -> _Bins:
     starts = (360.0 * cycles[:, None] + starts1[None, :]).ravel()
     centres = (360.0 * cycles[:, None] + ((starts1 + ends1) / 2.0)[None, :]).ravel()
     return _Bins(index, starts, centres, np.repeat(cycles, n_in_cycle))
+
+
+def crank_angle_at(t: Any, omega: float) -> np.ndarray:
+    """The crank angle [deg] of every per-bin answer at times ``t`` [s]: ``|ω| t`` with t from
+    t = 0 (the given pose's time) whatever the run's start, unwrapped (docs/physics.md §6)."""
+    return np.degrees(abs(float(omega)) * np.asarray(t, dtype=float))
+
+
+def window_start_turns(turns: float, bin_width: float) -> float:
+    """The first bin edge of the crank angle |ω| t at or after ``turns`` crank turns, in turns:
+    where an analysed window of time bins ``bin_width`` [deg] wide opens, so that each time bin
+    is one crank-angle bin (docs/physics.md §6)."""
+    edges = turns * 360.0 / bin_width
+    return math.ceil(edges - _EDGE_TOL * max(1.0, abs(edges))) * bin_width / 360.0
+
+
+def bin_fold(start_turns: float, bin_width: float, n_time_bins: int) -> np.ndarray:
+    """The crank-angle bin (0 … ⌈360/bin_width⌉ − 1, edges at k·bin_width of |ω| t modulo 360°)
+    of each of ``n_time_bins`` monitor time bins ``bin_width`` [deg] wide from a window opening
+    at ``start_turns`` turns (a bin edge, :func:`window_start_turns`): the bin each time bin
+    starts in (one and the same bin when ``bin_width`` divides 360°)."""
+    per_cycle = int(math.ceil(360.0 / bin_width - 1e-9))
+    first = int(round(start_turns * 360.0 / bin_width))
+    k = first + np.arange(int(n_time_bins))
+    if abs(360.0 / bin_width - round(360.0 / bin_width)) < 1e-9:
+        return k % per_cycle
+    return np.clip(np.floor(((k * bin_width) % 360.0 + _EDGE_TOL) / bin_width).astype(np.int64), 0, per_cycle - 1)
 
 
 def _binned_moments(values: np.ndarray, index: np.ndarray, n_bins: int, ddof: int) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -355,7 +387,8 @@ def fosm(
         Error samples of one output over time (clearance − ideal response, any sign) [m, m/s or
         m/s²]; the statistics use |error|.
     crank_angle:
-        Crank angle of each sample [deg], unwrapped and non-decreasing (e.g. ``degrees(|ω| t)``,
+        Crank angle of each sample [deg], unwrapped and non-decreasing (e.g. ``degrees(|ω| t)``
+        with t from t = 0, :func:`crank_angle_at`,
         possibly over several cycles). Pass only the samples of the cycles to analyse (drop the
         start-up transient by slicing).
     allowable:

@@ -16,6 +16,9 @@ from ..csvfile import column_name, file_unit, report_header, write_rows
 from ..errors import ClearsimError, InputError
 from ..schema import INPUT_UNITS
 
+#: Why FOSM leaves an output of a series system out (said on stdout and in report.md).
+FOSM_SKIPS = "FOSM compares an error with an allowable range [0, limit]; an output with a lower limit (a film thickness) has none, so it is not analysed"
+
 FOSM_NOTE = (
     "FOSM (the paper's method, Eqs. P27–P32) is pointwise in time: per crank-angle bin it compares the "
     "mean and spread of |error| in that bin, over the cycle of the nominal mechanism, with the allowable "
@@ -105,6 +108,10 @@ def _fosm(r: Run) -> None:
     results = study.fosm_all(outputs=chosen, allowable=[allowable[i] for i in chosen] if allowable is not None else None)
     r.found["fosm"] = res = results[0]
     r.found["fosm_outputs"] = {study.outputs[i].name: res_i for i, res_i in zip(chosen, results)}
+    # The outputs FOSM does not apply to (a lower limit, such as a film thickness's): said, not dropped silently.
+    skipped = r.found["fosm_skipped"] = [f"`{o.name}` ({o.label} {lim.text(o.unit)})" for i, (o, lim) in enumerate(zip(study.outputs, study.limits)) if i not in chosen]
+    if skipped:
+        r.echo(f"{'fosm':20s} skips {', '.join(s.replace('`', '') for s in skipped)}: {FOSM_SKIPS}")
     if len(study.outputs) == 1:
         r.echo(f"{'fosm':20s} min R = {res.min_reliability:.6f} at {res.min_angle:g}°")
         return
@@ -383,6 +390,8 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
             which = f" `{name}`" if len(study.outputs) > 1 else ""
             lines += ["", f"FOSM{which} (nominal mechanism, {fo.bin_width:g}° bins, allowable μ_S = {fo.mu_S:.6g}, σ_S = {fo.sigma_S:.6g}): "
                       f"minimum reliability {fo.min_reliability:.6f} (β = {fo.min_beta:.3f}) at {fo.min_angle:g}°."]  # fmt: skip
+        if found.get("fosm_skipped"):
+            lines += ["", f"FOSM skipped {', '.join(found['fosm_skipped'])}: {FOSM_SKIPS}."]
     lines += ["", FOSM_NOTE, "", "Files: " + ", ".join(p.name for p in files) + ", report.md", ""]
     path.write_text("\n".join(lines), encoding="utf-8")
     return path

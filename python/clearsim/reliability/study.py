@@ -31,7 +31,7 @@ from ..schema import ATOL, COMPONENTS, RTOL
 from .bridge import check_on_failure
 from .distributions import input_stream
 from .estimates import failure_reasons, wilson_interval
-from .fosm import BIN_WIDTH, FosmResult, allowable_statistics, fosm_from_monitors
+from .fosm import BIN_WIDTH, FosmResult, allowable_statistics, bin_fold, fosm_from_monitors, window_start_turns
 from .model import ReliabilityModel
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
 from ..batch import error_of, failed, progress, run_all
@@ -202,9 +202,11 @@ class Study(ReliabilityModel, Modes):
         means), as a scene's ``[study]`` takes it; an :class:`InputError` when it has none, or
         several at different speeds. Give the input's name when an input sets the drive speed.
     cycles, skip_cycles:
-        The analysed window: ``cycles`` crank turns after ``skip_cycles`` turns of start-up.
+        The analysed window: ``cycles`` crank turns after ``skip_cycles`` turns of start-up,
+        opening at the first bin edge of the crank angle |ω| t at or after them (t from t = 0,
+        docs/physics.md §6: ``skip_cycles = 0.26`` with 18° bins opens at 0.3 turns).
     bin_width:
-        Crank-angle bins [deg] of the per-bin FOSM.
+        Crank-angle bins [deg] of the per-bin FOSM, edges at k·bin_width of |ω| t modulo 360°.
     integrator, rtol, atol:
         As in :meth:`clearsim.Mechanism.simulate`.
     max_steps, max_seconds:
@@ -286,8 +288,11 @@ class Study(ReliabilityModel, Modes):
         return w
 
     def _window(self, params: Mapping[str, float]) -> Tuple[float, float, float]:
+        """The analysed window [s] and the crank period [s]: ``cycles`` turns from the first bin
+        edge of |ω| t at or after ``skip_cycles`` turns (docs/physics.md §6), so that each monitor
+        time bin is one crank-angle bin whatever the run's start."""
         period = 2.0 * math.pi / abs(self._omega(params))
-        t0 = self.skip_cycles * period
+        t0 = window_start_turns(self.skip_cycles, self.bin_width) * period
         return t0, t0 + self.cycles * period, period
 
     def _target(self, m: Any, output: Output) -> int:
@@ -521,7 +526,8 @@ class Study(ReliabilityModel, Modes):
         standard deviation of |error| over the analysed cycles, integrated at every step (not
         from stored samples), against the allowable range ``allowable = (Δv, Δu)`` in the
         output's unit (default ``(0, limit)``): μ_S = (Δu + Δv)/2, σ_S = (Δu − Δv)/6 (P31–P32).
-        Crank angles count from the start of the runs (``t0`` of the run options, default 0).
+        Crank angles are |ω| t [deg] modulo 360° with t from t = 0 (the given pose's time), whatever
+        the runs' start ``t0`` or ``skip_cycles`` (docs/physics.md §6).
         Several outputs from one run: :meth:`fosm_all`."""
         return self.fosm_all(bin_width, [output], [allowable])[0]
 
@@ -561,11 +567,8 @@ class Study(ReliabilityModel, Modes):
         assert ev.monitors is not None
         per_cycle = int(math.ceil(360.0 / width - 1e-9))
         monitors = ev.monitors[0]
-        # The bin of the turn the window opens in (0 after whole skipped turns): crank angle |ω| (t − t0).
-        start, _, period = self._window(self.nominal())
-        turns = (start - float(self.run_options.get("t0", 0.0))) / period
-        first = int(round((turns - math.floor(turns + 1e-9)) * 360.0 / width))
-        fold = (first + np.arange(len(monitors[0]["bin_time"]))) % per_cycle
+        # Each time bin's crank-angle bin: |ω| t from t = 0, the window opening on a bin edge (§6).
+        fold = bin_fold(window_start_turns(self.skip_cycles, width), width, len(monitors[0]["bin_time"]))
         starts = np.arange(per_cycle) * width
         centres = np.minimum(starts + 0.5 * width, 0.5 * (starts + np.minimum(starts + width, 360.0)))
         return [fosm_from_monitors([mon], fold, starts, centres, np.zeros(per_cycle, dtype=int), mu_S, sigma_S, width) for mon, (mu_S, sigma_S) in zip(monitors, statistics)]

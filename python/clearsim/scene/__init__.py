@@ -134,7 +134,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     body = "slider"
     component = "x"                  # x | y | theta
     bin_width = 18.0                 # deg
-    omega = 523.6                    # rad/s; crank angle = |ω| (t − t0) in degrees
+    omega = 523.6                    # rad/s; crank angle = |ω| t in degrees, t from 0 (any t0)
                                      #   (default: the first constant-speed driver)
     t_start = 0.0                    # s, analyse from here (the next bin edge) to t_end, at least
                                      #   one crank turn (drop a start-up transient)

@@ -3,8 +3,8 @@
 It is read and checked here, then set up as the equivalent :class:`~clearsim.reliability.Study`
 (:func:`alias_study`): no random inputs; one output per analysed quantity, the body component's
 error against the ideal mechanism, with the upper end of its allowable range as the limit; the
-window from ``t_start`` (moved up to the next bin edge of the crank angle |ω| (t − t0)) to the
-end of the run. :func:`scene_fosm` computes ``SceneRun.reliability`` through
+window from ``t_start`` (moved up to the next bin edge of the crank angle |ω| t, t from t = 0
+whatever the run's ``t0``: docs/physics.md §6) to the end of the run. :func:`scene_fosm` computes ``SceneRun.reliability`` through
 :meth:`Study.fosm_all <clearsim.reliability.Study.fosm_all>`: one run of the nominal mechanism whose
 step monitors track every quantity, so no number depends on ``dt_out`` (docs/physics.md §6).
 """
@@ -36,7 +36,8 @@ class ReliabilitySettings:
 
     ``allowable`` maps ``displacement`` / ``velocity`` / ``acceleration`` to the allowable
     error range (Δv, Δu) [m, m/s, m/s² (rad… for ``theta``)]; ``omega`` [rad/s] gives the crank
-    angle |ω| (t − t0) [deg]; the analysis starts at ``t_start`` [s]; ``bin_width`` [deg].
+    angle |ω| t [deg] (t from t = 0, whatever ``[simulation].t0``); the analysis starts at
+    ``t_start`` [s]; ``bin_width`` [deg].
     :meth:`study` gives the equivalent ``[study]`` settings.
     """
 
@@ -54,13 +55,14 @@ class ReliabilitySettings:
 
 def alias_study(rel: ReliabilitySettings, sim: SimulationSettings) -> StudySettings:
     """``[reliability]`` as ``[study]`` settings: one output per analysed quantity, no random
-    inputs, the window from ``t_start`` (at the next bin edge of |ω| (t − t0)) to ``t_end``.
+    inputs, the window from ``t_start`` or the run's ``t0`` (at the next bin edge of |ω| t, t from
+    t = 0: the same bins whatever ``t0``) to ``t_end``.
     A window shorter than one crank turn is an :class:`InputError` (some bins would see no time:
     ``Scene.run`` reports it in ``SceneRun.reliability_failure``, and runs the rest)."""
     period = 2.0 * math.pi / abs(rel.omega)
     bin_time = period * rel.bin_width / 360.0
     start = max(rel.t_start, sim.t0)
-    start = sim.t0 + math.ceil((start - sim.t0) / bin_time - 1e-9) * bin_time
+    start = math.ceil(start / bin_time - 1e-9) * bin_time  # a bin edge of |ω| t (§6), not of |ω| (t − t0)
     turns = (sim.t_end - start) / period
     if not turns >= 1.0 - 1e-9:
         raise InputError(

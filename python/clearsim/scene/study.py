@@ -116,7 +116,7 @@ class StudySettings(Modes):
     life: Optional[LifeSettings] = None
     #: Each output's allowable range (Δv, Δu) for FOSM (``None``: (0, limit)); set by [reliability].
     allowable: Optional[List[Tuple[float, float]]] = None
-    #: Runs start here [s] and crank angles count from it (``[simulation].t0``; [reliability] only).
+    #: Runs start here [s] (``[simulation].t0``; [reliability] only); crank angles count from t = 0 all the same (docs/physics.md §6).
     t0: float = 0.0
 
 
