@@ -3,11 +3,11 @@
 //!
 //! ```text
 //! cargo bench --bench one_cycle --no-run          # prints the binary's path
-//! valgrind --tool=cachegrind --cache-sim=no <binary> nine_bar_lubricated radau5
+//! valgrind --tool=cachegrind --cache-sim=no <binary> nine_bar_lubricated radau
 //! ```
 //!
 //! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`) and a method, `rk45`
-//! (default), `dop853` or `radau5`. Prints the statistics of the run and the wall time; divide
+//! (default), `dop853` or `radau`. Prints the statistics of the run and the wall time; divide
 //! cachegrind's `I refs` by the right-hand sides for instructions per right-hand side. The
 //! settings are the benches' (`common::bench_run`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
 //! model (the dry nine-bar) takes a different number of steps after any change of round-off:
@@ -26,9 +26,9 @@ fn main() {
     let method = match args.get(1).map_or("rk45", String::as_str) {
         "rk45" => Method::Rk45,
         "dop853" => Method::Dop853,
-        "radau5" => Method::Radau,
+        "radau" => Method::Radau,
         other => {
-            eprintln!("unknown method {other:?}: rk45, dop853 or radau5");
+            eprintln!("unknown method {other:?}: rk45, dop853 or radau");
             std::process::exit(2);
         }
     };

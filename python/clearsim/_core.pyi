@@ -47,7 +47,7 @@ class RunSettings(TypedDict):
     Unknown keys are an ``InputError``."""
 
     # auto (radau when a clearance joint is lubricated, else rk45: resolved per mechanism, also in
-    # a batch), rk45 (dopri5), dop853, rodas4, radau (radau5), rk4; the result's
+    # a batch), rk45 (Dormand–Prince 5(4)), dop853, rodas4, radau (Radau IIA, RADAU5), rk4; the result's
     # stats["integrator"] names the one that ran.
     integrator: str
     t_end: float
