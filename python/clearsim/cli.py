@@ -271,7 +271,9 @@ def summarize(run: SceneRun) -> Dict[str, Any]:
         "file": str(scene.path) if scene.path else None,
         "clearsim_version": __version__,
         "t_end": scene.simulation.t_end,
-        "integrator": scene.simulation.integrator,
+        # The integrator that ran (the core resolves "auto" per mechanism), and what was asked.
+        "integrator": str(run.result.stats.get("integrator", scene.simulation.integrator)),
+        "integrator_setting": scene.simulation.integrator,
         "run": run.result.summary(),
     }
     if run.ideal is not None:
@@ -305,7 +307,7 @@ def _markdown(summary: Dict[str, Any], files: Sequence[Path]) -> str:
         f"# {summary['scene']}",
         "",
         f"Scene file `{summary['file']}`, clearsim {summary['clearsim_version']}, "
-        f"integrator {summary['integrator']}, t_end = {summary['t_end']:g} s.",
+        f"integrator {summary['integrator']}{' (auto)' if summary.get('integrator_setting') == 'auto' else ''}, t_end = {summary['t_end']:g} s.",
         "",
         "| run | outputs | steps | rejected | min step [s] | wall time [s] | max ‖Φ‖ | impacts |",
         "|---|---|---|---|---|---|---|---|",

@@ -77,3 +77,17 @@ def test_the_summaries_and_csv_carry_lambda_and_the_oil_temperature(tmp_path: Pa
     assert "pin.film_thickness [m]" in rows[0]
     stdout = capsys.readouterr().out
     assert "bearing pin: min film 40 µm, λ = 40, oil 313.15 → " in stdout
+
+
+def test_the_summary_names_the_integrator_that_ran(tmp_path: Path) -> None:
+    """A scene asking for integrator = "auto" gets the name the core resolved (radau for a
+    lubricated joint), in summary.json and summary.md, with the setting beside it."""
+    import json
+
+    from clearsim.cli import main
+
+    scene = Path(__file__).resolve().parents[2] / "scenes" / "nine_bar_lubricated.toml"
+    assert main(["run", str(scene), "-o", str(tmp_path), "--t-end", "0.005", "--no-plots", "-q"]) == 0
+    summary = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))
+    assert (summary["integrator"], summary["integrator_setting"]) == ("radau", "auto")
+    assert "integrator radau (auto)" in (tmp_path / "summary.md").read_text(encoding="utf-8")
