@@ -212,8 +212,11 @@ impl MechanismSystem<'_> {
                 };
             }
         }
-        // Refine the largest interior acceleration error of each monitor with a KKT solve.
+        // Refine the largest interior acceleration error of each monitor with a KKT solve. Each
+        // monitor keeps only its own refined value, so what one output reports does not depend
+        // on which other outputs are watched; monitors that pick the same point share one solve.
         let mut result = Ok(());
+        let mut solved = usize::MAX;
         for j in 0..nm {
             if self.monitors[j].spec.quantity != Quantity::Acceleration || self.monitors[j].spec.exact || k < 2 {
                 continue;
@@ -226,16 +229,15 @@ impl MechanismSystem<'_> {
             if imax == usize::MAX {
                 continue;
             }
-            dense.eval(at(imax), &mut s);
-            if let Err(e) = self.ws.evaluate(self.model, &self.memory, at(imax), &s) {
-                result = Err(e);
-                break;
-            }
-            for (jj, mm) in self.monitors.iter().enumerate() {
-                if mm.spec.quantity == Quantity::Acceleration {
-                    self.monitor_values[imax * nm + jj] = self.ws.qdd[mm.spec.coordinate];
+            if imax != solved {
+                dense.eval(at(imax), &mut s);
+                if let Err(e) = self.ws.evaluate(self.model, &self.memory, at(imax), &s) {
+                    result = Err(e);
+                    break;
                 }
+                solved = imax;
             }
+            self.monitor_values[imax * nm + j] = self.ws.qdd[self.monitors[j].spec.coordinate];
         }
         // The acceleration at t1: the explicit methods' last stage f(t1, y1) holds it (same
         // memory), otherwise one KKT solve — done last, so that the workspace still holds it

@@ -193,3 +193,24 @@ def test_the_old_name_axis_still_works_with_a_warning_and_not_beside_component()
     assert e.value.field == "Output.axis"
     with pytest.raises(clearsim.InputError, match="must be one of x, y, theta"):
         rel.Output(body="slider9", component="z")
+
+
+def test_an_acceleration_output_does_not_depend_on_the_other_outputs_watched():
+    """Each acceleration monitor refines its own worst point inside a step (one KKT solve) and
+    keeps only its own value there: FOSM of outputs watched together in one run equals FOSM of
+    each watched alone, bit for bit. Before, one monitor's refinement overwrote the others'
+    estimates at its point, and the per-bin means moved by ~2e-5 relative with the company."""
+    outs = [rel.Output(body=b, component=c, quantity="acceleration") for b, c in (("slider9", "y"), ("rod7", "x"), ("rocker6", "theta"))]
+
+    def make(o, lim):
+        return rel.Study(
+            lambda cA, cB: clearsim.models.nine_bar("dry", {"A": cA, "B": cB}),
+            inputs={"cA": rel.Normal(0.5e-3, 0.05e-3), "cB": rel.Normal(0.5e-3, 0.05e-3)},
+            output=o, limit=lim, omega=OMEGA, cycles=0.5, progress=False,
+        )  # fmt: skip
+
+    together = make(outs, [1e4] * len(outs)).fosm_all()
+    for k, o in enumerate(outs):
+        alone = make(o, 1e4).fosm()
+        np.testing.assert_array_equal(together[k].mu_s, alone.mu_s, err_msg=o.label)
+        np.testing.assert_array_equal(together[k].sigma_s, alone.sigma_s, err_msg=o.label)
