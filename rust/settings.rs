@@ -85,7 +85,7 @@ impl RunSettings {
 
     /// Output grid t0, t0 + dt_out, … up to t_end \[s\]: `t0 + k dt_out` for k = 0 … n, n =
     /// ⌊(t_end − t0)/dt_out · (1 + 1e-12)⌋ (t_end inclusive when it lands on the grid within
-    /// rounding), without the times past t_end (a run records none there). `dt_out` must be
+    /// rounding: a last point past t_end by rounding is put on t_end). `dt_out` must be
     /// positive and finite and give at most [`MAX_OUTPUTS`] outputs; t0 and t_end as in
     /// [`Self::validate`]. The one implementation: `clearsim.Mechanism.run_settings` sends
     /// `dt_out` and the grid is built here.
@@ -103,7 +103,9 @@ impl RunSettings {
             return Err(Error::invalid("dt_out", num(dt_out), why));
         }
         let n = (count * (1.0 + 1e-12)).floor() as usize;
-        Ok((0..=n).map(|k| t0 + k as f64 * dt_out).filter(|t| *t <= t_end).collect())
+        // The last point lies on t_end within rounding (0.1 × 3 = 0.30000000000000004 > 0.3):
+        // it is t_end itself, so a run records its end (it used to drop it).
+        Ok((0..=n).map(|k| if k == n { (t0 + k as f64 * dt_out).min(t_end) } else { t0 + k as f64 * dt_out }).collect())
     }
 
     /// Every check of the settings on their own (times, tolerances, step limits, output times,
@@ -315,7 +317,8 @@ mod tests {
     fn python_grid(t0: f64, t_end: f64, dt: f64) -> Vec<f64> {
         let count = (t_end - t0) / dt;
         let n = (count * (1.0 + 1e-12)).floor() as i64;
-        (0..=n).map(|k| t0 + dt * (k as f64)).filter(|t| *t <= t_end).collect()
+        // ... with the last point past t_end by rounding put on t_end (the old one dropped it).
+        (0..=n).map(|k| if k == n { (t0 + dt * (k as f64)).min(t_end) } else { t0 + dt * (k as f64) }).collect()
     }
 
     #[test]
@@ -343,6 +346,12 @@ mod tests {
             assert_eq!(ours.len(), old.len(), "({t0}, {t_end}, {dt})");
             assert!(ours.iter().zip(&old).all(|(a, b)| a.to_bits() == b.to_bits()), "({t0}, {t_end}, {dt})");
         }
+    }
+
+    #[test]
+    fn a_grid_ends_on_t_end_when_it_lands_there_within_rounding() {
+        assert_eq!(RunSettings::grid(0.0, 0.3, 0.1).unwrap(), vec![0.0, 0.1, 0.2, 0.3]);
+        assert_eq!(RunSettings::grid(0.0, 0.35, 0.1).unwrap(), vec![0.0, 0.1, 0.2, 0.30000000000000004]);
     }
 
     #[test]

@@ -34,7 +34,8 @@ def old_python_grid(t0: float, t_end: float, dt_out: float) -> np.ndarray:
     run recorded the times up to t_end (the core's filter in ``simulate``)."""
     n = int(math.floor((t_end - t0) / dt_out * (1 + 1e-12)))
     grid = t0 + dt_out * np.arange(n + 1)
-    return grid[grid <= t_end]
+    grid[-1] = min(grid[-1], t_end)  # a last point past t_end by rounding is t_end (the old run dropped it)
+    return grid
 
 
 # ------------------------------------------------------------------ integrator policy
@@ -105,7 +106,9 @@ def triples() -> List[tuple]:
 
 def test_output_times_are_the_grid_python_built_bit_for_bit():
     """The core builds the dt_out grid now; the times a run records are the floats the old
-    Python grid gave (numpy's ``t0 + dt_out * arange(n + 1)``), bit for bit."""
+    Python grid gave (numpy's ``t0 + dt_out * arange(n + 1)``), bit for bit, except a last point
+    past t_end by rounding, which is t_end (a run from 0 to 0.3 s at dt_out = 0.1 s ends at 0.3 s;
+    it used to end at 0.2 s)."""
     m = driven()
     compiled = m.compile()
     for t0, t_end, dt in triples():
@@ -151,3 +154,10 @@ def test_bad_dt_out_is_located_in_a_scene_file(tmp_path, value):
         load_scene_file(path)
     msg = str(info.value)
     assert msg.startswith(f"{path}:{line}: ") and "dt_out" in msg, msg
+
+
+def test_a_run_records_its_end_when_the_grid_lands_there_within_rounding():
+    """0.1 × 3 = 0.30000000000000004 > 0.3: the run's last output is t_end = 0.3 s itself (it
+    was 0.2 s, the final state dropped)."""
+    res = driven().simulate(0.3, dt_out=0.1, progress=False)
+    assert res.t.tolist() == [0.0, 0.1, 0.2, 0.3]
