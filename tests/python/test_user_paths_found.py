@@ -446,3 +446,43 @@ def test_the_pump_runs_studies_and_animates_from_the_cli(tmp_path, capsys):
     assert samples.shape[0] == 2 and np.all(np.isfinite(samples[:, head.index("A.film_thickness [m]")]))
     report = (rel / "report.md").read_text(encoding="utf-8")
     assert "| monte_carlo | system |" in report and "FOSM `plunger.y.displacement`" in report
+
+
+WIPER = Path(__file__).resolve().parents[1] / "data" / "scenes" / "wiper.toml"
+
+
+def test_the_wiper_runs_and_studies_from_the_cli(tmp_path, capsys):
+    """The windscreen-wiper four-bar (walk 4: a crank-rocker with a lubricated crank pin A and a
+    dry rocker pin B) through ``clearsim run`` and ``clearsim reliability``. The "auto" integrator
+    resolves to radau (a lubricated joint), named beside its setting in summary.json; [reliability]'s
+    FOSM printed by ``run`` is the same whatever dt_out and t0 (its crank angle is |ω| t from
+    t = 0); the rocker's angle error is bounded by the play: the pin B can sit c_A + c_B off the
+    ideal, which turns the 50 mm rocker by at most (c_A + c_B)/(r sin μ) (μ ≥ 30°, the
+    transmission angle), and by more than nothing."""
+    import json
+
+    from clearsim.cli import main
+
+    text = WIPER.read_text(encoding="utf-8")
+    printed = {}
+    for label, edit in (("base", text), ("dt_out", text.replace("dt_out = 2e-3 ", "dt_out = 5e-4 ")),
+                        ("t0", text.replace("cycles = 2 ", "t0 = 0.25\ncycles = 2 "))):  # fmt: skip
+        assert edit != text or label == "base"
+        path = tmp_path / f"wiper_{label}.toml"
+        path.write_text(edit, encoding="utf-8")
+        out = tmp_path / f"run_{label}"
+        assert main(["run", str(path), "-o", str(out), "--no-plots"]) == 0
+        printed[label] = re.findall(r"FOSM \w+: min R = [0-9.]+ \(β = [-0-9.]+\) at (\d+)°", capsys.readouterr().out)
+    assert len(printed["base"]) == 3 and printed["base"] == printed["dt_out"] == printed["t0"]
+    summary = json.loads((tmp_path / "run_base" / "summary.json").read_text(encoding="utf-8"))
+    assert summary["integrator"] == "radau" and summary["integrator_setting"] == "auto"
+    assert summary["run"]["failure"] is None and 0 < summary["run"]["bearings"]["A"]["min_film_thickness"] < 20e-6
+    head, data = _csv(tmp_path / "run_base" / "errors.csv")
+    peak = np.max(np.abs(data[:, head.index("rocker.displacement_error.theta [rad]")]))
+    assert 0.0 < peak < (20e-6 + 0.1e-3) / (0.05 * math.sin(math.radians(30)))
+    rel = tmp_path / "rel"
+    assert main(["reliability", str(WIPER), "-o", str(rel), "-q", "--methods", "monte_carlo,fosm", "--samples", "2", "--no-plots"]) == 0
+    head, samples = _csv(rel / "samples.csv")
+    assert samples.shape[0] == 2 and np.all(samples[:, head.index("peak [rad]")] < 5e-3)
+    report = (rel / "report.md").read_text(encoding="utf-8")
+    assert "monte_carlo" in report and "FOSM" in report
