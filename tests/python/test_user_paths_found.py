@@ -486,3 +486,22 @@ def test_the_wiper_runs_and_studies_from_the_cli(tmp_path, capsys):
     assert samples.shape[0] == 2 and np.all(samples[:, head.index("peak [rad]")] < 5e-3)
     report = (rel / "report.md").read_text(encoding="utf-8")
     assert "monte_carlo" in report and "FOSM" in report
+
+
+def test_a_scene_run_from_a_later_t0_says_where_it_started(tmp_path):
+    """``clearsim run`` of a scene with ``t0 = 0.25`` (``cycles = 2``: t_end = t0 + 2 s): summary.json
+    and summary.md give the window the run covered, t0 as well as t_end, and the first output
+    time is t0. Before: both said only ``t_end = 2.25 s``, so a reader took it for a 2.25 s run."""
+    import json
+
+    from clearsim.cli import main
+
+    path = tmp_path / "wiper_t0.toml"
+    path.write_text(WIPER.read_text(encoding="utf-8").replace("cycles = 2 ", "t0 = 0.25\ncycles = 2 "), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["run", str(path), "-o", str(out), "-q", "--no-plots"]) == 0
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert summary["t0"] == 0.25 and summary["t_end"] == pytest.approx(2.25, abs=1e-12)
+    head, data = _csv(out / "bodies.csv")
+    assert data[0, 0] == summary["t0"]
+    assert "t0 = 0.25 s, t_end = 2.25 s" in (out / "summary.md").read_text(encoding="utf-8")
