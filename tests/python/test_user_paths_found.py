@@ -505,3 +505,14 @@ def test_a_scene_run_from_a_later_t0_says_where_it_started(tmp_path):
     head, data = _csv(out / "bodies.csv")
     assert data[0, 0] == summary["t0"]
     assert "t0 = 0.25 s, t_end = 2.25 s" in (out / "summary.md").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(("options", "field", "value"), [({"t_out": [0.0, 0.05, 0.2]}, "t_out[2]", 0.2), ({"t0": 0.05, "t_out": [0.0, 0.1]}, "t_out[0]", 0.0)])
+def test_output_times_the_run_would_drop_are_refused(options, field, value):
+    """``simulate(0.1, t_out=...)`` with a time past t_end or before t0: an InputError naming the
+    field and value before anything runs. Before: the run dropped the times outside [t0, t_end]
+    without a word (a Result of 1 output for t_out = [0, 0.2])."""
+    m = models.slider_crank("dry", clearance=0.5e-3)
+    with pytest.raises(clearsim.InputError, match=re.escape(f"invalid {field} = {value}")) as info:
+        m.simulate(0.1, progress=False, **options)
+    assert info.value.field == field
