@@ -149,6 +149,16 @@ impl RunSettings {
                 return Err(Error::invalid(format!("t_out[{}]", k + 1), num(w[1]), "output times must increase strictly"));
             }
         }
+        // Every output time inside the run (a time outside it was dropped without a word).
+        if let (Some(&first), Some(&last)) = (self.t_out.first(), self.t_out.last()) {
+            let window = format!("outside the run, which covers [t0, t_end] = [{}, {}] s", num(self.t0), num(self.t_end));
+            if first < self.t0 {
+                return Err(Error::invalid("t_out[0]", num(first), window));
+            }
+            if last > self.t_end {
+                return Err(Error::invalid(format!("t_out[{}]", self.t_out.len() - 1), num(last), window));
+            }
+        }
         for (i, m) in self.monitors.iter().enumerate() {
             m.validate(i)?;
         }
@@ -365,6 +375,11 @@ mod tests {
         assert_eq!(msg(5e-324), "invalid dt_out = 5e-324: gives inf outputs over [0.0, 1.0] s, more than 1e+07; choose a coarser grid");
         let read_err = |v| read(v).unwrap_err().to_string();
         assert!(read_err(serde_json::json!({"integrator": "auto", "t_end": 0.1, "dt_out": 0.01, "t_out": [0.0]})).contains("not both"));
+        assert_eq!(
+            read_err(serde_json::json!({"integrator": "auto", "t_end": 0.1, "t_out": [0.0, 0.2]})),
+            "invalid t_out[1] = 0.2: outside the run, which covers [t0, t_end] = [0.0, 0.1] s"
+        );
+        assert!(read_err(serde_json::json!({"integrator": "auto", "t0": 0.05, "t_end": 0.1, "t_out": [0.0, 0.1]})).starts_with("invalid t_out[0] = 0.0: outside"));
         assert!(read_err(serde_json::json!({"integrator": "auto", "t_end": 0.1, "dt_out": -1.0})).starts_with("invalid dt_out = -1.0"));
         // No spacing and no times: (t_end − t0)/1000.
         let rs = read(serde_json::json!({"integrator": "auto", "t0": 0.5, "t_end": 1.5})).unwrap();

@@ -270,6 +270,7 @@ def summarize(run: SceneRun) -> Dict[str, Any]:
         "scene": scene.name,
         "file": str(scene.path) if scene.path else None,
         "clearsim_version": __version__,
+        "t0": scene.simulation.t0,  # the run covers [t0, t_end] s
         "t_end": scene.simulation.t_end,
         # The integrator that ran (the core resolves "auto" per mechanism), and what was asked.
         "integrator": str(run.result.stats.get("integrator", scene.simulation.integrator)),
@@ -301,13 +302,19 @@ def summarize(run: SceneRun) -> Dict[str, Any]:
     return _finite(out)
 
 
+def _window(summary: Dict[str, Any]) -> str:
+    """The run's time window as summary.md states it: t_end alone for a run from 0."""
+    t0 = summary.get("t0", 0.0)
+    return f"t_end = {summary['t_end']:g} s" if not t0 else f"t0 = {t0:g} s, t_end = {summary['t_end']:g} s"
+
+
 def _markdown(summary: Dict[str, Any], files: Sequence[Path]) -> str:
     run = summary["run"]
     lines = [
         f"# {summary['scene']}",
         "",
         f"Scene file `{summary['file']}`, clearsim {summary['clearsim_version']}, "
-        f"integrator {summary['integrator']}{' (auto)' if summary.get('integrator_setting') == 'auto' else ''}, t_end = {summary['t_end']:g} s.",
+        f"integrator {summary['integrator']}{' (auto)' if summary.get('integrator_setting') == 'auto' else ''}, {_window(summary)}.",
         "",
         "| run | outputs | steps | rejected | min step [s] | wall time [s] | max ‖Φ‖ | impacts |",
         "|---|---|---|---|---|---|---|---|",

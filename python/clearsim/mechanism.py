@@ -131,7 +131,8 @@ class Mechanism(Running):
 
         ``mass`` [kg] and ``inertia`` (about the centroid) [kg m²] must be positive.
         ``position`` [m] and ``angle`` [rad] (default the origin and 0) are approximate: the
-        kinematic assembly at t0 makes them satisfy the joints. For a link, ``ends=((x1, y1),
+        kinematic assembly at t = 0 makes them satisfy the joints (a run from t0 > 0 follows the
+        drivers on from there). For a link, ``ends=((x1, y1),
         (x2, y2))`` [m] instead puts the centroid at mid-length and the angle along the line from
         the first end to the second (not together with ``position``/``angle``). ``velocity``
         (ẋ, ẏ, θ̇) is an optional guess, projected onto the constraints (drivers fix what they

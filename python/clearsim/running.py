@@ -285,8 +285,9 @@ class Running:
         rtol, atol:
             Tolerances of the adaptive methods (default 1e-6, 1e-9).
         dt_out / t_out:
-            Output grid spacing [s] (default (t_end − t0)/1000) or explicit output times;
-            outputs come from the dense output and never shorten a step.
+            Output grid spacing [s] (default (t_end − t0)/1000) or explicit output times [s]
+            (increasing, inside [t0, t_end]; they take precedence over dt_out); outputs come from
+            the dense output and never shorten a step.
         outputs:
             Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``,
             ``"joints"``, ``"violation"`` (default: all but ``"reactions"``).

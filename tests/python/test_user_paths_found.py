@@ -446,3 +446,73 @@ def test_the_pump_runs_studies_and_animates_from_the_cli(tmp_path, capsys):
     assert samples.shape[0] == 2 and np.all(np.isfinite(samples[:, head.index("A.film_thickness [m]")]))
     report = (rel / "report.md").read_text(encoding="utf-8")
     assert "| monte_carlo | system |" in report and "FOSM `plunger.y.displacement`" in report
+
+
+WIPER = Path(__file__).resolve().parents[1] / "data" / "scenes" / "wiper.toml"
+
+
+def test_the_wiper_runs_and_studies_from_the_cli(tmp_path, capsys):
+    """The windscreen-wiper four-bar (walk 4: a crank-rocker with a lubricated crank pin A and a
+    dry rocker pin B) through ``clearsim run`` and ``clearsim reliability``. The "auto" integrator
+    resolves to radau (a lubricated joint), named beside its setting in summary.json; [reliability]'s
+    FOSM printed by ``run`` is the same whatever dt_out and t0 (its crank angle is |ω| t from
+    t = 0); the rocker's angle error is bounded by the play: the pin B can sit c_A + c_B off the
+    ideal, which turns the 50 mm rocker by at most (c_A + c_B)/(r sin μ) (μ ≥ 30°, the
+    transmission angle), and by more than nothing."""
+    import json
+
+    from clearsim.cli import main
+
+    text = WIPER.read_text(encoding="utf-8")
+    printed = {}
+    for label, edit in (("base", text), ("dt_out", text.replace("dt_out = 2e-3 ", "dt_out = 5e-4 ")),
+                        ("t0", text.replace("cycles = 2 ", "t0 = 0.25\ncycles = 2 "))):  # fmt: skip
+        assert edit != text or label == "base"
+        path = tmp_path / f"wiper_{label}.toml"
+        path.write_text(edit, encoding="utf-8")
+        out = tmp_path / f"run_{label}"
+        assert main(["run", str(path), "-o", str(out), "--no-plots"]) == 0
+        printed[label] = re.findall(r"FOSM \w+: min R = [0-9.]+ \(β = [-0-9.]+\) at (\d+)°", capsys.readouterr().out)
+    assert len(printed["base"]) == 3 and printed["base"] == printed["dt_out"] == printed["t0"]
+    summary = json.loads((tmp_path / "run_base" / "summary.json").read_text(encoding="utf-8"))
+    assert summary["integrator"] == "radau" and summary["integrator_setting"] == "auto"
+    assert summary["run"]["failure"] is None and 0 < summary["run"]["bearings"]["A"]["min_film_thickness"] < 20e-6
+    head, data = _csv(tmp_path / "run_base" / "errors.csv")
+    peak = np.max(np.abs(data[:, head.index("rocker.displacement_error.theta [rad]")]))
+    assert 0.0 < peak < (20e-6 + 0.1e-3) / (0.05 * math.sin(math.radians(30)))
+    rel = tmp_path / "rel"
+    assert main(["reliability", str(WIPER), "-o", str(rel), "-q", "--methods", "monte_carlo,fosm", "--samples", "2", "--no-plots"]) == 0
+    head, samples = _csv(rel / "samples.csv")
+    assert samples.shape[0] == 2 and np.all(samples[:, head.index("peak [rad]")] < 5e-3)
+    report = (rel / "report.md").read_text(encoding="utf-8")
+    assert "monte_carlo" in report and "FOSM" in report
+
+
+def test_a_scene_run_from_a_later_t0_says_where_it_started(tmp_path):
+    """``clearsim run`` of a scene with ``t0 = 0.25`` (``cycles = 2``: t_end = t0 + 2 s): summary.json
+    and summary.md give the window the run covered, t0 as well as t_end, and the first output
+    time is t0. Before: both said only ``t_end = 2.25 s``, so a reader took it for a 2.25 s run."""
+    import json
+
+    from clearsim.cli import main
+
+    path = tmp_path / "wiper_t0.toml"
+    path.write_text(WIPER.read_text(encoding="utf-8").replace("cycles = 2 ", "t0 = 0.25\ncycles = 2 "), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["run", str(path), "-o", str(out), "-q", "--no-plots"]) == 0
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert summary["t0"] == 0.25 and summary["t_end"] == pytest.approx(2.25, abs=1e-12)
+    head, data = _csv(out / "bodies.csv")
+    assert data[0, 0] == summary["t0"]
+    assert "t0 = 0.25 s, t_end = 2.25 s" in (out / "summary.md").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(("options", "field", "value"), [({"t_out": [0.0, 0.05, 0.2]}, "t_out[2]", 0.2), ({"t0": 0.05, "t_out": [0.0, 0.1]}, "t_out[0]", 0.0)])
+def test_output_times_the_run_would_drop_are_refused(options, field, value):
+    """``simulate(0.1, t_out=...)`` with a time past t_end or before t0: an InputError naming the
+    field and value before anything runs. Before: the run dropped the times outside [t0, t_end]
+    without a word (a Result of 1 output for t_out = [0, 0.2])."""
+    m = models.slider_crank("dry", clearance=0.5e-3)
+    with pytest.raises(clearsim.InputError, match=re.escape(f"invalid {field} = {value}")) as info:
+        m.simulate(0.1, progress=False, **options)
+    assert info.value.field == field

@@ -27,7 +27,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     name = "crank"
     mass = 0.30                      # kg
     inertia = 1.0e-4                 # kg m², about the centroid
-    position = [0.025, 0.0]          # m, approximate (the assembly at t0 refines it) ...
+    position = [0.025, 0.0]          # m, approximate (the assembly at t = 0 refines it) ...
     angle = 0.0                      # rad (default 0)
     # ... or, for a link: ends = [[0.0, 0.0], [0.05, 0.0]]  (centroid at mid-length,
     #     angle of the line ends[0] → ends[1]); not together with position/angle.
