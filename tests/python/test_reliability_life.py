@@ -324,3 +324,19 @@ cycles = [0, 1e6]
     assert [r["method"] for r in csv.DictReader((out / "reliability.csv").open())] == ["monte_carlo"]
     report = (out / "report.md").read_text()
     assert "Reliability over life: not run to the end" in report and "| monte_carlo |" in report and "Stopped early" in report
+
+
+def test_a_scene_sets_max_blocks_by_the_same_word(tmp_path):
+    """``[study.life] max_blocks`` is ``Study.life(max_blocks=)``'s word; a bad value is named
+    with its line."""
+    from pathlib import Path
+
+    from clearsim.errors import InputError
+    from clearsim.scene import load_scene_file
+
+    path = Path(__file__).resolve().parents[1] / "data" / "scenes" / "beam_pump.toml"
+    assert load_scene_file(path).study.life.max_blocks == 400
+    bad = tmp_path / "bad.toml"
+    bad.write_text(path.read_text(encoding="utf-8").replace("max_blocks = 400", "max_blocks = 0"), encoding="utf-8")
+    with pytest.raises(InputError, match="study.life.max_blocks = 0"):
+        load_scene_file(bad)

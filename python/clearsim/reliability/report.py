@@ -130,7 +130,7 @@ def _life(r: Run, out_dir: Path, plots: bool) -> List[Path]:
     from .life_plot import LIFE_HEADER, life_rows, plot_life
 
     ls = r.settings.life
-    res = r.found["life"] = r.study.life(ls.cycles, ls.samples, seed=r.settings.seed, max_growth=ls.max_growth, max_jump=ls.max_jump, settle=ls.settle)
+    res = r.found["life"] = r.study.life(ls.cycles, ls.samples, seed=r.settings.seed, max_growth=ls.max_growth, max_jump=ls.max_jump, settle=ls.settle, max_blocks=ls.max_blocks)
     r.echo(f"{'life':20s} p_f at {res.cycles[-1]:g} cycles = {res.pf[-1]:.4g}  runs = {res.n_runs}  ({res.wall_time:.1f} s)")
     if ls.reliability is not None:
         try:

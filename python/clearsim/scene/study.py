@@ -64,6 +64,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 from ..reliability.distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
 from ..reliability.fosm import BIN_WIDTH
+from ..reliability.life import MAX_BLOCKS
 from ..reliability.outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Modes, Output
 from ..reliability.sobol import SOBOL_METHODS
 from ..reliability.study import Study
@@ -77,7 +78,7 @@ OUTPUT_KEYS = ("body", "component", "joint", "quantity", "limit", "side")
 STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step", "max_runs", "life")
 INPUT_KEYS = ("path", "distribution", "mean", "std", "low", "high")
 TOLERANCE_KEYS = ("input", "reliability", "bracket")
-LIFE_KEYS = ("cycles", "samples", "reliability", "max_growth", "max_jump", "settle")
+LIFE_KEYS = ("cycles", "samples", "reliability", "max_growth", "max_jump", "settle", "max_blocks")
 DISTRIBUTIONS = ("normal", "lognormal", "uniform", "truncated_normal")
 
 
@@ -91,6 +92,7 @@ class LifeSettings:
     max_growth: float = 0.02
     max_jump: Optional[float] = None
     settle: Optional[float] = None
+    max_blocks: int = MAX_BLOCKS  # blocks a sample may take (Study.life's max_blocks)
 
 
 @dataclass
@@ -212,7 +214,10 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
         for key, v in values.items():
             if v is not None and not (v >= 0 if key == "settle" else v > 0):
                 raise lt.error(key, f"invalid study.life.{key} = {v!r}: must be {'≥ 0' if key == 'settle' else 'positive'}", v)
-        life = LifeSettings([float(c) for c in cycles], int(values["samples"]), r_life, float(values["max_growth"]), values["max_jump"], values["settle"])
+        max_blocks = lt.integer("max_blocks", MAX_BLOCKS)
+        if not max_blocks >= 1:
+            raise lt.error("max_blocks", f"invalid study.life.max_blocks = {max_blocks!r}: must be at least 1", max_blocks)
+        life = LifeSettings([float(c) for c in cycles], int(values["samples"]), r_life, float(values["max_growth"]), values["max_jump"], values["settle"], max_blocks)
     max_runs = t.integer("max_runs", 150)
     if max_runs < 2:
         raise t.error("max_runs", f"invalid study.max_runs = {max_runs!r}: must be at least 2", max_runs)
