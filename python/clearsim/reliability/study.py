@@ -146,6 +146,8 @@ class _Job:
     period: float
     clearances: List[float]
     ideal_key: Optional[str] = None
+    #: The ideal run it is measured against (its raw result; ``None`` for joint outputs only).
+    ideal: Any = None
     #: Every ``refine``-th point of the ideal reference is on this run's stored output grid.
     refine: int = 1
 
@@ -322,15 +324,24 @@ class Study(ReliabilityModel, Modes):
             m.check_assembly(t0)
             self._assembly_checked = True
 
-    def _references(self, jobs: Dict[str, Tuple[Any, Any]]) -> None:
-        """Run the ideal mechanisms that body errors are measured against, those not cached yet,
-        in one batch (random clearances do not change them: most studies run one)."""
+    def _references(self, jobs: Dict[str, Tuple[Any, Any]]) -> Dict[str, Any]:
+        """The ideal runs that body errors are measured against, one per key of ``jobs`` (a
+        failed one as its reason): those not cached yet run in one batch (random clearances do
+        not change them: most studies run one). Every key asked for is in the answer, whatever
+        the cache keeps: the cache holds the last :data:`IDEAL_CACHE` for later calls only (a
+        chunk with more distinct references than that once measured its first samples against
+        none)."""
         todo = [k for k in jobs if k not in self._ideal]
         raws = run_all([jobs[k][0] for k in todo], [jobs[k][1] for k in todo], self.executor, self.chunk_size, False, "ideal mechanisms")
+        found = {k: self._ideal[k] for k in jobs if k in self._ideal}
         for key, raw in zip(todo, raws):
-            self._ideal[key] = f"{error_of(raw)} (ideal mechanism)" if failed(raw) else raw
-            while len(self._ideal) > IDEAL_CACHE:
-                self._ideal.popitem(last=False)
+            found[key] = f"{error_of(raw)} (ideal mechanism)" if failed(raw) else raw
+        for key in jobs:
+            self._ideal[key] = found[key]
+            self._ideal.move_to_end(key)
+        while len(self._ideal) > IDEAL_CACHE:
+            self._ideal.popitem(last=False)
+        return found
 
     def _monitors(self, job: _Job, t0: float, reference: Any) -> List[Dict[str, Any]]:
         specs = []
@@ -411,7 +422,7 @@ class Study(ReliabilityModel, Modes):
     def _trace(self, job: _Job, raw: Dict[str, Any], raw_traces: bool) -> Any:
         if not raw_traces:
             return job.mechanism._finish(raw, job.settings)
-        ideal = self._ideal.get(job.ideal_key) if job.ideal_key is not None else None
+        ideal = job.ideal
         if isinstance(ideal, dict):
             ideal = {key: (value[:: job.refine] if key in ("t", "q", "qd", "qdd") else value) for key, value in ideal.items()}
         return {"sample": raw, "ideal": ideal, "columns": [self._target(job.mechanism, o) for o in self.outputs]}
@@ -446,14 +457,14 @@ class Study(ReliabilityModel, Modes):
                 ideal_jobs.setdefault(key, (desc, ref_settings))
             jobs.append(job)
             windows.append(t0)
-        if ideal_jobs:
-            self._references(ideal_jobs)
+        references = self._references(ideal_jobs) if ideal_jobs else {}
         kept: List[_Job] = []
         for job, t0 in zip(jobs, windows):
-            reference = self._ideal.get(job.ideal_key) if job.ideal_key is not None else None
+            reference = references[job.ideal_key] if job.ideal_key is not None else None
             if isinstance(reference, str):
                 errors[job.k] = reference
                 continue
+            job.ideal = reference
             job.settings["monitors"] = self._monitors(job, t0, reference)
             kept.append(job)
         return kept, errors
