@@ -169,7 +169,9 @@ class Result(JointReadings, JointReactions):
 
     @property
     def reactions(self) -> np.ndarray:
-        """(N, rows) Lagrange multipliers λ (needs ``outputs=[..., "reactions"]``)."""
+        """(N, rows) Lagrange multipliers λ (needs ``outputs=[..., "reactions"]``), one column per
+        constraint equation in the order of docs/physics.md §1, *Reactions*; by name and in
+        newtons: :meth:`joint_force`, :meth:`joint_torque`, :meth:`driver_torque`."""
         return self._channel("lambda", "reactions")
 
     def energy(self) -> Dict[str, np.ndarray]:
@@ -356,9 +358,9 @@ class Result(JointReadings, JointReactions):
         """A figure of the mechanism at time ``t`` [s] of the run (positions interpolated
         between stored outputs), clearances magnified (``magnify``; default: the largest
         clearance drawn at 2 % of the mechanism's size, the factor written beside each joint).
-        ``points`` (``{"tool": ("coupler", (0.1, 0.02))}``, body frame [m]) are marked and named;
-        with ``trace=True`` each one's path over the whole run is drawn too (from every stored
-        output)."""
+        ``points`` (``{"tool": ("coupler", (0.1, 0.02))}``, body frame [m]; default: the
+        :attr:`tracked_points`, a scene's ``[outputs] points``) are marked and named; with
+        ``trace=True`` each one's path over the whole run is drawn too (from every stored output)."""
         from . import draw, draw_points
 
         self._need_description()

@@ -295,8 +295,10 @@ class Running:
             (increasing, inside [t0, t_end]; they take precedence over dt_out); outputs come from
             the dense output and never shorten a step.
         outputs:
-            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``,
-            ``"joints"``, ``"violation"`` (default: all but ``"reactions"``).
+            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``
+            (the ideal joints' forces and drivers' torques: :meth:`Result.joint_force`,
+            :meth:`Result.driver_torque`), ``"joints"``, ``"violation"`` (default: all but
+            ``"reactions"``).
         h_max, h_min, max_steps:
             Step limits [s] and the step budget.
         max_seconds:
