@@ -204,6 +204,15 @@ def test_scene_point_errors_name_file_and_line(tmp_path, entry, words):
     assert info.value.line in (line, line - 2)  # the entry's line (a missing key: the table's header)
 
 
+def test_an_error_in_a_later_inline_point_names_its_line(tmp_path):
+    entries = ['  {name = "tool", body = "rod", point = [0.02, 0.0]},', '  {name = "tip",', '   body = "pin", point = [0.02, 0.0]},']
+    path = _scene_with(tmp_path, "[outputs]\npoints = [\n" + "\n".join(entries) + "\n]\n")
+    with pytest.raises(clearsim.InputError) as info:
+        load_scene_file(path)
+    assert info.value.line == path.read_text().splitlines().index(entries[1]) + 1
+    assert "outputs.points[1].body = 'pin'" in str(info.value) and str(info.value).startswith(f"{path}:{info.value.line}: ")
+
+
 def test_scene_points_as_array_of_tables(tmp_path):
     path = _scene_with(tmp_path, '[outputs]\nbodies = ["slider"]\n\n[[outputs.points]]\nname = "tool"\nbody = "rod"\npoint = [0.02, 0.015]\n\n[[outputs.points]]\nname = "pin"\nbody = "rod"\npoint = [0.06, 0.0]\n')
     scene = load_scene_file(path)

@@ -5,6 +5,7 @@ SI units: s, m, rad."""
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
@@ -181,16 +182,43 @@ def _points(t: Table, m: Mechanism) -> List[TrackedPoint]:
     unique and not a body's or joint's (they head columns beside those)."""
     taken = set(m.body_names) | set(m.clearance_joint_names) | {j["name"] for j in m.description()["joints"]} | {d["name"] for d in m.description()["drivers"]}
     out: List[TrackedPoint] = []
-    for entry in t.array_of_tables("points", _POINT_KEYS):
-        name = entry.string("name")
-        if not name or name in taken or any(p.name == name for p in out):
-            why = "must not be empty" if not name else "is already the name of a body, joint or point"
-            raise entry.error("name", f"invalid {dotted_key(entry.where, 'name')} = {name!r}: {why}", name)
-        body = entry.string("body", choices=m.body_names)
-        xy = entry.point("point")
+    for k, entry in enumerate(t.array_of_tables("points", _POINT_KEYS)):
         try:
-            xy = check_point(xy, dotted_key(entry.where, "point"))
+            name = entry.string("name")
+            if not name or name in taken or any(p.name == name for p in out):
+                why = "must not be empty" if not name else "is already the name of a body, joint or point"
+                raise entry.error("name", f"invalid {dotted_key(entry.where, 'name')} = {name!r}: {why}", name)
+            body = entry.string("body", choices=m.body_names)
+            xy = entry.point("point")
+            try:
+                xy = check_point(xy, dotted_key(entry.where, "point"))
+            except InputError as err:
+                raise entry.error("point", err.reason, xy) from None
         except InputError as err:
-            raise entry.error("point", err.reason, xy) from None
+            raise _at_inline_entry(t, k, err) from None
         out.append(TrackedPoint(name, body, xy))
     return out
+
+
+def _at_inline_entry(t: Table, k: int, err: InputError) -> InputError:
+    """``err`` located at entry ``k`` of an inline ``points = [{...}, {...}]`` array (the reader
+    finds a key's first line in the table: entry 0's); as it is for ``[[outputs.points]]``."""
+    lines = t.src.lines
+    start = t.src.line(t.where, "points")
+    if start is None or not re.match(r"\s*points\s*=\s*\[", lines[start - 1]) or err.line is None:
+        return err
+    depth, seen = 0, -1
+    for n in range(start - 1, len(lines)):
+        for ch in lines[n].split("#", 1)[0]:
+            if ch == "{":
+                depth += 1
+                seen += depth == 1
+                if depth == 1 and seen == k:
+                    prefix = f"{t.src.path}:{err.line}: "
+                    reason = str(err)[len(prefix) :] if str(err).startswith(prefix) else str(err)
+                    return InputError(f"{t.src.path}:{n + 1}: {reason}", field=err.field, value=err.value, file=str(t.src.path), line=n + 1)
+            elif ch == "}":
+                depth -= 1
+            elif ch == "]" and depth == 0:
+                return err
+    return err
