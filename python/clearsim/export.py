@@ -91,7 +91,10 @@ def point_columns(res: "Result", points: Optional[PointsLike]) -> List[Tuple[str
         return []
     out: List[Tuple[str, str, np.ndarray]] = []
     stored = {"displacement": "q" in res._raw, "velocity": "q" in res._raw, "acceleration": "qdd" in res._raw and "q" in res._raw}
+    taken = set(res.body_names) | set(res.joint_names) | {name.split(".")[0] for name, _, _ in reaction_columns(res)}
     for p in tracked_points(points, res.body_names):
+        if p.name in taken:  # its columns would overwrite the body's or joint's of the same name
+            raise InputError(f"invalid points[{p.name!r}]: {p.name!r} is already a body's or joint's name; name the point otherwise", field="points", value=p.name)
         for var, quantity in zip(_SUFFIX, BODY_QUANTITIES):
             if stored[quantity]:
                 values = res.point(p.body, p.point, quantity)

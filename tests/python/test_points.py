@@ -124,6 +124,8 @@ def test_points_in_exports_and_drawings(ideal_run, tmp_path):
     assert ["tool.x [m]", "tool.y [m]", "tool.x_dot [m/s]", "tool.y_dot [m/s]", "tool.x_ddot [m/s^2]", "tool.y_ddot [m/s^2]"] == header[-6:]
     with pytest.raises(clearsim.InputError, match="points"):
         res.to_pandas(points={"tool": ("pin", (0, 0))})
+    with pytest.raises(clearsim.InputError, match="already a body's or joint's name"):
+        res.to_pandas(points={"slider": ("rod", ROD_POINT)})  # its columns would overwrite the slider's
 
     t = float(res.t[len(res.t) // 2])
     fig = res.plot_mechanism(t, points=points, trace=True)
