@@ -207,7 +207,7 @@ def test_scene_point_errors_name_file_and_line(tmp_path, entry, words):
 
 
 def test_an_error_in_a_later_inline_point_names_its_line(tmp_path):
-    entries = ['  {name = "tool", body = "rod", point = [0.02, 0.0]},', '  {name = "tip",', '   body = "pin", point = [0.02, 0.0]},']
+    entries = ['  {name = "tool", body = "rod", point = [0.02, 0.0]},', '  {name = "tip", body = "pin", point = [0.02, 0.0]},']  # an inline table is one line
     path = _scene_with(tmp_path, "[outputs]\npoints = [\n" + "\n".join(entries) + "\n]\n")
     with pytest.raises(clearsim.InputError) as info:
         load_scene_file(path)
