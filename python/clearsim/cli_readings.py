@@ -64,14 +64,14 @@ def reaction_markdown(reactions: Optional[Dict[str, Dict[str, Any]]]) -> List[st
         "|---|---|---|---|---|",
     ]
     for name, r in reactions.items():
-        lines.append(f"| {name} | {_num(r.get('peak_force'))} | {_num(r.get('t_peak_force'), '.6g')} | {_num(r.get('peak_torque'))} | {_num(r.get('t_peak_torque'), '.6g')} |")
+        lines.append(f"| {name} ({r.get('kind', '?')}) | {_num(r.get('peak_force'))} | {_num(r.get('t_peak_force'), '.6g')} | {_num(r.get('peak_torque'))} | {_num(r.get('t_peak_torque'), '.6g')} |")
     return lines
 
 
 def reaction_text(reactions: Dict[str, Dict[str, Any]]) -> List[str]:
     """stdout lines of ``clearsim run``: the peak force of each joint and torque of each driver."""
     forces = [f"{name} {r['peak_force']:.4g} N" for name, r in reactions.items() if r.get("peak_force") is not None and math.isfinite(r["peak_force"])]
-    torques = [f"{name} {r['peak_torque']:.4g} N m" for name, r in reactions.items() if "peak_force" not in r and r.get("peak_torque") is not None]
+    torques = [f"{name} {r['peak_torque']:.4g} N m" for name, r in reactions.items() if r.get("kind") == "driver" and r.get("peak_torque") is not None]
     out = []
     if forces:
         out.append("peak joint force: " + ", ".join(forces))

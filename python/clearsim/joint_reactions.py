@@ -86,7 +86,8 @@ class JointReactions:
 
     def reaction_summary(self) -> Dict[str, Dict[str, Any]]:
         """The largest force of every joint and torque of every driver over the stored outputs
-        (not tracked between them: a finer ``dt_out`` can only raise a peak): per joint
+        (not tracked between them: a finer ``dt_out`` can only raise a peak), each with its
+        ``kind`` (``clearance``, ``revolute``, ``prismatic``, ``driver``): per joint
         ``peak_force`` [N] (of |F|) and ``t_peak_force`` [s] — clearance joints from the ``joints``
         channel, ideal joints with ``"reactions"`` stored (a prismatic joint also ``peak_torque``
         [N m], of |T|, and its time) — and per driver ``peak_torque`` [N m] (signed: the value of
@@ -97,15 +98,15 @@ class JointReactions:
         joints = self._raw.get("joints")
         for j, name in enumerate(self.joint_names):
             if joints is not None:  # a prismatic clearance joint: each slider end ("G front", "G rear")
-                out[name] = _peak(np.hypot(joints[:, j, 4], joints[:, j, 5]), self.t, "force")
+                out[name] = {"kind": "clearance", **_peak(np.hypot(joints[:, j, 4], joints[:, j, 5]), self.t, "force")}
         if "reactions" not in self._raw or self.description is None:
             return out
         for k, (name, kind) in enumerate(self._constraints()):
             r = self._raw["reactions"][:, k, :]
             if kind == "driver":
-                out[name] = _peak(r[:, 2], self.t, "torque", signed=True)
+                out[name] = {"kind": kind, **_peak(r[:, 2], self.t, "torque", signed=True)}
             else:
-                out[name] = _peak(np.hypot(r[:, 0], r[:, 1]), self.t, "force")
+                out[name] = {"kind": kind, **_peak(np.hypot(r[:, 0], r[:, 1]), self.t, "force")}
                 if kind == "prismatic":
                     out[name].update(_peak(np.abs(r[:, 2]), self.t, "torque"))
         return out

@@ -158,7 +158,8 @@ def test_reactions_of_every_joint_kind_by_name():
     assert set(peaks) == {"rod-slider", "crank-ground", "crank-rod", "slider-guide", "crank-drive"}
     assert peaks["crank-rod"]["peak_force"] == pytest.approx(float(np.max(np.hypot(*res.joint_force("crank-rod").T))))
     k = int(np.argmax(np.abs(res.driver_torque("crank-drive"))))
-    assert peaks["crank-drive"] == {"peak_torque": res.driver_torque("crank-drive")[k], "t_peak_torque": res.t[k]}
+    assert peaks["crank-drive"] == {"kind": "driver", "peak_torque": res.driver_torque("crank-drive")[k], "t_peak_torque": res.t[k]}
+    assert [peaks[n]["kind"] for n in ("rod-slider", "crank-rod", "slider-guide")] == ["clearance", "revolute", "prismatic"]
 
 
 def test_reactions_in_exports(tmp_path):
@@ -190,4 +191,4 @@ def test_clearsim_run_writes_reactions_and_their_peaks(tmp_path, capsys):
     peaks = summary["run"]["reactions"]
     assert peaks["crank-drive"]["peak_torque"] == pytest.approx(rows[np.argmax(np.abs(rows[:, -1])), -1])
     assert peaks["crank-rod"]["peak_force"] == pytest.approx(np.max(np.hypot(rows[:, 3], rows[:, 4])))
-    assert "| crank-drive |" in (out / "summary.md").read_text()
+    assert "| crank-drive (driver) |" in (out / "summary.md").read_text()

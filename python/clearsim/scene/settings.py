@@ -205,7 +205,7 @@ def _at_inline_entry(t: Table, k: int, err: InputError) -> InputError:
     finds a key's first line in the table: entry 0's); as it is for ``[[outputs.points]]``."""
     lines = t.src.lines
     start = t.src.line(t.where, "points")
-    if start is None or not re.match(r"\s*points\s*=\s*\[", lines[start - 1]) or err.line is None:
+    if start is None or not re.match(r"\s*points\s*=\s*\[", lines[start - 1]) or getattr(err, "line", None) is None:
         return err
     depth, seen = 0, -1
     for n in range(start - 1, len(lines)):
@@ -214,7 +214,7 @@ def _at_inline_entry(t: Table, k: int, err: InputError) -> InputError:
                 depth += 1
                 seen += depth == 1
                 if depth == 1 and seen == k:
-                    prefix = f"{t.src.path}:{err.line}: "
+                    prefix = f"{t.src.path}:{getattr(err, 'line', None)}: "
                     reason = str(err)[len(prefix) :] if str(err).startswith(prefix) else str(err)
                     return InputError(f"{t.src.path}:{n + 1}: {reason}", field=err.field, value=err.value, file=str(t.src.path), line=n + 1)
             elif ch == "}":
