@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -238,3 +239,12 @@ def test_old_module_paths_are_kept():
     code = "import sys, clearsim; assert not {'clearsim.study', 'clearsim.paper'} & set(sys.modules)"
     done = subprocess.run([sys.executable, "-W", "error", "-c", code], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
+
+
+def test_the_old_paper_runs_module_keeps_its_public_names():
+    """``clearsim.study.paper_runs`` (deprecated) still has every public name it had before the
+    paper study moved to clearsim.paper. Before: ``CSV_UNIT`` was gone (ImportError)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        from clearsim.study.paper_runs import CSV_UNIT
+    assert CSV_UNIT["acceleration"] == "m_per_s2"

@@ -90,3 +90,36 @@ def test_a_scene_warning_names_the_file_and_line(tmp_path):
     line = 1 + next(k for k, ln in enumerate(text.splitlines()) if ln.startswith("viscosity = 20.0"))
     _, found = _caught(lambda: clearsim.scene.load_scene_file(path))
     assert len(found) == 1 and found[0].startswith(f"{path}:{line}: clearance joint 'crank-pin'.viscosity = 20 Pa·s")
+
+
+def _crank_rod_slider(scale: float, inertia_scale: float = 1.0) -> clearsim.Mechanism:
+    """An offset slider-crank (crank 0.1 m, rod 0.3 m) with every coordinate × ``scale`` and the
+    inertias × ``inertia_scale``."""
+    s = scale
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("crank", mass=2.0, inertia=1.67e-3 * inertia_scale, ends=((0.0, 0.3 * s), (0.1 * s, 0.3 * s)))
+    m.add_body("rod", mass=1.0, inertia=7.5e-3 * inertia_scale, ends=((0.1 * s, 0.3 * s), (0.4 * s, 0.3 * s)))
+    m.add_body("slider", mass=1.0, inertia=1e-3 * inertia_scale, position=(0.4 * s, 0.3 * s))
+    m.revolute("ground", (0.0, 0.3 * s), "crank", (-0.05 * s, 0.0))
+    m.revolute("crank", (0.05 * s, 0.0), "rod", (-0.15 * s, 0.0))
+    m.revolute("rod", (0.15 * s, 0.0), "slider", (0.0, 0.0))
+    m.prismatic("ground", (0.0, 0.3 * s), "slider", (0.0, 0.0))
+    m.driver("crank", omega=9.42)
+    return m
+
+
+def test_coordinates_in_mm_with_inertias_in_kg_m2_are_named():
+    """A mechanism drawn in mm (crank 100, rod 300) with its inertias in kg m² ran without a word
+    as a 400 m machine. Now each link whose inertia is ~1e-6 of a bar's of its mass between its
+    joint points is a PlausibilityWarning naming the body, the inertia, the distance and the
+    unit; the same mechanism in metres (or with a flywheel's large inertia) is silent."""
+    with pytest.warns(clearsim.PlausibilityWarning) as caught:
+        _crank_rod_slider(1000.0).description()
+    text = [str(w.message) for w in caught]
+    assert any(t.startswith("body 'rod'.inertia = 0.0075 kg m² is 1e-06 × a uniform bar's") and "300 m apart" in t and "in mm?" in t for t in text)
+    assert any(t.startswith("body 'crank'.inertia") for t in text) and not any("'slider'" in t for t in text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", clearsim.PlausibilityWarning)
+        _crank_rod_slider(1.0).description()
+        _crank_rod_slider(1.0, inertia_scale=1e3).description()
+        _crank_rod_slider(1000.0, inertia_scale=1e6).description()  # all in mm and kg mm²: nothing tells

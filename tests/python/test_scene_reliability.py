@@ -22,6 +22,7 @@ from clearsim import reliability as rel
 from clearsim.cli import EXIT_ERROR, main
 from clearsim.errors import InputError
 from clearsim.scene import Scene, load_scene_file
+from walks import TOGGLE
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
 # The dry slider-crank (5000 rpm: a turn is 12 ms), two turns, with the paper's analysis of the slider.
@@ -323,3 +324,14 @@ def _alias_start(scene: Scene) -> float:
 
     settings = alias_study(scene.reliability, scene.simulation)
     return settings.skip_cycles * _period(scene)
+
+
+def test_a_series_study_states_that_every_output_must_hold():
+    """The repr of a study of several outputs (a series system: it fails when any passes its
+    limit) states what holds when it is safe: each output within its limit, joined by "and".
+    Before: "film thickness of joint A ≥ 5e-07 m or y displacement error ≤ 0.0005 m"."""
+    from clearsim.reliability.scene import scene_study
+    from clearsim.scene import load_scene_file
+
+    text = repr(scene_study(load_scene_file(TOGGLE), progress=False))
+    assert "film thickness of joint A ≥ 5e-07 m and y displacement error of ram ≤ 0.0005 m" in text and " or " not in text

@@ -6,10 +6,12 @@ element, the field and the value, before anything runs."""
 from __future__ import annotations
 
 import math
+import re
 from typing import Any, Callable, List, Tuple
 
 import pytest
 
+import clearsim
 import clearsim as cs
 from clearsim import Archard, Dry, Lubricated, Thermal, Vogel, models
 
@@ -138,3 +140,14 @@ def test_run_defaults_are_the_cores() -> None:
     assert (schema.RTOL, schema.ATOL, schema.H_MIN, schema.MAX_STEPS) == (core["rtol"], core["atol"], core["h_min"], core["max_steps"])
     sig = inspect.signature(Mechanism.run_settings).parameters
     assert (sig["rtol"].default, sig["atol"].default, sig["h_min"].default, sig["max_steps"].default) == (1e-6, 1e-9, 1e-14, 50_000_000)
+
+
+@pytest.mark.parametrize(("options", "field", "value"), [({"t_out": [0.0, 0.05, 0.2]}, "t_out[2]", 0.2), ({"t0": 0.05, "t_out": [0.0, 0.1]}, "t_out[0]", 0.0)])
+def test_output_times_the_run_would_drop_are_refused(options, field, value):
+    """``simulate(0.1, t_out=...)`` with a time past t_end or before t0: an InputError naming the
+    field and value before anything runs. Before: the run dropped the times outside [t0, t_end]
+    without a word (a Result of 1 output for t_out = [0, 0.2])."""
+    m = models.slider_crank("dry", clearance=0.5e-3)
+    with pytest.raises(clearsim.InputError, match=re.escape(f"invalid {field} = {value}")) as info:
+        m.simulate(0.1, progress=False, **options)
+    assert info.value.field == field
