@@ -35,7 +35,7 @@ class Monitor(TypedDict):
     or a clearance joint's quantity, in time bins from ``t_start`` [s]."""
 
     coordinate: int
-    quantity: str  # displacement, velocity, acceleration, eccentricity, force, contact_force, film_force
+    quantity: str  # displacement, velocity, acceleration (a body coordinate); eccentricity, force, contact_force, film_force, film_thickness, friction_torque, power_loss (a clearance joint)
     t_start: float
     bin_width: float
     bins: NotRequired[int]
@@ -98,7 +98,6 @@ class CompiledModel:
     def rhs(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def jacobian(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def simulate(self, settings: Union[RunSettings, Mapping[str, Any]], progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
-    def idealized(self) -> "CompiledModel": ...
 
 def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
     """Validate and compile a description (plain data or its JSON text), read by serde."""
@@ -122,7 +121,6 @@ def run_batch(
     threads: int = 0,
 ) -> List[Union[Dict[str, Any], BaseException]]: ...
 
-run_batch_py = run_batch
 
 def film_force(
     film: str,

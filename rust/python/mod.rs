@@ -423,11 +423,6 @@ impl CompiledModel {
         let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
         output_to_dict(py, &out)
     }
-
-    /// The ideal counterpart: every clearance joint made a revolute joint.
-    fn idealized(&self, py: Python<'_>) -> PyResult<CompiledModel> {
-        CompiledModel::build(py, self.desc.idealized())
-    }
 }
 
 impl CompiledModel {
@@ -510,9 +505,9 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
 /// Run many descriptions in parallel (rayon; GIL released). `settings` is one dict shared by
 /// all runs or a list with one dict per description. Returns one result dict per description,
 /// or the exception that prevented that run.
-#[pyfunction]
+#[pyfunction(name = "run_batch")]
 #[pyo3(signature = (descriptions, settings, threads=0))]
-fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
+fn batch<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
     let settings: Vec<RunSettings> = if let Ok(d) = settings.cast::<PyDict>() {
         vec![read_settings(d.as_any())?]
@@ -592,9 +587,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(idealize, m)?)?;
     m.add_function(wrap_pyfunction!(check_settings, m)?)?;
     m.add("DEFAULTS", defaults(m.py())?)?;
-    m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;
+    m.add_function(wrap_pyfunction!(batch, m)?)?;
     m.add_function(wrap_pyfunction!(film_force, m)?)?;
     m.add_function(wrap_pyfunction!(finite_table_counts, m)?)?;
-    m.add("run_batch", m.getattr("run_batch_py")?)?;
     Ok(())
 }

@@ -183,15 +183,7 @@ def test_limits_and_outputs_are_required_and_named():
     assert rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", component="y"), limit=1e-3).omega == OMEGA
 
 
-def test_the_old_name_axis_still_works_with_a_warning_and_not_beside_component():
-    """One word for x, y, theta throughout: ``component`` (scenes, Output, monte_carlo,
-    state_index); ``axis=`` is accepted with a DeprecationWarning, and giving both is an error."""
-    with pytest.warns(DeprecationWarning, match="Output.axis= is now called component="):
-        out = rel.Output(body="slider9", axis="y")
-    assert out == rel.Output(body="slider9", component="y") and out.component == "y" and out.axis is None
-    with pytest.raises(clearsim.InputError) as e:
-        rel.Output(body="slider9", axis="y", component="x")
-    assert e.value.field == "Output.axis"
+def test_an_output_component_is_one_of_x_y_theta():
     with pytest.raises(clearsim.InputError, match="must be one of x, y, theta"):
         rel.Output(body="slider9", component="z")
 

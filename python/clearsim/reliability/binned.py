@@ -19,7 +19,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from .. import display
-from ..errors import InputError, SimulationError, check_choice, check_positive, renamed
+from ..errors import InputError, SimulationError, check_choice, check_positive
 from ..mechanism import Mechanism
 from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, RTOL
 from .bridge import check_on_failure
@@ -163,7 +163,6 @@ def monte_carlo(
     integrator: str = "auto",
     rtol: float = RTOL,
     atol: float = ATOL,
-    axis: Optional[str] = None,
 ) -> MonteCarloResult:
     """Monte Carlo reliability of one output of a mechanism with random inputs.
 
@@ -185,7 +184,7 @@ def monte_carlo(
         from t = 0, as :meth:`Study.fosm <clearsim.reliability.Study.fosm>`'s.
     body, component:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
-        error against the ideal mechanism. (``axis=`` is the old name of ``component=``.)
+        error against the ideal mechanism.
     allowable:
         Required: ``{quantity: (lower, upper)}`` allowable |error| range of each analysed
         quantity (``"displacement"``, ``"velocity"``, ``"acceleration"``) in that quantity's unit:
@@ -215,7 +214,6 @@ def monte_carlo(
         raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
     if body is None:
         raise InputError("missing body: name the body whose error is analysed (there is no default)", field="body", value=None)
-    component = renamed("axis", "component", axis, component)
     check_choice("component", component, COMPONENTS, "(there is no default)")
     check_on_failure(on_failure)
     if not allowable:

@@ -13,7 +13,7 @@ from typing import Any, List, Optional, Tuple
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_finite, check_positive, renamed
+from ..errors import InputError, check_choice, check_finite, check_positive
 from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, body_unit
 
 __all__ = ["BODY_QUANTITIES", "JOINT_QUANTITIES", "Output", "Limit", "Modes", "as_limit"]
@@ -30,7 +30,7 @@ class Output:
 
     ``Output(body="slider9", component="y", quantity="displacement" | "velocity" | "acceleration")``:
     |response − ideal response| in m, m/s, m/s² (``component="x"``/``"y"``) or rad, rad/s,
-    rad/s² (``component="theta"``). ``axis=`` is the old name of ``component=``.
+    rad/s² (``component="theta"``).
 
     ``Output(joint="B", quantity="eccentricity" | "force" | "contact_force" | "film_force" |
     "film_thickness")``: the eccentricity ratio ε = e/c [-], the magnitude of the joint's total
@@ -42,12 +42,8 @@ class Output:
     component: Optional[str] = None
     joint: Optional[str] = None
     quantity: str = "displacement"
-    #: Old name of ``component``.
-    axis: Optional[str] = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "component", renamed("axis", "component", self.axis, self.component, "Output."))
-        object.__setattr__(self, "axis", None)
         if (self.body is None) == (self.joint is None):
             raise InputError("invalid Output: give exactly one of body= (with component=) or joint=", field="Output.body", value=self.body)
         if self.body is not None:
