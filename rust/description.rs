@@ -15,9 +15,10 @@ pub struct BodyDesc {
     pub mass: f64,
     /// Moment of inertia about the centroid [kg m²] (> 0).
     pub inertia: f64,
-    /// Approximate centroid position \[m\] at t0 (refined by the kinematic assembly).
+    /// Approximate centroid position \[m\] at t = 0, the drivers' reference time (refined by the
+    /// kinematic assembly; a run from t0 ≠ 0 follows the drivers on from there).
     pub position: [f64; 2],
-    /// Approximate angle \[rad\] at t0.
+    /// Approximate angle \[rad\] at t = 0.
     #[cfg_attr(feature = "serde", serde(default))]
     pub angle: f64,
     /// Optional initial velocity guess (ẋ, ẏ, θ̇) [m/s, rad/s]; projected onto the constraints.

@@ -18,13 +18,10 @@ from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMN
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
 CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
 
-#: What :meth:`Result.extremes` reports, per body (each of x, y, theta) and per clearance joint,
-#: with the units (clearsim.schema; old names kept): body quantities (x and y | theta), the joint's
-#: monitored quantities, and the bearing readings a run tracks at every lubricated joint
-#: (:mod:`clearsim.joint_readings`; ``film_thickness`` there is the reading h = c − |e|).
-BODY_QUANTITIES = BODY_QUANTITY_UNITS
-JOINT_QUANTITIES = JOINT_MONITOR_UNITS
-READING_QUANTITIES = READING_MONITOR_UNITS
+# What Result.extremes reports, per body (each of x, y, theta) and per clearance joint, with the
+# units (clearsim.schema): BODY_QUANTITY_UNITS (x and y | theta), the joint's JOINT_MONITOR_UNITS,
+# and the bearing readings a run tracks at every lubricated joint, READING_MONITOR_UNITS
+# (clearsim.joint_readings; film_thickness there is the reading h = c − |e|).
 
 
 @dataclass(frozen=True)
@@ -64,10 +61,10 @@ def extreme_monitors(
     for name in dict.fromkeys(names):
         if name in body_names:
             b = list(body_names).index(name)
-            out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITIES]
+            out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITY_UNITS]
         else:
             j = list(joint_names).index(name)
-            out += [{"coordinate": j, "quantity": q, **span} for q in (*JOINT_QUANTITIES, *READING_QUANTITIES)]
+            out += [{"coordinate": j, "quantity": q, **span} for q in (*JOINT_MONITOR_UNITS, *READING_MONITOR_UNITS)]
     return out
 
 
@@ -275,7 +272,7 @@ class Result(JointReadings, JointReactions):
         ``"acceleration"`` [m/s², m/s², rad/s²]; with ``point=(x, y)`` [m] (in the body's frame,
         as joints take theirs), the (N, 2) error of that point's global x, y [m, m/s or m/s²]
         (:meth:`point`)."""
-        check_choice("quantity", quantity, list(BODY_QUANTITIES))
+        check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
         n = min(len(self.t), len(ideal.t))
         if not np.allclose(self.t[:n], ideal.t[:n], rtol=0, atol=1e-12 * (1 + abs(float(self.t[n - 1])) if n else 1)):
             raise InputError("invalid ideal: it was not run on the same output grid", field="ideal", value=ideal)
@@ -293,7 +290,7 @@ class Result(JointReadings, JointReactions):
         ``"acceleration"`` r̈ + θ̈ B p − θ̇² A p [m/s²] (A the body's rotation, B p = A p turned
         +90°; docs/physics.md §5, *Points*). ``point=(0, 0)`` is the centroid. Needs the
         ``"states"`` output, and ``"accelerations"`` for the acceleration (both stored by default)."""
-        check_choice("quantity", quantity, list(BODY_QUANTITIES))
+        check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
         k = self._body(body)
         cols = slice(3 * k, 3 * k + 3)
         pose = self._channel("q", "states")[:, cols]
@@ -330,17 +327,17 @@ class Result(JointReadings, JointReactions):
         and joint), over the whole run or from ``extremes_from`` [s] on (e.g. the last revolution).
         """
         if name in self.body_names:
-            check_choice("quantity", quantity, list(BODY_QUANTITIES))
+            check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
             check_choice("component", component, list(_COMPONENTS), "(a body's quantity has three)")
             c = _COMPONENTS.index(str(component))
             coordinate = 3 * self.body_names.index(name) + c
-            unit = BODY_QUANTITIES[quantity][c == 2]
+            unit = BODY_QUANTITY_UNITS[quantity][c == 2]
         elif name in self.joint_names:
-            check_choice("quantity", quantity, list(JOINT_QUANTITIES) + list(READING_QUANTITIES))
+            check_choice("quantity", quantity, list(JOINT_MONITOR_UNITS) + list(READING_MONITOR_UNITS))
             if component is not None:
                 raise InputError(f"invalid component = {component!r}: a joint's {quantity} has none (give component=None)", field="component", value=component)
             coordinate = self.joint_names.index(name)
-            unit = {**JOINT_QUANTITIES, **READING_QUANTITIES}[quantity]
+            unit = {**JOINT_MONITOR_UNITS, **READING_MONITOR_UNITS}[quantity]
         else:
             known = ", ".join(self.body_names + self.joint_names)
             raise InputError(f"invalid name = {name!r}: no such body or clearance joint (known: {known})", field="name", value=name)
