@@ -21,6 +21,7 @@ pub mod kkt;
 pub mod laws;
 pub mod model;
 pub mod monitor;
+pub mod pose;
 pub mod rank;
 pub mod record;
 pub mod settings;

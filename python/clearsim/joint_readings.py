@@ -120,7 +120,8 @@ class JointReadings:
         q = self._raw.get("q")
         if not drivers or q is None or not len(self.t) or not math.isfinite(t):
             return None
-        b = int(drivers[0]["body"])
+        body = drivers[0]["body"]  # by name (a Mechanism's description) or index (the core's)
+        b = self.body_names.index(body) if isinstance(body, str) else int(body)
         return float(np.degrees(np.interp(t, self.t, q[:, 3 * b + 2])))
 
     def bearing_summary(self) -> Dict[str, Dict[str, Any]]:

@@ -97,14 +97,28 @@ class Result(JointReadings, JointReactions):
         self.failure = raw.get("error")
         self.q0: np.ndarray = raw["q0"]
         self.qd0: np.ndarray = raw["qd0"]
-        #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate.
-        self.description: Optional[Dict[str, Any]] = None
+        self._given: Optional[Dict[str, Any]] = None  # the mechanism's description, bodies named
+        self._read: Optional[Dict[str, Any]] = None
         #: The monitors the run was given (its settings' ``monitors``); set by Mechanism.simulate.
         self.monitor_specs: List[Dict[str, Any]] = []
         #: Named body points (:class:`clearsim.points.TrackedPoint`) that :meth:`plot_mechanism`,
         #: :meth:`animate`, :meth:`to_pandas` and :meth:`save` show when given no ``points``: a
         #: scene's ``[outputs] points`` (set by its run); empty otherwise.
         self.tracked_points: List[TrackedPoint] = []
+
+    @property
+    def description(self) -> Optional[Dict[str, Any]]:
+        """The mechanism's description as the core read it (plain data: bodies by index, the
+        ground ``None``, every default filled in; ``_core.resolve``), for drawings, readings and
+        exports; ``None`` for a result made without its mechanism. Set by ``Mechanism.simulate``
+        with the mechanism's own description (bodies by name), read by the core on first use."""
+        if self._read is None and self._given is not None:
+            self._read = _core.resolve(self._given)
+        return self._read
+
+    @description.setter
+    def description(self, value: Optional[Dict[str, Any]]) -> None:
+        self._given, self._read = value, None
 
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"

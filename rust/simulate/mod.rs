@@ -25,6 +25,7 @@ use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 
 pub use crate::settings::RunSettings;
+pub use diagnosis::{failure_hint, MICROMETRE_FILM_RATIO};
 
 /// Polled between steps (about every 64 accepted steps) with the time reached \[s\]; returning
 /// `true` interrupts the run ([`Error::Interrupted`]). The Python glue uses it for Ctrl-C and
@@ -51,6 +52,8 @@ pub struct RunOutput {
     pub failure_joint: Option<(String, f64)>,
     /// What each monitor found (over the part of the run completed).
     pub monitors: Vec<MonitorResult>,
+    /// For a stalled lubricated run: what to try ([`failure_hint`]).
+    pub hint: Option<String>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
 }
@@ -263,6 +266,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                hint: None,
             })
         }
     };
@@ -291,6 +295,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
             (s, Some(e.with_detail(&detail)), joint)
         }
     };
+    let hint = error.as_ref().and_then(|e| failure_hint(model, e, failure_joint.as_ref()));
     let mut max_violation = [0.0f64; 2];
     for v in sys.recording.violation.chunks(2) {
         max_violation[0] = max_violation[0].max(v[0]);
@@ -309,5 +314,6 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
         wear: sys.wear,
+        hint,
     })
 }

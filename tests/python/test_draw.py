@@ -154,7 +154,7 @@ def test_each_clearance_joint_is_drawn_at_its_own_bearing():
 
     m = models.nine_bar("dry", clearance=0.5e-3)
     res = m.simulate(0.05, dt_out=0.01, progress=False)
-    desc = m.description()
+    desc = res.description  # as the core read it: bodies by index
     names = [b["name"] for b in desc["bodies"]]
     for t in (0.0, 0.05):
         fig = res.plot_mechanism(t, magnify=10)

@@ -114,11 +114,10 @@ def with_initial_eccentricity(m: cs.Mechanism, joint: str, e: tuple) -> cs.Mecha
 def _model_of(d: Dict) -> object:
     def dry(x: Dict) -> Dry:
         return Dry(
-            normal_law=x["normal_law"], youngs_modulus=x["youngs_bearing"], poisson_ratio=x["poisson_bearing"],
-            journal_youngs_modulus=x["youngs_journal"], journal_poisson_ratio=x["poisson_journal"],
+            normal_law=x["normal_law"], youngs_modulus=x["youngs_modulus"], poisson_ratio=x["poisson_ratio"],
+            journal_youngs_modulus=x["journal_youngs_modulus"], journal_poisson_ratio=x["journal_poisson_ratio"],
             restitution=x["restitution"], exponent=x["exponent"], stiffness=x["stiffness"],
-            stiffness_form="cylindrical" if x.get("cylinder_length") else ("paper_printed" if x["stiffness_paper_printed"] else "internal"),
-            length=x.get("cylinder_length"),
+            stiffness_form=x["stiffness_form"], length=x.get("length"),
             friction=x["friction"], v0=x["v0"], v1=x["v1"], impact_speed_floor=x["impact_speed_floor"],
         )
 

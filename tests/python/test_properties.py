@@ -79,8 +79,6 @@ LUB_FIELDS = {
 }
 
 
-#: The description's (and so the core's messages') names of fields the API names otherwise.
-CORE_NAMES = {"youngs_modulus": "youngs_bearing", "poisson_ratio": "poisson_bearing"}
 
 
 def in_a_joint(model: Any) -> None:
@@ -93,7 +91,7 @@ def in_a_joint(model: Any) -> None:
 def named(e: cs.InputError, name: str) -> bool:
     """``e`` names the field: a type where it is given (``restitution``), a range by the core
     (``clearance joint 'pin'.restitution``)."""
-    return e.field in (name, f"clearance joint 'pin'.{CORE_NAMES.get(name, name)}") and e.field in str(e)
+    return e.field in (name, f"clearance joint 'pin'.{name}") and e.field in str(e)
 
 
 @examples(150)

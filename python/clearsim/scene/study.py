@@ -166,7 +166,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
     for it in t.array_of_tables("input", INPUT_KEYS):
         path = it.string("path")
         try:
-            mech.with_values({path: 0.0})
+            mech.value(path)
         except Exception as err:  # an InputError naming the path
             raise it.error("path", str(err), path) from None
         kind = it.string("distribution", choices=DISTRIBUTIONS)
