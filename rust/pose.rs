@@ -147,3 +147,57 @@ fn warning(desc: &MechanismDesc, gaps: &[Gap], turned: &[f64], span: f64) -> Opt
         ),
     })
 }
+
+#[cfg(all(test, feature = "serde"))]
+mod tests {
+    use super::check;
+    use crate::description::{from_json, JointDesc, MechanismDesc};
+    use crate::error::Error;
+    use crate::model::Model;
+
+    fn slider_crank() -> MechanismDesc {
+        from_json(include_str!("../tests/data/slider_crank_dry.json")).unwrap()
+    }
+
+    fn assembled(desc: &MechanismDesc) -> Vec<f64> {
+        Model::compile(desc).unwrap().start.unwrap().unwrap()
+    }
+
+    /// The crank's pin at `pin` (body frame; its right place is (0.025, 0)).
+    fn with_pin(pin: [f64; 2]) -> MechanismDesc {
+        let mut d = slider_crank();
+        for j in &mut d.joints {
+            if let JointDesc::Revolute { name, point_a, .. } = j {
+                if name == "crank-rod" {
+                    *point_a = pin;
+                }
+            }
+        }
+        d
+    }
+
+    #[test]
+    fn a_pose_that_assembles_where_given_passes() {
+        let d = slider_crank();
+        assert_eq!(check(&d, &assembled(&d), Some(0.2)), Ok(None));
+    }
+
+    #[test]
+    fn a_point_given_in_the_global_frame_is_named() {
+        // 0.05 (the pin's global x) for 0.025: a gap of 0.025 m, 15 % of the span 0.145 m.
+        let d = with_pin([0.05, 0.0]);
+        let w = check(&d, &assembled(&d), Some(0.2)).unwrap().expect("a warning");
+        assert!(w.message.starts_with("clearsim: the pose given looks wrong: joint 'crank-rod' has its two points 0.025 m apart"), "{}", w.message);
+        assert!(w.message.contains("point (0.05, 0) on body 'crank' lies at (0.075, 0) (global)"), "{}", w.message);
+        // Far beyond: the assembly moves a body more than the tolerance, an error naming the joint.
+        let d = with_pin([0.1, 0.0]);
+        match check(&d, &assembled(&d), Some(0.2)) {
+            Err(Error::PoseMoved { joint, field, .. }) => {
+                assert_eq!(joint.as_deref(), Some("crank-rod"));
+                assert_eq!(field, "joint 'crank-rod'");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(check(&d, &assembled(&d), None), Ok(None)); // no tolerance: any pose
+    }
+}
