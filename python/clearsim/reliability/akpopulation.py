@@ -16,8 +16,11 @@ design points (AK-IS: weight φ(u)/h(u)).
 from __future__ import annotations
 
 import math
+import os
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import Any, Callable, List, Optional, Tuple
+from typing import Any, Callable, Deque, List, Optional, Tuple
 
 import numpy as np
 
@@ -139,29 +142,46 @@ class Scan:
 
 def scan(population: Population, classify: Callable[[np.ndarray], Tuple[np.ndarray, Optional[np.ndarray], np.ndarray]]) -> Scan:
     """Pass over every block: ``classify(u)`` gives each candidate's mean μ (failed: μ ≤ 0), its
-    deciding mode (``None`` for one) and a lower bound of U."""
-    out = Scan(population.size, kept=([], [], []) if population.size <= KEEP else None)
-    for k in range(len(population.sizes)):
+    deciding mode (``None`` for one) and a lower bound of U. Blocks are drawn and classified on
+    every core (numpy releases the GIL) and summed in their order: the same answer whatever the
+    number of threads."""
+
+    def one(k: int) -> Tuple[np.ndarray, Optional[np.ndarray], np.ndarray, Optional[np.ndarray], np.ndarray, np.ndarray]:
         u, w = population.block(k)
         mu, mode, lower = classify(u)
-        failed = mu <= 0.0
-        terms = failed.astype(float) if w is None else np.where(failed, w, 0.0)
-        out.s1 += float(terms.sum())
-        out.s2 += float(np.dot(terms, terms))
-        near = lower < STOP_U
-        out.sure += float(terms[~near].sum())
-        if near.any():
-            out.near_u.append(u[near])
-            out.near_mu.append(mu[near])
-            out.near_lower.append(lower[near])
-            out.near_w.append(np.ones(int(near.sum())) if w is None else w[near])
-            if mode is not None:
-                out.near_mode.append(mode[near])
-        j = int(np.argmin(lower))
-        if out.lowest[0] is None or lower[j] < out.lowest[1]:
-            out.lowest = (u[j].copy(), float(lower[j]))
-        if out.kept is not None:
-            out.kept[0].append(u)
-            out.kept[1].append(w)
-            out.kept[2].append(failed)
+        return u, w, mu, mode, lower, mu <= 0.0
+
+    out = Scan(population.size, kept=([], [], []) if population.size <= KEEP else None)
+    workers = min(os.cpu_count() or 1, len(population.sizes))
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        ahead: Deque[Any] = deque()  # at most 2 blocks a thread in flight: memory stays a few blocks'
+        todo = iter(range(len(population.sizes)))
+        for k in todo:
+            ahead.append(pool.submit(one, k))
+            if len(ahead) >= 2 * workers:
+                break
+        while ahead:
+            u, w, mu, mode, lower, failed = ahead.popleft().result()
+            nxt = next(todo, None)
+            if nxt is not None:
+                ahead.append(pool.submit(one, nxt))
+            terms = failed.astype(float) if w is None else np.where(failed, w, 0.0)
+            out.s1 += float(terms.sum())
+            out.s2 += float(np.dot(terms, terms))
+            near = lower < STOP_U
+            out.sure += float(terms[~near].sum())
+            if near.any():
+                out.near_u.append(u[near])
+                out.near_mu.append(mu[near])
+                out.near_lower.append(lower[near])
+                out.near_w.append(np.ones(int(near.sum())) if w is None else w[near])
+                if mode is not None:
+                    out.near_mode.append(mode[near])
+            j = int(np.argmin(lower))
+            if out.lowest[0] is None or lower[j] < out.lowest[1]:
+                out.lowest = (u[j].copy(), float(lower[j]))
+            if out.kept is not None:
+                out.kept[0].append(u)
+                out.kept[1].append(w)
+                out.kept[2].append(failed)
     return out
