@@ -2,7 +2,9 @@
 
 Bodies are drawn through the points where joints, clearance joints and force elements attach
 (a bar for two points, a plate for more, a block for a slider), ground joints with hatched
-supports, drivers and motors with a curved arrow, springs as zigzags, loads as arrows. A
+supports, drivers and motors with a curved arrow, springs as zigzags, loads as arrows (by their
+value at the drawn time: none for a load that is zero then), labels moved apart where they would
+overlap (:mod:`clearsim.label_layout`). A
 clearance is far too small to see at the mechanism's scale, so each clearance joint is drawn
 magnified: the bearing circle, the journal inside it displaced by ``magnify × e`` (e the true
 eccentricity), and the factor written beside it. The links themselves stay at their true pose.
