@@ -58,7 +58,7 @@ class Population:
     def __init__(self, centres: np.ndarray, mixture: np.ndarray, size: int, seed: Optional[int]) -> None:
         self.centres = np.atleast_2d(np.asarray(centres, dtype=float))
         self.mixture = np.asarray(mixture, dtype=float)
-        self.entropy = np.random.SeedSequence(seed).entropy
+        self.entropy = int(np.random.SeedSequence(seed).entropy)  # type: ignore[arg-type]
         self.sizes: List[int] = []
         self.grow(size)
 
@@ -83,7 +83,8 @@ class Population:
 
     def head(self, n: int) -> np.ndarray:
         """The first ``n`` candidates (at most the population)."""
-        out, k = [], 0
+        out: List[np.ndarray] = []
+        k = 0
         while sum(len(b) for b in out) < n and k < len(self.sizes):
             out.append(self.block(k)[0])
             k += 1

@@ -308,7 +308,7 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
         return plots.save(fig, path)
 
 
-def _pf_panel(ax: Any, estimates: List[Tuple[str, Any]], study: Any, unit: str) -> None:
+def _pf_panel(ax: Any, estimates: Sequence[Tuple[str, Any]], study: Any, unit: str) -> None:
     """p_f by method with its 95 % interval (FORM: a point, no interval)."""
     for y, (k, r) in enumerate(estimates):
         lo, hi = getattr(r, "interval", (r.pf, r.pf))
