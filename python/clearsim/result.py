@@ -10,6 +10,7 @@ import numpy as np
 
 from . import _core, display
 from .errors import InputError, check_choice
+from .dynamics.readings import DynamicsReadings
 from .joint_readings import JointReadings
 from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMNS, JOINT_MONITOR_UNITS, READING_MONITOR_UNITS
 
@@ -69,7 +70,7 @@ def extreme_monitors(
     return out
 
 
-class Result(JointReadings):
+class Result(JointReadings, DynamicsReadings):
     """Outputs of one simulation.
 
     Attributes

@@ -416,6 +416,7 @@ fn validate_profile(f: &str, p: &Profile, nb: usize) -> Result<()> {
             }
             validate_table(f, table)
         }
+        Profile::Harmonic(h) => crate::constraints::angle_law::check_harmonic(f, h),
     }
 }
 
