@@ -42,15 +42,16 @@ def _poincare_figure(b: Any, out_dir: Path) -> Optional[Path]:
     for i in picks:
         sec = b.sections[i]
         if name in sec.joint_names:
-            e = sec.eccentricity(name) * 1e3
-            x, y, xl, yl = e[:, 0], e[:, 1], f"{name} e_x [mm]", f"{name} e_y [mm]"
+            c = next(float(j["clearance"]) for j in sec.description["clearance_joints"] if j["name"] == name)
+            e = sec.eccentricity(name) / c
+            x, y, xl, yl = e[:, 0], e[:, 1], f"{name} e_x / c", f"{name} e_y / c"
         else:
             comp = b.output.split(".")[1]
             k = ("x", "y", "theta").index(comp)
             x, y = sec.position(name)[:, k], sec.velocity(name)[:, k]
             xl, yl = f"{name}.{comp} [{'rad' if comp == 'theta' else 'm'}]", f"{name}.{comp} rate [{'rad/s' if comp == 'theta' else 'm/s'}]"
         panels.append((x, y, f"{b.parameter} = {b.values[i]:.6g}: {b.kind[i]}"))
-    fig = plot_poincare_panels(panels, xl, yl, title="Poincaré sections")
+    fig = plot_poincare_panels(panels, xl, yl, title="Poincaré sections", circle=1.0 if name in b.sections[picks[0]].joint_names else None)
     return save(fig, out_dir / "poincare.png")
 
 

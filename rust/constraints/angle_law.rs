@@ -81,7 +81,7 @@ impl CompiledAngleLaw {
 /// Every check of a [`Harmonic`] (a load's or a driver's), naming `field`'s parts: amplitude,
 /// phase and offset finite, omega positive and finite \[rad/s\].
 pub fn check_harmonic(field: &str, h: &Harmonic) -> Result<()> {
-    use crate::compile::num;
+    use crate::error::num;
     for (part, v) in [("amplitude", h.amplitude), ("phase", h.phase), ("offset", h.offset)] {
         if !v.is_finite() {
             return Err(Error::invalid(format!("{field}.{part}"), num(v), "must be a finite number"));

@@ -115,6 +115,9 @@ def test_poincare_sections_are_exact_times_whatever_the_output_grid():
     assert np.array_equal(runs[0].poincare(after=10 * PERIOD).t, a.t[10:])
     with pytest.raises(clearsim.InputError, match="whole multiple"):
         runs[0].poincare(1.5 * PERIOD)
+    fig = runs[1].phase_portrait("bob", "theta")  # the trajectory and its section points on top
+    line, dots = fig.axes[0].get_lines()
+    assert len(line.get_xdata()) == len(runs[1].t) and np.array_equal(dots.get_ydata(), a.velocity("bob")[:, 2])
     with pytest.raises(clearsim.InputError, match="recorded no Poincaré sections"):
         m.simulate(1.0, progress=False).poincare(PERIOD)
     with pytest.raises(clearsim.InputError, match="sections.period = 0.0"):
@@ -193,6 +196,14 @@ def test_a_torus_is_quasi_periodic_and_a_strange_attractor_chaotic():
     assert classify(as_cycles(cycle)).kind == "period-3"
     assert classify(as_cycles(circle), exponent=0.01, interval=(-0.02, 0.04), period=1.0).kind == "quasi-periodic"
     assert classify(as_cycles(henon), exponent=0.42, interval=(0.38, 0.46), period=1.0).kind == "chaotic"
+
+
+def test_loose_tolerances_are_refused_for_an_exponent_before_anything_runs():
+    """The two runs must stay further apart than the integrator's error in a position."""
+    with pytest.raises(clearsim.InputError, match=r"invalid rtol = 1e-06: .* use rtol ≤ "):
+        dynamics.lyapunov(models.slider_crank("dry"), 0.1, 0.05)
+    with pytest.raises(clearsim.InputError, match="invalid transient"):
+        dynamics.lyapunov(models.driven_pendulum(1.0), 10.0, 20.0)
 
 
 def test_failed_runs_are_counted_with_their_reasons():

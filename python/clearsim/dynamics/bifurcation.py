@@ -165,9 +165,10 @@ def bifurcation(
     ``"eccentricity_x"``/``"_y"`` [m], ``"force"`` or ``"contact_force"`` [N].
 
     ``lyapunov``: ``"auto"`` (default) runs a shadow (:func:`clearsim.dynamics.lyapunov`) over the
-    same cycles for the values that are not periodic, to tell chaos from a torus; ``True`` for
-    every value (the exponent over the whole diagram, twice the runs); ``False`` for none (the
-    section's neighbour test decides). ``tol``: a repeat within this fraction of each feature's
+    same cycles for the values that are not periodic, to tell chaos from a torus (unless the
+    tolerances are too loose for an exponent: then, as with ``False``, the section's neighbour
+    test decides and ``how`` says why); ``True`` for every value (the exponent over the whole
+    diagram, twice the runs; too loose tolerances are an InputError). ``tol``: a repeat within this fraction of each feature's
     range is periodic. Other keyword arguments are :meth:`Mechanism.simulate`'s (integrator,
     rtol, atol, ...) and ``executor`` / ``progress`` those of the batch
     (:func:`clearsim.batch.run_all`)."""
@@ -192,13 +193,21 @@ def bifurcation(
     options = dict(options)
     options.setdefault("outputs", channels)
     atol = float(options.get("atol", ATOL))
-    noise = 10.0 * float(options.get("rtol", RTOL))
+    noise = (float(options.get("rtol", RTOL)), atol)
+    no_exponent = ""
+    if lyapunov is True:  # tolerances too loose for an exponent: an InputError before anything runs
+        shadow_spec(first, transient_cycles * periods[0], periods[0], None, None, noise[0], atol)
+    elif lyapunov == "auto":
+        try:
+            shadow_spec(first, transient_cycles * periods[0], periods[0], None, None, noise[0], atol)
+        except InputError as err:  # the section's own test decides, and says why
+            lyapunov, no_exponent = False, f"; no exponent: {err.reason}"
     settings = []
     for m, T in zip(mechs, periods):
         t_end = (transient_cycles + cycles) * T
         s = m.run_settings(t_end, t_out=[t_end], sections=(T / SUB, (SUB * phase) % (2 * math.pi)), **options)
         if lyapunov is True:
-            s["lyapunov"] = shadow_spec(m, transient_cycles * T, T, None, None, atol)
+            s["lyapunov"] = shadow_spec(m, transient_cycles * T, T, None, None, noise[0], atol)
         settings.append(s)
     raws = batch.run_all([m.description() for m in mechs], settings, executor, None, progress, "bifurcation")
     n = len(vals)
@@ -234,14 +243,14 @@ def bifurcation(
             failures.append((float(vals[i]), how[i]))
             continue
         jt = sub._raw.get("joints") if sub.joint_names else None
-        f, kinds_of_features = features(sub._raw["q"][idx], sub._raw["qd"][idx], None if jt is None else jt[idx])
+        f, kinds_of_features = features(sub._raw["q"][idx], None if jt is None else jt[idx])
         cyc[i] = f.reshape(cycles, SUB, -1)
         feature_kinds = kinds_of_features
         if "lyapunov" in raw:
             ex = estimate(raw["lyapunov"], transient_cycles * T, T, s["lyapunov"]["d0"])
             lam[i], lam_iv[i] = ex.exponent, ex.interval
         c = _classify(cyc[i], feature_kinds, tol, noise, lam[i], lam_iv[i], T)  # type: ignore[arg-type]
-        kinds[i], period_k[i], how[i] = c.kind, c.period, c.how
+        kinds[i], period_k[i], how[i] = c.kind, c.period, c.how + ("" if c.period else no_exponent)
     if lyapunov == "auto":
         todo = [i for i in range(n) if cyc[i] is not None and kinds[i] != "failed" and period_k[i] == 0]
         if todo:
@@ -249,7 +258,7 @@ def bifurcation(
             for i in todo:
                 T = periods[i]
                 s = mechs[i].run_settings((transient_cycles + cycles) * T, t_out=[(transient_cycles + cycles) * T], **dict(options, outputs=["states"]))
-                s["lyapunov"] = shadow_spec(mechs[i], transient_cycles * T, T, None, None, atol)
+                s["lyapunov"] = shadow_spec(mechs[i], transient_cycles * T, T, None, None, noise[0], atol)
                 more.append(s)
             raws2 = batch.run_all([mechs[i].description() for i in todo], more, executor, None, progress, "Lyapunov exponents")
             for i, raw, s in zip(todo, raws2, more):
@@ -272,10 +281,11 @@ def t_end_of(settings: Dict[str, Any]) -> float:
     return float(settings["t_end"])
 
 
-def _classify(cycles: np.ndarray, kinds: List[str], tol: float, noise: float, lam: float, iv: np.ndarray, period: float) -> Classification:
+def _classify(cycles: np.ndarray, kinds: List[str], tol: float, noise: Tuple[float, float], lam: float, iv: np.ndarray, period: float) -> Classification:
+    rtol, atol = noise
     if math.isfinite(lam):
-        return classify(cycles, kinds=kinds, tol=tol, noise=noise, exponent=float(lam), interval=(float(iv[0]), float(iv[1])), period=float(period))
-    return classify(cycles, kinds=kinds, tol=tol, noise=noise)
+        return classify(cycles, kinds=kinds, tol=tol, rtol=rtol, atol=atol, exponent=float(lam), interval=(float(iv[0]), float(iv[1])), period=float(period))
+    return classify(cycles, kinds=kinds, tol=tol, rtol=rtol, atol=atol)
 
 
 __all__ = ["Bifurcation", "JOINT_OUTPUTS", "SUB", "bifurcation"]

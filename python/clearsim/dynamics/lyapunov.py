@@ -16,15 +16,18 @@ import numpy as np
 from .. import batch
 from ..errors import InputError, check_finite
 from ..lazy import lazy
-from ..schema import ATOL
+from ..schema import ATOL, RTOL
 from .period import forcing_period
 
 stats = lazy("scipy.stats")
 
-#: Default distance d0 kept between the runs: this many times the run's atol, and at most this
-#: fraction of the smallest clearance (so the shadow stays in the linear range of the contact).
-D0_ATOL = 1e3
-D0_CLEARANCE = 1e-4
+#: Default distance d0 kept between the runs: this many times the integration's error ν = atol +
+#: rtol × the largest body position (m), and at most this fraction of the smallest clearance (so
+#: the shadow stays in the linear range of the contact); below ``D0_LEAST`` × ν the tolerances are
+#: too loose for an exponent (the two runs' own errors would be what is measured).
+D0_NOISE = 1e3
+D0_CLEARANCE = 1e-3
+D0_LEAST = 30.0
 #: Batches of intervals the confidence interval is formed from (batch means).
 BATCHES = 10
 
@@ -88,23 +91,40 @@ def estimate(book: Dict[str, Any], start: float, every: float, d0: float, result
     return LyapunovExponent(lam, (lam - half, lam + half), (t, running), g, start, every, d0, book.get("error"), result)
 
 
-def default_d0(mechanism: Any, atol: float) -> float:
-    """d0 [m, rad]: ``D0_ATOL`` × atol, at most ``D0_CLEARANCE`` × the smallest clearance."""
-    d0 = D0_ATOL * atol
+def integration_error(mechanism: Any, rtol: float, atol: float) -> float:
+    """ν = atol + rtol × the largest |x|, |y| of the bodies as given [m]: what the integrator may
+    get wrong in a position, so what two nearby runs can be told apart by."""
+    bodies = mechanism.description()["bodies"]
+    size = max((abs(float(c)) for b in bodies for c in b["position"]), default=0.0)
+    return atol + rtol * size
+
+
+def default_d0(mechanism: Any, rtol: float, atol: float) -> float:
+    """d0 [m, rad]: ``D0_NOISE`` × :func:`integration_error`, at most ``D0_CLEARANCE`` × the
+    smallest clearance; an InputError when that is below ``D0_LEAST`` × the error."""
+    noise = integration_error(mechanism, rtol, atol)
+    d0 = D0_NOISE * noise
     desc = mechanism.description()
     gaps = [float(j["clearance"]) for j in desc.get("clearance_joints", [])] + [float(j["clearance"]) for j in desc.get("prismatic_clearance_joints", [])]
     if gaps:
         d0 = min(d0, D0_CLEARANCE * min(gaps))
+    if d0 < D0_LEAST * noise:
+        need = (D0_CLEARANCE * min(gaps) / D0_LEAST - atol) / max(noise - atol, 1e-300) * rtol
+        raise InputError(
+            f"invalid rtol = {rtol!r}: for a Lyapunov exponent the two runs must stay {d0:.3g} m apart (1e-3 of the clearance "
+            f"{min(gaps):.3g} m), {d0 / noise:.3g} × the integration error {noise:.3g} m; use rtol ≤ {need:.2g} (and atol ≪ {d0 / D0_LEAST:.2g})",
+            field="rtol", value=rtol,
+        )  # fmt: skip
     return d0
 
 
-def shadow_spec(mechanism: Any, start: float, every: Optional[float], d0: Optional[float], velocity_scale: Optional[float], atol: float) -> Dict[str, float]:
+def shadow_spec(mechanism: Any, start: float, every: Optional[float], d0: Optional[float], velocity_scale: Optional[float], rtol: float, atol: float) -> Dict[str, float]:
     """The core's ``lyapunov`` settings (defaults: τ the forcing period, Ω = 2π/τ, :func:`default_d0`)."""
     every = forcing_period(mechanism) if every is None else check_finite("renormalize_every", every)
     return {
         "start": float(start),
         "interval": float(every),
-        "d0": default_d0(mechanism, atol) if d0 is None else check_finite("d0", d0),
+        "d0": default_d0(mechanism, rtol, atol) if d0 is None else check_finite("d0", d0),
         "velocity_scale": 2 * math.pi / every if velocity_scale is None else check_finite("velocity_scale", velocity_scale),
     }
 
@@ -125,17 +145,17 @@ def lyapunov(
     A shadow run starts ``d0`` away at ``transient`` and is put back at that distance every
     ``renormalize_every`` τ [s] (default: the forcing period, :func:`forcing_period`), in the
     norm √(Σ δq² + Σ (δq̇/Ω)²) over the bodies' coordinates [m, rad], Ω = ``velocity_scale``
-    [rad/s] (default 2π/τ); ``d0`` defaults to 1000 × atol, at most 1e-4 × the smallest
-    clearance. Both runs locate their own impacts and friction switches, so the exponent holds
+    [rad/s] (default 2π/τ); ``d0`` defaults to 1000 × the integration error atol + rtol × the
+    largest body position, at most 1e-3 × the smallest clearance (tolerances too loose to keep
+    it 30 × above that error are an InputError saying which rtol would do). Both runs locate their own impacts and friction switches, so the exponent holds
     through them (docs/physics.md §13). Other keyword arguments are :meth:`Mechanism.simulate`'s
-    (integrator, rtol, atol, ...; the exponent wants tight tolerances: its noise is about
-    rtol·|y|/d0 an interval); the run stores only its states every τ unless told otherwise."""
+    (integrator, rtol, atol, ...); the run stores only its states every τ unless told otherwise."""
     t_end = check_finite("t_end", t_end)
     transient = check_finite("transient", transient)
     t0 = float(options.get("t0", 0.0))
     if not t0 <= transient < t_end:
         raise InputError(f"invalid transient = {transient!r}: must lie in [t0, t_end) = [{t0}, {t_end}) s", field="transient", value=transient)
-    spec = shadow_spec(m, transient, renormalize_every, d0, velocity_scale, float(options.get("atol", ATOL)))
+    spec = shadow_spec(m, transient, renormalize_every, d0, velocity_scale, float(options.get("rtol", RTOL)), float(options.get("atol", ATOL)))
     options.setdefault("outputs", ["states"])
     if options.get("t_out") is None and options.get("dt_out") is None:
         options["dt_out"] = spec["interval"]
@@ -151,4 +171,4 @@ def lyapunov(
     return out
 
 
-__all__ = ["LyapunovExponent", "estimate", "lyapunov", "shadow_spec", "default_d0"]
+__all__ = ["LyapunovExponent", "default_d0", "estimate", "integration_error", "lyapunov", "shadow_spec"]

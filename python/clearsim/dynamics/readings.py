@@ -138,6 +138,27 @@ class DynamicsReadings:
             period = forcing_period(self.description)
         return _spectrum(self.t, values, period, cycles=cycles, window=window, unit=unit, label=label)
 
+    def phase_portrait(self, name: str, component: str = "x", ax: Any = None) -> Any:
+        """A phase-portrait figure: a body's ``component`` against its rate (``"x"``, ``"y"`` [m,
+        m/s] or ``"theta"`` [rad, rad/s]), or a clearance joint's e_x against e_y [mm] (its orbit;
+        ``component`` unused), over the stored outputs, with the Poincaré section's points on top
+        when the run recorded sections (:func:`clearsim.plots.dynamics.plot_phase_portrait`)."""
+        from ..plots.dynamics import plot_phase_portrait
+
+        has_sections = self._raw.get("sections") is not None and self._section_settings() is not None
+        sec = self.poincare() if has_sections else None
+        if name in self.joint_names:
+            get = lambda r: np.asarray(getattr(r, "eccentricity")(name)) * 1e3  # noqa: E731
+            e = get(self)
+            pts = None if sec is None else (get(sec)[:, 0], get(sec)[:, 1])
+            return plot_phase_portrait(e[:, 0], e[:, 1], f"{name} e_x [mm]", f"{name} e_y [mm]", pts, title=f"orbit of {name}", ax=ax)
+        check_choice("component", component, COMPONENTS)
+        k = COMPONENTS.index(component)
+        unit = "rad" if component == "theta" else "m"
+        x, v = (np.asarray(getattr(self, "position")(name))[:, k], np.asarray(getattr(self, "velocity")(name))[:, k])
+        pts = None if sec is None else (sec.position(name)[:, k], sec.velocity(name)[:, k])
+        return plot_phase_portrait(x, v, f"{name}.{component} [{unit}]", f"{name}.{component} rate [{unit}/s]", pts, title=f"{name} {component}", ax=ax)
+
     def _signal(self, name: str, quantity: str, component: str) -> Tuple[np.ndarray, str, str]:
         """A stored scalar signal: (values, unit, label)."""
         if name in self.body_names:

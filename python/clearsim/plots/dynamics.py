@@ -135,12 +135,20 @@ def plot_spectrum(spec: Any, ax: Optional[Axes] = None, max_order: Optional[floa
     return fig
 
 
-def plot_poincare_panels(panels: Sequence[Tuple[np.ndarray, np.ndarray, str]], xlabel: str, ylabel: str, title: str = "") -> Figure:
-    """Several Poincaré sections side by side: ``(x, y, panel title)`` each."""
+def plot_poincare_panels(panels: Sequence[Tuple[np.ndarray, np.ndarray, str]], xlabel: str, ylabel: str, title: str = "", circle: Optional[float] = None) -> Figure:
+    """Several Poincaré sections side by side: ``(x, y, panel title)`` each; with ``circle`` (a
+    radius, e.g. 1 for eccentricities in units of the clearance) each panel draws that circle and
+    all share its equal-aspect limits."""
     with style():
         fig = new_figure(4.2 * len(panels), 4.0)
         for k, (x, y, name) in enumerate(panels):
             ax = fig.add_subplot(1, len(panels), k + 1)
+            if circle is not None:
+                a = np.linspace(0.0, 2 * np.pi, 361)
+                ax.plot(circle * np.cos(a), circle * np.sin(a), color="#999999", lw=0.8)
+                ax.set_aspect("equal")
+                ax.set_xlim(-1.1 * circle, 1.1 * circle)
+                ax.set_ylim(-1.1 * circle, 1.1 * circle)
             ax.plot(np.asarray(x), np.asarray(y), ".", ms=3.0, color=OKABE_ITO["blue"])
             ax.set_title(name)
             ax.set_xlabel(xlabel)
