@@ -235,6 +235,8 @@ def test_the_slider_acceleration_spectrum_is_that_of_the_exact_kinematics():
     for k in range(2, 9):
         assert sp.harmonic(k) == pytest.approx(exact[k], rel=1e-5, abs=1e-6 * r * w * w), k
     assert sp.harmonic(2) == pytest.approx(r * w * w * (r / l) * (1 + (r / l) ** 2 / 4), rel=0.01)
+    pin = res.spectrum("crank", "acceleration", "y", point=(r / 2, 0.0))  # the crank pin: r ω² sin θ, one line
+    assert pin.harmonic(1) == pytest.approx(r * w * w, rel=1e-7) and max(pin.harmonic(k) for k in (0, 2, 3, 4)) < 1e-6 * r * w * w
     with pytest.raises(clearsim.InputError, match="whole number of samples a period"):
         models.slider_crank("ideal").simulate(2 * period, dt_out=period / 100.5, progress=False).spectrum("slider", "acceleration", "x")
 

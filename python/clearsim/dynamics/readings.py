@@ -7,7 +7,7 @@ periods of the stored output grid). SI units.
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -118,10 +118,12 @@ class DynamicsReadings:
         period: Optional[float] = None,
         cycles: Optional[int] = None,
         window: str = "hann",
+        point: Optional[Sequence[float]] = None,
     ) -> Spectrum:
         """The amplitude spectrum of a body's ``quantity`` (``"displacement"``, ``"velocity"``,
-        ``"acceleration"``) ``component`` (``"x"``, ``"y"``, ``"theta"``), or of a clearance
-        joint's ``"eccentricity"``, ``"eccentricity_rate"`` or ``"force"`` component ``"x"`` or
+        ``"acceleration"``) ``component`` (``"x"``, ``"y"``, ``"theta"``) — of its ``point``
+        (x, y) [m] in the body's frame, component ``"x"`` or ``"y"``, when given
+        (:meth:`clearsim.Result.point`) — or of a clearance joint's ``"eccentricity"``, ``"eccentricity_rate"`` or ``"force"`` component ``"x"`` or
         ``"y"``: a windowed FFT over the last ``cycles`` whole periods of the stored output grid
         (default: all whole periods), amplitudes in the quantity's unit (:class:`Spectrum`).
 
@@ -131,7 +133,7 @@ class DynamicsReadings:
         below the Nyquist frequency N/(2 period) are then independent of N."""
         from .period import forcing_period
 
-        values, unit, label = self._signal(name, quantity, component)
+        values, unit, label = self._signal(name, quantity, component, point)
         if period is None:
             if self.description is None:
                 raise InputError("invalid period = None: this result does not carry its mechanism; give period= [s]", field="period", value=None)
@@ -159,8 +161,12 @@ class DynamicsReadings:
         pts = None if sec is None else (sec.position(name)[:, k], sec.velocity(name)[:, k])
         return plot_phase_portrait(x, v, f"{name}.{component} [{unit}]", f"{name}.{component} rate [{unit}/s]", pts, title=f"{name} {component}", ax=ax)
 
-    def _signal(self, name: str, quantity: str, component: str) -> Tuple[np.ndarray, str, str]:
+    def _signal(self, name: str, quantity: str, component: str, point: Optional[Sequence[float]] = None) -> Tuple[np.ndarray, str, str]:
         """A stored scalar signal: (values, unit, label)."""
+        if point is not None:
+            check_choice("component", component, ("x", "y"))
+            values = getattr(self, "point")(name, point, quantity)[:, ("x", "y").index(component)]
+            return np.asarray(values, dtype=float), body_unit(quantity, component), f"{name} point {tuple(point)} {component} {quantity}"
         if name in self.body_names:
             check_choice("quantity", quantity, BODY_QUANTITIES)
             check_choice("component", component, COMPONENTS)
