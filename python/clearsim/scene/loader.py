@@ -22,6 +22,7 @@ from ..result import Result
 from .alias import ReliabilitySettings, read_reliability, scene_fosm
 from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
+from .sweep import SWEEP_KEYS, SweepSettings, parse_sweep
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
 from .parameters import read_parameters
 from .toml_reader import Source, Table, read_toml
@@ -65,6 +66,8 @@ class Scene:
     #: The ``[study]`` table (random inputs, one output and its limit; ``clearsim reliability``):
     #: a :class:`clearsim.scene.study.StudySettings`.
     study: Optional[StudySettings] = None
+    #: The ``[sweep]`` table (a bifurcation diagram; ``clearsim sweep``): :class:`clearsim.scene.sweep.SweepSettings`.
+    sweep: Optional[SweepSettings] = None
     name: str = ""
     description: str = ""
     path: Optional[Path] = None
@@ -177,7 +180,7 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 
 # ====================================================================== reading a scene
 _TOP_KEYS = (
-    "parameters", "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study",
+    "parameters", "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study", "sweep",
 )  # fmt: skip
 
 
@@ -214,8 +217,13 @@ def load_scene_file(path: PathLike) -> Scene:
     study = None
     if "study" in builder.top:
         study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech, builder.drivers))
-    return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, parameters=dict(src.parameters),
-                 _ideal=mech.idealized(), _rebuild=partial(_rebuilt, src, data))  # fmt: skip
+    sweep = None
+    if "sweep" in builder.top:
+        table = builder.top.table("sweep", SWEEP_KEYS)
+        assert table is not None
+        sweep = parse_sweep(table, mech)
+    return Scene(mech, sim, outputs, reliability, study=study, sweep=sweep, name=name, description=description, path=path,
+                 parameters=dict(src.parameters), _ideal=mech.idealized(), _rebuild=partial(_rebuilt, src, data))  # fmt: skip
 
 
 def _located_build(src: Source, data: Dict[str, Any], overrides: Optional[Mapping[str, float]] = None) -> Tuple[_Builder, Mechanism]:
