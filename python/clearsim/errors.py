@@ -103,18 +103,6 @@ def check_finite(field: str, value: Any) -> float:
     return v
 
 
-def check_point(field: str, value: Any) -> "tuple[float, float]":
-    """A point given as two finite numbers (a body-frame point [m], as joints and outputs take
-    them) as a tuple of floats, or :class:`InputError` naming ``field``."""
-    try:
-        x, y = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise InputError(f"invalid {field} = {value!r}: give (x, y), a point in the body's frame [m]", field=field, value=value) from None
-    if not all(v == v and v not in (float("inf"), float("-inf")) for v in (x, y)):
-        raise InputError(f"invalid {field} = {value!r}: must be finite [m]", field=field, value=value)
-    return (x, y)
-
-
 def check_positive(field: str, value: Any) -> float:
     v = check_finite(field, value)
     if v <= 0.0:

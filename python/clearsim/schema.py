@@ -17,9 +17,11 @@ from . import _core
 #: The components of a body's pose q = (x, y, θ), in the order of the state and of every result
 #: array: x, y [m] and theta [rad] (one word for them throughout: "component").
 COMPONENTS: Tuple[str, str, str] = ("x", "y", "theta")
-#: The components of a point's motion (a point fixed on a body, body frame; global x and y [m],
-#: or the magnitude of the vector: of the error vector |P − P_ref| against a reference).
-POINT_COMPONENTS: Tuple[str, str, str] = ("x", "y", "magnitude")
+#: What a monitor of a point fixed on a body watches (``rust/monitor/target.rs``): the global x or
+#: y component of its displacement, velocity or acceleration, or the magnitude of the vector (of
+#: the error vector |P − P_ref| against a reference). The exported columns of a point are its x
+#: and y (:data:`clearsim.points.POINT_COMPONENTS`).
+POINT_MONITOR_COMPONENTS: Tuple[str, str, str] = ("x", "y", "magnitude")
 #: What a study's errors are measured against (the core's ``ReferenceOf``,
 #: ``rust/monitor/reference.rs``): each sample's own ideal twin (the paper's question: what do
 #: the clearances add?) or the nominal design's ideal motion (a designer's: how far from the
@@ -122,7 +124,7 @@ __all__ = [
     "JOINT_QUANTITY_UNITS",
     "JOINT_MONITOR_UNITS",
     "OUTPUTS",
-    "POINT_COMPONENTS",
+    "POINT_MONITOR_COMPONENTS",
     "READING_MONITOR_UNITS",
     "REFERENCES",
     "ascii_unit",

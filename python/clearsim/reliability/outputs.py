@@ -13,8 +13,9 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_finite, check_point, check_positive, renamed
-from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, POINT_COMPONENTS, body_unit
+from ..errors import InputError, check_choice, check_finite, check_positive, renamed
+from ..points import check_point
+from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, POINT_MONITOR_COMPONENTS, body_unit
 
 __all__ = ["BODY_QUANTITIES", "JOINT_QUANTITIES", "Output", "Limit", "Modes", "as_limit"]
 
@@ -60,8 +61,8 @@ class Output:
             raise InputError("invalid Output: give exactly one of body= (with component=) or joint=", field="Output.body", value=self.body)
         if self.body is not None:
             if self.point is not None:
-                object.__setattr__(self, "point", check_point("Output.point", self.point))
-                check_choice("Output.component", self.component, POINT_COMPONENTS, "(a point's: there is no default)")
+                object.__setattr__(self, "point", check_point(self.point, "Output.point"))
+                check_choice("Output.component", self.component, POINT_MONITOR_COMPONENTS, "(a point's: there is no default)")
             else:
                 check_choice("Output.component", self.component, COMPONENTS, "(there is no default)")
             if self.quantity not in BODY_QUANTITIES:

@@ -73,7 +73,7 @@ from ..reliability.life import MAX_BLOCKS
 from ..reliability.outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Modes, Output
 from ..reliability.sobol import SOBOL_METHODS
 from ..reliability.study import Study
-from ..schema import COMPONENTS, POINT_COMPONENTS, REFERENCES
+from ..schema import COMPONENTS, POINT_MONITOR_COMPONENTS, REFERENCES
 
 # Extension point: a method is a name here (and in report.METHOD_RUNNERS); a method with
 # settings of its own reads them from a sub-table [study.<name>] listed in STUDY_KEYS.
@@ -142,7 +142,7 @@ def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
             raise t.error(None, f"missing key 'body' (with component) or 'joint' in {where}: the analysed output")
         body = t.string("body", choices=mech.body_names)
         point = tuple(t.numbers("point", length=2)) if "point" in t else None
-        component = t.string("component", choices=POINT_COMPONENTS if point is not None else COMPONENTS)
+        component = t.string("component", choices=POINT_MONITOR_COMPONENTS if point is not None else COMPONENTS)
         output = Output(body=body, component=component, quantity=t.string("quantity", choices=BODY_QUANTITIES), point=point)
     side = t.string("side", "below" if output.quantity == "film_thickness" else "above", choices=SIDES)
     if "limit" not in t:
