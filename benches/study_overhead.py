@@ -9,8 +9,9 @@
 displacement error), ``n`` samples (default 256) through ``Study.monte_carlo``, against the same
 descriptions and output grid run bare through ``_core.run_batch`` (no monitors, no reference):
 the ratio of CPU time (all threads; steadier than wall time on a shared machine) and of wall
-time. ``dask``: wall time of ``Study.monte_carlo`` locally and through ``client.get_executor()``,
-results compared bit for bit. ``bytes``: the pickled arguments of the tasks an executor gets
+time. ``dask``: wall time (and CPU time, all processes: the figure a loaded machine does not
+distort) of ``Study.monte_carlo`` locally and through ``client.get_executor()``, results
+compared bit for bit. ``bytes``: the pickled arguments of the tasks an executor gets
 (what crosses to a worker), per task and per sample. ``instructions``: the same comparison as
 ``overhead`` on one thread by instructions executed (``valgrind --tool=cachegrind
 --cache-sim=no``, four processes: the common start, the start with the descriptions built, the
@@ -131,15 +132,24 @@ def dask(ns: List[int]) -> None:
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
         executor = client.get_executor()
         study().monte_carlo(4, seed=0, executor=executor)  # warm the workers up
+        def cpu() -> float:
+            import resource
+
+            r = resource.getrusage(resource.RUSAGE_SELF)
+            return r.ru_utime + r.ru_stime
+
         for n in ns:
-            t = time.perf_counter()
+            t, c = time.perf_counter(), cpu()
             local = study().monte_carlo(n, seed=1)
-            t_local = time.perf_counter() - t
+            t_local, c_local = time.perf_counter() - t, cpu() - c
+            w0, c0 = sum(client.run(cpu).values()), cpu()
             t = time.perf_counter()
             remote = study().monte_carlo(n, seed=1, executor=executor)
             t_remote = time.perf_counter() - t
+            c_remote = sum(client.run(cpu).values()) - w0 + cpu() - c0
             same = np.array_equal(local.peaks, remote.peaks, equal_nan=True)
-            print(f"n = {n}: local {t_local:.2f} s, Dask 2 × 1 thread {t_remote:.2f} s ({t_remote / t_local:.2f}×); peaks identical: {same}")
+            print(f"n = {n}: local {t_local:.2f} s ({c_local:.1f} s CPU), Dask 2 × 1 thread {t_remote:.2f} s ({c_remote:.1f} s CPU of the workers and "
+                  f"this process) ({t_remote / t_local:.2f}×); peaks identical: {same}")
 
 
 if __name__ == "__main__":

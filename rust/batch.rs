@@ -69,6 +69,13 @@ pub fn run_one(model: &Model, desc: &MechanismDesc, settings: &RunSettings, nomi
     simulate_measured(model, settings, &refs, stop)
 }
 
+/// How many reference runs [`run_batch`] makes for these runs: one per distinct ideal mechanism
+/// and run settings.
+pub fn reference_runs(descs: &[MechanismDesc], settings: &[RunSettings], nominal: Option<&MechanismDesc>) -> usize {
+    let pick = |k: usize| if settings.len() == 1 { &settings[0] } else { &settings[k] };
+    Plan::new(descs.len(), |k| (&descs[k], pick(k)), nominal).slots.len()
+}
+
 /// The settings of the reference run for a sample run with `rs`: the same integrator, start,
 /// step limits and budgets at a tenth of its tolerances, to the grid's end, storing states and
 /// accelerations on the grid, with no monitors of its own.
