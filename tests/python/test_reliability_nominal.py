@@ -95,3 +95,64 @@ def test_the_core_refuses_a_nominal_with_other_bodies():
     assert isinstance(out, InputError) and "'extra' only in the reference" in str(out), out
     (out,) = _core.run_batch([sample.description()], [s], 1)
     assert isinstance(out, InputError) and "no nominal mechanism" in str(out), out
+
+
+SCENE_STUDY = """
+[study]
+reference = "{reference}"
+cycles = 0.25
+methods = ["monte_carlo"]
+samples = 4
+
+[[study.output]]
+body = "slider"
+component = "x"
+quantity = "displacement"
+limit = 1e-3
+
+[[study.output]]
+body = "rod"
+point = [0.02, 0.03]
+component = "magnitude"
+quantity = "velocity"
+limit = 1.0
+
+[[study.input]]
+path = "rod-slider.clearance"
+distribution = "normal"
+mean = 0.5e-3
+std = 0.02e-3
+"""
+
+
+def _scene(tmp_path, reference: str):
+    from pathlib import Path
+
+    from clearsim.scene import load_scene_file
+
+    text = (Path(__file__).resolve().parents[2] / "scenes" / "slider_crank.toml").read_text(encoding="utf-8")
+    file = tmp_path / "study.toml"
+    file.write_text(text + SCENE_STUDY.format(reference=reference), encoding="utf-8")
+    return file, load_scene_file
+
+
+def test_a_scene_names_its_reference_and_point_outputs(tmp_path):
+    file, load = _scene(tmp_path, "nominal")
+    study = load(file).study_model(progress=False)
+    assert study.reference == "nominal"
+    assert study.outputs[1] == rel.Output(body="rod", point=(0.02, 0.03), component="magnitude", quantity="velocity")
+    file, load = _scene(tmp_path, "nominals")
+    with pytest.raises(InputError, match="reference") as info:
+        load(file)
+    assert getattr(info.value, "line", None)
+
+
+def test_the_command_line_says_which_reference(tmp_path, capsys):
+    from clearsim.cli import main
+
+    file, _ = _scene(tmp_path, "own_ideal")
+    out = tmp_path / "out"
+    assert main(["reliability", str(file), "-o", str(out), "--no-plots", "--reference", "nominal"]) == 0
+    printed = capsys.readouterr().out
+    assert "nominal design's ideal motion" in printed
+    assert '`reference = "nominal"`' in (out / "report.md").read_text(encoding="utf-8")
