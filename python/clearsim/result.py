@@ -10,6 +10,7 @@ import numpy as np
 
 from . import _core, display
 from .errors import InputError, check_choice
+from .dynamics.readings import DynamicsReadings
 from .joint_reactions import JointReactions
 from .joint_readings import JointReadings
 from .points import PointsLike, TrackedPoint, check_point, point_motion, tracked_points
@@ -84,7 +85,7 @@ def extreme_monitors(
     return out
 
 
-class Result(JointReadings, JointReactions):
+class Result(JointReadings, JointReactions, DynamicsReadings):
     """Outputs of one simulation.
 
     Attributes

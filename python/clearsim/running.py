@@ -16,6 +16,7 @@ from . import _core
 from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
+from .dynamics.readings import section_spec
 from .joint_readings import film_monitors
 from .points import PointsLike, tracked_points
 from .result import Result, extreme_monitors
@@ -41,6 +42,7 @@ class RunOptions(TypedDict, total=False):
     max_seconds: Optional[float]  # [s] of wall time
     extremes: Union[bool, Sequence[Any]]  # bodies, clearance joints and (body, (x, y)) points (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
+    sections: Union[None, float, Tuple[float, float]]  # Poincaré sections: period [s] or (period [s], phase [rad])
 
 #: Most outputs a dt_out grid may ask for (each holds every stored channel; the core's
 #: ``MAX_OUTPUTS``, which checks it).
@@ -215,6 +217,7 @@ class Running:
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[Any]] = False,
         extremes_from: Optional[float] = None,
+        sections: Union[None, float, Tuple[float, float]] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`).
 
@@ -264,6 +267,8 @@ class Running:
         if extremes is not False:
             start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
+        if sections is not None:
+            settings["sections"] = section_spec(sections)
         films = film_monitors(self.description(), self.clearance_joint_names, t0, t_end)
         if films:
             settings["monitors"] = settings.get("monitors", []) + films
@@ -310,6 +315,11 @@ class Running:
             :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on: independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
+        sections:
+            Poincaré sections: ``period`` [s] or ``(period, phase)`` (phase [rad], default 0):
+            the stored channels at the exact times t_k = (k + phase/2π) · period in [t0, t_end]
+            (t counted from 0), from the integrator's dense output whatever ``dt_out``;
+            :meth:`Result.poincare` reads them.
 
         progress:
             Show a progress bar (simulated time, with the time left) for runs that take longer
@@ -450,6 +460,8 @@ class Running:
         self._check_shift(q0)
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
+        if settings is not None and "sections" in settings:
+            raw["section_settings"] = settings["sections"]
         res = Result(raw, self.body_names, self.clearance_joint_names)
         res.description = self.description()
         res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []

@@ -39,6 +39,8 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
         monitors: Vec::new(),
         reference: None,
         wear_mark: None,
+        sections: None,
+        lyapunov: None,
     }
 }
 

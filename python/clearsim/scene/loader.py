@@ -20,6 +20,7 @@ from ..result import Result
 from .alias import ReliabilitySettings, read_reliability, scene_fosm
 from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
+from .sweep import SWEEP_KEYS, SweepSettings, parse_sweep
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
 from .toml_reader import Table, read_toml
 
@@ -62,6 +63,8 @@ class Scene:
     #: The ``[study]`` table (random inputs, one output and its limit; ``clearsim reliability``):
     #: a :class:`clearsim.scene.study.StudySettings`.
     study: Optional[StudySettings] = None
+    #: The ``[sweep]`` table (a bifurcation diagram; ``clearsim sweep``): :class:`clearsim.scene.sweep.SweepSettings`.
+    sweep: Optional[SweepSettings] = None
     name: str = ""
     description: str = ""
     path: Optional[Path] = None
@@ -169,7 +172,7 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 
 # ====================================================================== reading a scene
 _TOP_KEYS = (
-    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study",
+    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study", "sweep",
 )  # fmt: skip
 
 
@@ -232,7 +235,14 @@ def load_scene_file(path: PathLike) -> Scene:
     study = None
     if "study" in builder.top:
         study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech, builder.drivers))
-    return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, _ideal=mech.idealized())
+    sweep = None
+    if "sweep" in builder.top:
+        table = builder.top.table("sweep", SWEEP_KEYS)
+        assert table is not None
+        sweep = parse_sweep(table, mech)
+    return Scene(
+        mech, sim, outputs, reliability, study=study, sweep=sweep, name=name, description=description, path=path, _ideal=mech.idealized()
+    )
 
 
 def load_scene(path: PathLike) -> Mechanism:
