@@ -1,23 +1,9 @@
 //! Numbers and names as the core's messages write them: the way Python writes them, since that
 //! is how the user gave them (`repr`) and how clearsim's Python messages print them (`:.3g`).
 
-/// A number as it appears in a message: as Python writes it (`repr`), which is how the user gave
-/// it: `2.0`, `0.001`, `1e-06`, `1e+20`, `nan`, `-inf` (Rust's `Display` would print 1e-300 with
-/// 300 digits). Run settings' messages ([`crate::settings`]) write their numbers the same way.
-pub(crate) fn num(v: f64) -> String {
-    let a = v.abs();
-    if v.is_nan() {
-        "nan".to_string()
-    } else if a.is_infinite() {
-        (if v > 0.0 { "inf" } else { "-inf" }).to_string()
-    } else if a == 0.0 || (1e-4..1e16).contains(&a) {
-        format!("{v:?}") // shortest round-trip digits, with ".0" on whole numbers
-    } else {
-        let s = format!("{v:e}"); // 1e-6, 1.5e20
-        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-        exponent_form(mantissa, exp)
-    }
-}
+/// A number as it appears in a message (`repr`): one definition, in [`crate::error`] (below
+/// the compiler, so that the constraints' checks write numbers the same way).
+pub(crate) use crate::error::num;
 
 /// `v` with `precision` significant digits as Python's `format(v, ".{precision}g")` writes it:
 /// fixed notation for exponents −4 ≤ X < precision, else `1.5e-07`; no trailing zeros.

@@ -450,6 +450,7 @@ fn validate_profile(f: &str, p: &Profile) -> Result<()> {
     match p {
         Profile::Constant { value } => finite(f, *value),
         Profile::Table { table, .. } => validate_table(f, table),
+        Profile::Harmonic(h) => crate::constraints::angle_law::check_harmonic(f, h),
     }
 }
 

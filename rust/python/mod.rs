@@ -14,7 +14,7 @@ use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::batch::run_batch;
+use crate::batch::{run_batch, run_one};
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
 use crate::integrate::OdeSystem;
@@ -33,7 +33,8 @@ fn to_pyerr(py: Python<'_>, e: &Error) -> PyErr {
     let build = || -> PyResult<PyErr> {
         let errors = py.import("clearsim.errors")?;
         let kwargs = PyDict::new(py);
-        let class = match e {
+        // A failed reference run is the kind of error its cause is, with the message saying whose.
+        let class = match e.root() {
             Error::InvalidInput { field, value, .. } => {
                 kwargs.set_item("field", field)?;
                 kwargs.set_item("value", value)?;
@@ -230,6 +231,8 @@ fn make_stop(py: Python<'_>, progress: Option<Py<PyAny>>) -> impl Fn(f64) -> boo
 #[pyclass(module = "clearsim._core", frozen)]
 pub struct CompiledModel {
     model: Model,
+    /// What it was compiled from: the runs its monitors measure it against are made from it.
+    desc: MechanismDesc,
     rhs_ws: Mutex<(Workspace, Vec<ImpactMemory>)>,
     warnings: Vec<Warning>,
     /// The pose given moved too far by its assembly ([`crate::pose::check`]).
@@ -327,14 +330,20 @@ impl CompiledModel {
     }
 
     /// Run the model; returns a dict of arrays (see `clearsim.result.Result`). `progress(t)`,
-    /// if given, is called with the simulated time reached [s] about every 50 ms.
-    #[pyo3(signature = (settings, progress=None))]
-    fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    /// if given, is called with the simulated time reached [s] about every 50 ms. Monitors
+    /// measured against the model's own ideal twin (or, given `nominal`, a description of the
+    /// nominal design, against its ideal) get their reference run here (`crate::batch::run_one`).
+    #[pyo3(signature = (settings, progress=None, nominal=None))]
+    fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>, nominal: Option<Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         self.check_pose(py)?;
         let rs = read_settings(settings.as_any())?;
-        let model = &self.model;
+        let nominal = nominal.map(|d| read_description(&d)).transpose()?;
+        let (model, desc) = (&self.model, &self.desc);
         let stop = make_stop(py, progress);
-        let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
+        let measured = rs.monitors.iter().any(|m| m.reference.is_some());
+        let out = py
+            .detach(|| if measured { run_one(model, desc, &rs, nominal.as_ref(), Some(&stop)) } else { simulate(model, &rs, Some(&stop)) })
+            .map_err(|e| to_pyerr(py, &e))?;
         output_to_dict(py, &out)
     }
 }
@@ -370,7 +379,7 @@ impl CompiledModel {
         };
         let ws = Workspace::new(&model);
         let mem = vec![ImpactMemory::default(); model.clearance.len()];
-        Ok(CompiledModel { model, rhs_ws: Mutex::new((ws, mem)), warnings, pose })
+        Ok(CompiledModel { model, desc, rhs_ws: Mutex::new((ws, mem)), warnings, pose })
     }
 }
 
@@ -465,13 +474,16 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     to_plain(py, &all)
 }
 
-/// Run many descriptions in parallel (rayon; GIL released). `settings` is one dict shared by
-/// all runs or a list with one dict per description. Returns one result dict per description,
-/// or the exception that prevented that run.
+/// Run many descriptions in parallel on `threads` threads (0: all cores; rayon, GIL released).
+/// `settings` is one dict shared by all runs or a list with one dict per description;
+/// `nominal`, the nominal design's description, for monitors measured against its ideal
+/// (`crate::batch::run_batch` makes each distinct reference run once). Returns one result dict
+/// per description, or the exception that prevented that run.
 #[pyfunction(name = "run_batch")]
-#[pyo3(signature = (descriptions, settings, threads=0))]
-fn batch<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
+#[pyo3(signature = (descriptions, settings, threads=0, nominal=None))]
+fn batch<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize, nominal: Option<Bound<'py, PyAny>>) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
+    let nominal = nominal.map(|d| read_description(&d)).transpose()?;
     let settings: Vec<RunSettings> = if let Ok(d) = settings.cast::<PyDict>() {
         vec![read_settings(d.as_any())?]
     } else {
@@ -482,7 +494,7 @@ fn batch<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &
         list.iter().map(|d| read_settings(d.as_any())).collect::<PyResult<Vec<_>>>()?
     };
     let stop = make_stop(py, None);
-    let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
+    let outs = py.detach(|| run_batch(&descs, &settings, nominal.as_ref(), threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
     for o in outs {
         match o {

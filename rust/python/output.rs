@@ -15,9 +15,9 @@ fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, P
     Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
 }
 
-pub(super) fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    let rec = &out.recording;
+/// The channels of a recording into `d` (`t`, `q`, `qd`, `qdd`, `lambda`, `joints`,
+/// `temperature`, `violation`, `energy`: those it holds).
+fn recording_into<'py>(py: Python<'py>, d: &Bound<'py, PyDict>, rec: &crate::record::Recording) -> PyResult<()> {
     let n = rec.coordinates;
     let ch = rec.channels.unwrap_or_default();
     d.set_item("t", PyArray1::from_slice(py, &rec.t))?;
@@ -48,10 +48,45 @@ pub(super) fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<
     if ch.energy {
         d.set_item("energy", array2(py, &rec.energy, crate::energy::ENERGY_COLUMNS.len())?)?;
     }
+    Ok(())
+}
+
+pub(super) fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    recording_into(py, &d, &out.recording)?;
+    if let Some(rec) = &out.sections {
+        let sd = PyDict::new(py);
+        recording_into(py, &sd, rec)?;
+        d.set_item("sections", sd)?;
+    }
+    if let Some(book) = &out.lyapunov {
+        let ld = PyDict::new(py);
+        ld.set_item("t", PyArray1::from_slice(py, &book.t))?;
+        ld.set_item("log_growth", PyArray1::from_slice(py, &book.log_growth))?;
+        ld.set_item("steps", book.steps)?;
+        ld.set_item("rhs_evaluations", book.rhs_evals)?;
+        match &book.error {
+            None => ld.set_item("error", py.None())?,
+            Some(e) => ld.set_item("error", to_pyerr(py, e).value(py))?,
+        }
+        d.set_item("lyapunov", ld)?;
+    }
     d.set_item("q0", PyArray1::from_slice(py, &out.q0))?;
     d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;
     d.set_item("impacts", out.impacts.clone())?;
     d.set_item("max_violation", out.max_violation.to_vec())?;
+    if !out.references.is_empty() {
+        let n = out.recording.coordinates;
+        let refs = PyDict::new(py);
+        for r in &out.references {
+            let rd = PyDict::new(py);
+            rd.set_item("q", array2(py, &r.q, n)?)?;
+            rd.set_item("qd", array2(py, &r.qd, n)?)?;
+            rd.set_item("qdd", array2(py, &r.qdd, n)?)?;
+            refs.set_item(r.of.name(), rd)?;
+        }
+        d.set_item("reference", refs)?;
+    }
     let monitors = PyList::empty(py);
     for m in &out.monitors {
         let md = PyDict::new(py);
@@ -130,4 +165,3 @@ pub(super) fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<
     }
     Ok(d)
 }
-
