@@ -158,6 +158,10 @@ def resolve(description: Union[str, Mapping[str, Any]]) -> Dict[str, Any]:
     """The description as the core reads it: bodies by index (the ground None), every default
     filled in."""
 
+def findings(description: Union[str, Mapping[str, Any]]) -> List[Tuple[str, str]]:
+    """What looks like a unit slip against the mechanism's size, as (field, message), of a
+    description not yet valid as a whole (what explains an element refused as it is added)."""
+
 def assembly_count() -> int:
     """Poses given assembled by this process (one per compiled model; for tests)."""
 

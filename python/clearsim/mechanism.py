@@ -17,7 +17,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import forces as _forces
 from . import _core, plausibility
-from .errors import InputError, SimulationError, check_finite
+from .errors import ClearsimError, InputError, SimulationError, check_finite
 from .joints import Dry, Lubricated
 from .running import DEFAULT_OUTPUTS, INTEGRATORS, MAX_OUTPUTS, OUTPUTS, RunOptions, Running  # noqa: F401 (re-exported)
 
@@ -124,6 +124,18 @@ class Mechanism(Running):
     def baumgarte(self, value: Point) -> None:
         self._baumgarte = _point("baumgarte", value)
         self._changed()
+
+    def _explain(self, group: str, entry: Dict[str, Any]) -> None:
+        """Before the InputError of an element refused as it is added: the core's plausibility
+        findings of the mechanism with it (a journal radius in mm, which put its film out of
+        range), so that the warning naming the cause comes before the error it caused."""
+        trial = dict(self._description())
+        trial[group] = [*trial.get(group, []), entry]
+        try:
+            found = _core.findings(trial)
+        except ClearsimError:
+            return
+        plausibility.warn_new(found, self._warned)
 
     def _changed(self) -> None:
         """Forget what was derived from the elements: the description and the compiled model."""
@@ -367,7 +379,11 @@ class Mechanism(Running):
             "model": model._as_dict(),
             "initial_eccentricity": e_init,
         }
-        _core.check_element("clearance_joints", entry)  # invalid sizes: an InputError here
+        try:
+            _core.check_element("clearance_joints", entry)  # invalid sizes: an InputError here
+        except InputError:
+            self._explain("clearance_joints", entry)
+            raise
         # Valid but implausible (a unit slip, a film outside its laws' range): PlausibilityWarning.
         plausibility.warn_new(plausibility.joint_findings(name, r_j, c, model._as_dict()), self._warned)
         if isinstance(model, Lubricated):

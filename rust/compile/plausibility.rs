@@ -44,8 +44,9 @@ pub(crate) fn ends(j: &JointDesc) -> (BodyRef, [f64; 2], BodyRef, [f64; 2]) {
     }
 }
 
-/// The points where bodies meet — each joint's and clearance joint's two points — at the pose
-/// given, global frame.
+/// The points where bodies meet — each joint's two points, a clearance joint's bearing centre
+/// (its journal lies within the clearance of it, or at its initial eccentricity: no length of
+/// the mechanism) — at the pose given, global frame.
 fn joint_points(desc: &MechanismDesc) -> Vec<(f64, f64)> {
     let mut pts = Vec::new();
     for j in &desc.joints {
@@ -55,7 +56,6 @@ fn joint_points(desc: &MechanismDesc) -> Vec<(f64, f64)> {
     }
     for c in &desc.clearance_joints {
         pts.push(global(desc, c.bearing_body, c.bearing_point));
-        pts.push(global(desc, c.journal_body, c.journal_point));
     }
     pts
 }

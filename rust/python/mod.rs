@@ -416,6 +416,15 @@ fn resolve<'py>(py: Python<'py>, description: &Bound<'py, PyAny>) -> PyResult<Bo
     to_plain(py, &read_description(description)?)
 }
 
+/// What looks like a unit slip against the size of a description not yet valid as a whole
+/// (`crate::compile::plausibility::findings`, as `(field, message)`): what explains an element
+/// refused as it is added (a journal radius in mm gives a film outside the finite bearing's range).
+#[pyfunction]
+fn findings(description: &Bound<'_, PyAny>) -> PyResult<Vec<(String, String)>> {
+    let desc = read_description(description)?;
+    Ok(crate::compile::plausibility::findings(&desc).into_iter().map(|w| (w.field, w.message)).collect())
+}
+
 /// Poses given assembled by this process (one per compiled model; for tests).
 #[pyfunction]
 fn assembly_count() -> usize {
@@ -563,6 +572,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check_element, m)?)?;
     m.add_function(wrap_pyfunction!(resolve, m)?)?;
     m.add_function(wrap_pyfunction!(assembly_count, m)?)?;
+    m.add_function(wrap_pyfunction!(findings, m)?)?;
     m.add("MICROMETRE_FILM_RATIO", crate::simulate::MICROMETRE_FILM_RATIO)?;
     m.add_function(wrap_pyfunction!(check_settings, m)?)?;
     m.add("DEFAULTS", defaults(m.py())?)?;

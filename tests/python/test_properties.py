@@ -130,7 +130,7 @@ def test_friction_speeds_ordered(v0, v1):
     try:
         in_a_joint(Dry(v0=v0, v1=v1))
     except cs.InputError as e:
-        assert e.field in ("clearance joint 'pin'.v0", "clearance joint 'pin'.v1")
+        assert e.field in ("v0", "v1")  # the Dry model is checked as it is made, before its joint
         assert v0 < 0 or v1 <= v0 or v1 <= 0
     else:
         assert 0 <= v0 < v1
