@@ -13,7 +13,8 @@ use crate::clearance::{max_penetration, ClearanceJoint, Film};
 use crate::constraints::{BodyKin, CompiledAngleLaw, Constraint, V2};
 use crate::description::*;
 use crate::error::{Error, Result};
-use crate::forces::{ForceElement, Magnitude, PiecewiseLinear};
+use crate::forces::{ForceElement, Magnitude};
+use crate::table::Tabulated;
 use crate::laws::contact::{stiffness_internal, stiffness_paper_printed, ContactLaw};
 use crate::laws::film::BearingGeometry;
 use crate::laws::friction::ModifiedCoulomb;
@@ -241,7 +242,7 @@ fn compile_forces(model: &Model, desc: &MechanismDesc) -> Result<Vec<ForceElemen
                 stiffness: *stiffness,
                 damping: *damping,
                 free_length: free_length.unwrap_or_else(|| at(body_b).point((*point_b).into()).sub(at(body_a).point((*point_a).into())).norm()),
-                table: force_table.as_ref().map(PiecewiseLinear::new),
+                table: force_table.as_ref().map(Tabulated::new),
             },
             ForceDesc::RotationalSpringDamper { body_a, body_b, stiffness, damping, free_angle, .. } => ForceElement::RotationalSpringDamper {
                 a: idx(body_a),
