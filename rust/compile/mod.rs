@@ -109,6 +109,11 @@ impl Model {
             model.assembly.push((format!("clearance joint '{}' (held centred in its guide)", p.name), guide));
         }
         model.forces = compile_forces(&model, desc)?;
+        // The oil temperatures follow (q, q̇) in the state, in joint order (rust/clearance/thermal.rs).
+        let heats = model.clearance.iter_mut().filter_map(|c| c.film.as_mut().and_then(|f| f.heat.as_mut()));
+        for (state, h) in (6 * nb..).zip(heats) {
+            h.state = state;
+        }
         Ok(model)
     }
 }
@@ -150,7 +155,7 @@ fn heat(l: &LubricatedDesc) -> Option<crate::clearance::thermal::Heat> {
         ViscosityDesc::Constant(_) => None,
     };
     let thermal = crate::laws::viscosity::Thermal { ambient: th.ambient, heat_capacity: th.heat_capacity, heat_transfer: th.heat_transfer, initial: th.initial.unwrap_or(th.ambient) };
-    Some(crate::clearance::thermal::Heat { vogel, thermal })
+    Some(crate::clearance::thermal::Heat { vogel, thermal, state: usize::MAX }) // numbered in `Model::compile`
 }
 
 /// The film's viscosity at the start: the constant, or Vogel's law at the initial temperature.
