@@ -16,6 +16,8 @@ class Outputs(TypedDict, total=False):
 
     states: bool
     accelerations: bool
+    #: λ ("lambda", one column per constraint row) and "reactions" (N, ideal joints + drivers, 3):
+    #: each one's force x, y [N] and couple [N m] on its second body (rust/constraints, Constraint::reaction)
     reactions: bool
     joints: bool
     violation: bool

@@ -18,6 +18,7 @@ from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
 from .joint_readings import film_monitors
+from .points import PointsLike, tracked_points
 from .result import Result, extreme_monitors
 from .schema import ATOL, COMPONENTS, DEFAULT_OUTPUTS, H_MIN, INTEGRATORS, MAX_STEPS, OUTPUTS, RTOL
 
@@ -155,15 +156,20 @@ class Running:
         check_choice("component", component, COMPONENTS)
         return 3 * b + COMPONENTS.index(component) + (3 * len(self._bodies) if velocity else 0)
 
-    def plot(self, t: float = 0.0, *, magnify: Optional[float] = None, ax: Any = None) -> Any:
+    def plot(self, t: float = 0.0, *, magnify: Optional[float] = None, ax: Any = None, points: Optional[PointsLike] = None) -> Any:
         """A figure of the mechanism as assembled at time ``t`` [s]: bodies, joints, drivers,
         force elements and the clearance joints magnified (``magnify``; default: the largest
-        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint).
+        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint),
+        and the named ``points`` (``{"tool": ("coupler", (0.1, 0.02))}``, body frame [m]) marked.
         Check a scene you wrote with it before running."""
-        from . import draw
+        from . import draw, draw_points
 
+        named = tracked_points(points, self.body_names) if points is not None else []
         q = self.initial_state(float(t))[: 3 * len(self._bodies)]
-        return draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
+        fig = draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
+        if named:
+            draw_points.mark_pose(fig.axes[0] if ax is None else ax, self.body_names, q, named)
+        return fig
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
         """Consistent state y0 = (q0, q̇0) at ``t0`` [s]: the pose given (the pose at t = 0, the
@@ -297,8 +303,10 @@ class Running:
             (increasing, inside [t0, t_end]; they take precedence over dt_out); outputs come from
             the dense output and never shorten a step.
         outputs:
-            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``,
-            ``"joints"``, ``"violation"`` (default: all but ``"reactions"``).
+            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``
+            (the ideal joints' forces and drivers' torques: :meth:`Result.joint_force`,
+            :meth:`Result.driver_torque`), ``"joints"``, ``"violation"`` (default: all but
+            ``"reactions"``).
         h_max, h_min, max_steps:
             Step limits [s] and the step budget.
         max_seconds:

@@ -185,6 +185,8 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
     }
     if ch.reactions {
         d.set_item("lambda", array2(py, &rec.lambda, rec.constraint_rows)?)?;
+        let rows = rec.t.len();
+        d.set_item("reactions", PyArray1::from_slice(py, &rec.reactions).reshape([rows, rec.constraints, 3])?)?;
     }
     if ch.joints {
         let nj = rec.clearance_joints;

@@ -124,6 +124,12 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     joint_quantities = ["eccentricity", "force"]  # + eccentricity_rate, contact_force,
                                                   #   film_force, state, film_thickness,
                                                   #   friction_torque, power_loss
+    points = [{name = "tool", body = "rod", point = [0.02, 0.015]}]   # body points (body frame,
+                                     #   m; or [[outputs.points]] tables): their global x, y of
+                                     #   each quantity in bodies.csv, errors in errors.csv,
+                                     #   paths in points.png (default: none)
+    reactions = true                 # ideal joints' forces and drivers' torques in reactions.csv,
+                                     #   peaks in the summary (default true)
     ideal = true                     # also run the ideal mechanism; write its response and
                                      #   the errors (default: true if there are clearance joints)
     csv = true                       # default true

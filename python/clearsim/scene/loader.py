@@ -31,7 +31,9 @@ class SceneRun:
     """The runs of a scene: the clearance run, the ideal run (if made) and the errors.
 
     ``errors[(body, quantity)]`` (quantity ``displacement``, ``velocity``, ``acceleration``) is
-    the (N, 3) error clearance − ideal [SI] of :meth:`Result.error` (common part of both runs); ``reliability[quantity]`` the :class:`clearsim.reliability.FosmResult`.
+    the (N, 3) error clearance − ideal [SI] of :meth:`Result.error` (common part of both runs),
+    ``errors[(point, quantity)]`` the (N, 2) error of a named point of ``[outputs] points``;
+    ``reliability[quantity]`` the :class:`clearsim.reliability.FosmResult`.
     ``failure`` is the :class:`SimulationError` that stopped the clearance run early, if any
     (``result`` then holds the partial result); ``reliability_failure`` says why a scene's
     ``[reliability]`` gave no numbers (the run failed, or its nominal FOSM run did).
@@ -124,6 +126,8 @@ class Scene:
                 if label == "ideal" or err.result is None:
                     raise
                 results[label], failure = err.result, err
+        for res in results.values():
+            res.tracked_points = list(self.outputs.points)
         run = SceneRun(self, results[jobs[-1][0]], results.get("ideal"), failure=failure)
         if run.ideal is not None and len(run.result.t):
             bodies = set(self.outputs.bodies) | ({self.reliability.body} if self.reliability else set())
@@ -131,6 +135,9 @@ class Scene:
                 for quantity, error in ERROR_QUANTITIES.items():
                     if _CHANNEL_OF[quantity] in self.simulation.outputs:
                         run.errors[(body, error)] = run.result.error(run.ideal, body, error)
+            for p in self.outputs.points:
+                for quantity in self.outputs.quantities:
+                    run.errors[(p.name, ERROR_QUANTITIES[quantity])] = run.result.error(run.ideal, p.body, ERROR_QUANTITIES[quantity], point=p.point)
         if self.reliability is not None:
             self._fosm(run, progress)
         return run
@@ -168,8 +175,12 @@ _TOP_KEYS = (
 
 def _needed_channels(outputs: OutputSettings, reliability: Optional[ReliabilitySettings]) -> List[str]:
     needed = ["violation"]
-    if outputs.bodies:
+    if outputs.bodies or outputs.points:
         needed += [_CHANNEL_OF[q] for q in outputs.quantities]
+    if outputs.points:
+        needed.append("states")  # a point's velocity and acceleration read the body's pose and rate
+    if outputs.reactions:
+        needed.append("reactions")
     if outputs.joints:
         needed.append("joints")
     if reliability is not None:
