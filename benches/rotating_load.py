@@ -10,6 +10,11 @@ right-hand sides and wall time, the step ratio (target ≥ 5×) and how far the 
 lies from the linear run's, against the tolerance atol + rtol |e|:
 
     python benches/rotating_load.py
+
+Measured (2-core machine at load ≈ 12): RADAU5 34 410 steps linear (4.0 s), 3 259 cubic
+(0.37 s), 10.6×; RODAS4 34 464 and 13 343, 2.6×; orbits 0.06 of the tolerance apart. On main
+(2639dce: no cubic tables; the periodic table held its last value up to the wrap and jumped
+there) the linear table took 35 462 RADAU5 steps (758 rejected) and 35 710 RODAS4 steps.
 """
 
 from __future__ import annotations

@@ -108,9 +108,9 @@ def test_a_warm_up_follows_the_heat_balance_and_prints_the_loss_at_the_printed_t
     of at most 0.5 s: the recorded temperature follows the balance's ODE (to 1e-4 of the rise),
     ends within 0.5 % of the rise at the fixed point, and the power loss at every output is
     Petroff's at the temperature printed beside it. On main (the temperature advanced once per
-    step outside the integrator, the step integrated at its start's viscosity), the outputs
-    inside a step paired one temperature with another's loss: 3.26 W printed where the
-    printed temperature gave 2.74 W."""
+    step outside the integrator, each step integrated at its start's viscosity) the run took 17
+    steps and its temperature missed the ODE's by up to 0.70 K (3.9 % of the rise) mid-way; with
+    h_max = 0.5 s it printed 2.953 W where the printed temperature gives 2.906 W."""
     cap, h_a = 2.0, 0.1
     thermal = clearsim.Thermal(ambient=T_AMB, heat_capacity=cap, heat_transfer=h_a)
     m = rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=thermal))
