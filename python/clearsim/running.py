@@ -172,10 +172,10 @@ class Running:
         return fig
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
-        """Consistent state y0 = (q0, q̇0) at ``t0`` [s]: the pose given (the pose at t = 0, the
-        drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
-        branch (docs/physics.md §1); :class:`clearsim.AssemblyError` names a dead centre on the
-        way."""
+        """Consistent state y0 = (q0, q̇0, T0…) at ``t0`` [s]: the pose given (the pose at t = 0,
+        the drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
+        branch (docs/physics.md §1), and the oil temperatures at their ``initial`` values
+        (:attr:`state_dim`); :class:`clearsim.AssemblyError` names a dead centre on the way."""
         return self.compile().initial_state(float(t0))
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:

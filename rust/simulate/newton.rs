@@ -107,6 +107,9 @@ impl MechanismSystem<'_> {
     pub(super) fn jacobian_difference_step(&self, j: usize, y: &[f64]) -> f64 {
         let m = 3 * self.model.n_bodies();
         let generic = (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt();
+        if j >= 2 * m {
+            return generic; // an oil temperature (heat.rs): no body's clearance scale
+        }
         let (b, comp) = ((j % m) / 3, (j % m) % 3 + if j >= m { 3 } else { 0 });
         let x = [y[3 * b], y[3 * b + 1], y[3 * b + 2], y[m + 3 * b], y[m + 3 * b + 1], y[m + 3 * b + 2]];
         let mut step = generic;

@@ -102,10 +102,11 @@ def warm_up_reference(cap: float, h_a: float, t: np.ndarray) -> np.ndarray:
     return np.asarray(sol.y[0])
 
 
-@pytest.mark.parametrize("h_max", [None, 0.5])
-def test_a_warm_up_follows_the_heat_balance_and_prints_the_loss_at_the_printed_temperature(h_max: "float | None") -> None:
+@pytest.mark.parametrize("integrator, h_max", [("radau", None), ("radau", 0.5), ("rodas4", None), ("rk45", None)])
+def test_a_warm_up_follows_the_heat_balance_and_prints_the_loss_at_the_printed_temperature(integrator: str, h_max: "float | None") -> None:
     """C/hA = 20 s, run 200 s (10 time constants) with the integrator's own steps and with steps
-    of at most 0.5 s: the recorded temperature follows the balance's ODE (to 1e-4 of the rise),
+    of at most 0.5 s, by the implicit methods (the temperature in their Newton matrices) and an
+    explicit one: the recorded temperature follows the balance's ODE (to 1e-4 of the rise),
     ends within 0.5 % of the rise at the fixed point, and the power loss at every output is
     Petroff's at the temperature printed beside it. On main (the temperature advanced once per
     step outside the integrator, each step integrated at its start's viscosity) the run took 17
@@ -115,7 +116,7 @@ def test_a_warm_up_follows_the_heat_balance_and_prints_the_loss_at_the_printed_t
     thermal = clearsim.Thermal(ambient=T_AMB, heat_capacity=cap, heat_transfer=h_a)
     m = rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=thermal))
     kw = {} if h_max is None else {"h_max": h_max}
-    res = m.simulate(200.0, dt_out=2.5, progress=False, **kw)
+    res = m.simulate(200.0, dt_out=2.5, progress=False, integrator=integrator, **kw)
     assert res.completed
     temp = res.temperature("pin")
     rise = fixed_point(h_a) - T_AMB
