@@ -51,6 +51,10 @@ pub enum Error {
     /// The user interrupted the run (Ctrl-C).
     #[error("interrupted at t = {t} s")]
     Interrupted { t: f64 },
+    /// The reference run a sample is measured against failed (`what`: the mechanism run, e.g.
+    /// "ideal mechanism"), so the sample was not run ([`crate::batch`]).
+    #[error("{cause} ({what})")]
+    Reference { what: &'static str, cause: Box<Error> },
 }
 
 impl Error {
@@ -72,7 +76,16 @@ impl Error {
             | Error::NewtonFailure { t, .. }
             | Error::PenetrationTooDeep { t, .. }
             | Error::Interrupted { t } => Some(*t),
+            Error::Reference { cause, .. } => cause.time(),
             _ => None,
+        }
+    }
+
+    /// The error at the root of a chain of [`Error::Reference`] (what kind of failure it is).
+    pub fn root(&self) -> &Error {
+        match self {
+            Error::Reference { cause, .. } => cause.root(),
+            other => other,
         }
     }
 
@@ -91,3 +104,22 @@ impl Error {
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// A number as it appears in a message: as Python writes it (`repr`), which is how the user gave
+/// it: `2.0`, `0.001`, `1e-06`, `1e+20`, `nan`, `-inf` (Rust's `Display` would print 1e-300 with
+/// 300 digits). Run settings' messages ([`crate::settings`]) write their numbers the same way.
+pub fn num(v: f64) -> String {
+    let a = v.abs();
+    if v.is_nan() {
+        "nan".to_string()
+    } else if a.is_infinite() {
+        (if v > 0.0 { "inf" } else { "-inf" }).to_string()
+    } else if a == 0.0 || (1e-4..1e16).contains(&a) {
+        format!("{v:?}") // shortest round-trip digits, with ".0" on whole numbers
+    } else {
+        let s = format!("{v:e}"); // 1e-6, 1.5e20
+        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
+        let (sign, digits) = exp.strip_prefix('-').map_or(("+", exp), |d| ("-", d));
+        format!("{mantissa}e{sign}{digits:0>2}")
+    }
+}

@@ -3,6 +3,8 @@
 Subcommands::
 
     clearsim run SCENE.toml [-o OUTDIR] [--no-plots] [--t-end T] [--integrator NAME] [-q]
+    clearsim reliability SCENE.toml [-o OUTDIR] [--methods LIST] [--samples N] [-q]
+    clearsim sweep SCENE.toml [-o OUTDIR] [--count N] [--cycles N] [--transient-cycles N] [-q]
     clearsim paper [-o OUTDIR] [--quick] [--cycles N] [-q]
     clearsim info
     clearsim --version
@@ -35,43 +37,13 @@ import numpy as np
 
 from . import __version__, cli_readings, models
 from .csvfile import column_name, report_header, write_columns, write_rows
+from .cli_support import EXIT_ERROR, EXIT_FAILURE, OutputsFailed, _describe, _positive_float, _positive_int, _summary_on_failure
 from .export import error_columns
 from .errors import ClearsimError
 from .joint_readings import summary_markdown
-from .schema import INTEGRATORS, body_unit
+from .schema import INTEGRATORS, REFERENCES, body_unit
+from .sweep_command import add_sweep_parser
 from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
-
-#: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
-EXIT_ERROR = 2
-#: Exit code of any other failure (a bug in clearsim or a library: ``--debug`` shows where).
-EXIT_FAILURE = 1
-
-
-class OutputsFailed(RuntimeError):
-    """A command stopped, or some of its outputs could not be written; what was written and the
-    summary naming the failure are on disk.
-
-    ``failed`` lists (output or command, exception); ``files`` the paths written; the first
-    exception is the ``__cause__``."""
-
-    def __init__(self, message: str, failed: Sequence[Tuple[str, BaseException]], files: Sequence[Path]) -> None:
-        super().__init__(message)
-        self.failed = list(failed)
-        self.files = list(files)
-        self.__cause__ = failed[0][1]
-
-
-def _describe(err: BaseException) -> str:
-    """``Type: message`` on one line (a ClearsimError: its message). An error passed through
-    another library with the original traceback in its text (OpenTURNS does that) is named by
-    the traceback's last line."""
-    text = str(err)
-    if "Traceback (most recent call last)" in text:
-        last = text.strip().splitlines()[-1]
-        return last.split("clearsim.errors.", 1)[-1] if "clearsim.errors." in last else last
-    text = " ".join(text.split())
-    return text if isinstance(err, ClearsimError) else f"{type(err).__name__}: {text}" if text else type(err).__name__
-
 
 class _Steps:
     """The outputs of a command, each written on its own: one that fails does not stop the others."""
@@ -469,7 +441,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
         for joint, b in r.get("bearings", {}).items():
             extra_b = (f", λ = {b['lambda']:.3g}" if "lambda" in b else "") + (f", oil {b['temperature_start']:.5g} → {b['temperature_end']:.5g} K" if "temperature_end" in b else "")
-            print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W")
+            print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W (t = {b['window_start']:.6g} to {b['window_end']:.6g} s)")
         for text in cli_readings.reaction_text(r.get("reactions", {})):
             print(text)
         for q, res in run.reliability.items():
@@ -497,7 +469,7 @@ def _cmd_reliability(args: argparse.Namespace) -> int:
     methods = args.methods.split(",") if args.methods else None
     echo = (lambda *a, **k: None) if args.quiet else print
     with _summary_on_failure(out_dir, "clearsim reliability", "report.md"):
-        files = run_study(scene, out_dir, methods=methods, samples=args.samples, progress=not args.quiet, plots=not args.no_plots, echo=echo)
+        files = run_study(scene, out_dir, methods=methods, samples=args.samples, progress=not args.quiet, plots=not args.no_plots, echo=echo, reference=args.reference)
     echo(f"wrote {len(files)} files to {out_dir}")
     return 0
 
@@ -515,29 +487,6 @@ def _cmd_paper(args: argparse.Namespace) -> int:
     if not args.quiet:
         print(f"paper study written to {out}")
     return 0
-
-
-@contextlib.contextmanager
-def _summary_on_failure(out_dir: Path, command: str, summary: str) -> Iterator[None]:
-    """If the body fails, write what it had written (files changed since it began) and the
-    cause into ``out_dir/summary`` (appended if the command wrote it already), then re-raise
-    the failure as :class:`OutputsFailed` (or a ClearsimError as itself, named there too)."""
-    began = time.time() - 1.0  # file times are coarse on some file systems
-    try:
-        yield
-    except (Exception, KeyboardInterrupt) as err:
-        if not out_dir.is_dir():
-            raise
-        path = out_dir / summary
-        written = sorted(p for p in out_dir.rglob("*") if p.is_file() and p.stat().st_mtime >= began and p != path)
-        fresh = not path.exists() or path.stat().st_mtime < began
-        lines = [f"# {command} stopped early", ""] if fresh else ["", "## Stopped early", ""]
-        lines += [f"Cause: {_describe(err)}", "", "Written before it stopped: " + (", ".join(f"`{p.relative_to(out_dir)}`" for p in written) or "nothing"), ""]
-        with path.open("w" if fresh else "a", encoding="utf-8") as fh:
-            fh.write("\n".join(lines) + "\n")
-        if isinstance(err, (ClearsimError, KeyboardInterrupt)):
-            raise
-        raise OutputsFailed(f"{command} stopped: {_describe(err)}; {summary} in {out_dir} lists what was written", [(command, err)], written) from err
 
 
 def _first_line(obj: Any) -> str:
@@ -568,26 +517,6 @@ def _cmd_info(args: argparse.Namespace) -> int:
             print(f"  {path.name}")
     print("\nScene file format: python -m pydoc clearsim.scene")
     return 0
-
-
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not (value > 0 and math.isfinite(value)):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive number")
-    return value
-
-
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive integer")
-    return value
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -626,6 +555,10 @@ def build_parser() -> argparse.ArgumentParser:
     rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
     rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm,ak_mcs,ak_is")
     rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")
+    rel.add_argument(
+        "--reference", choices=REFERENCES, help="what body and point errors are measured against, instead of the scene's [study] reference: "
+        "own_ideal (each sample's ideal twin: what the clearances add) or nominal (the nominal design's ideal motion: every tolerance counts)",
+    )  # fmt: skip
     rel.add_argument("--no-plots", action="store_true", help="write no figure")
     rel.add_argument("-q", "--quiet", action="store_true", help="no progress bars, nothing on stdout")
     rel.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")
@@ -640,6 +573,8 @@ def build_parser() -> argparse.ArgumentParser:
     paper.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     paper.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")
     paper.set_defaults(func=_cmd_paper)
+
+    add_sweep_parser(sub)
 
     info = sub.add_parser("info", help="version and model catalogue", description="Print the version and the model catalogue.")
     info.set_defaults(func=_cmd_info)

@@ -3,12 +3,15 @@
 //! what a failed run keeps. The system's other roles live beside it: `observe.rs` (monitors,
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
 //! `newton.rs` (the implicit methods' Jacobian), `heat.rs` (its rows and columns of the oil
-//! temperatures), `diagnosis.rs` (where a failed run stood).
+//! temperatures), `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at
+//! exact times), `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
 
 mod diagnosis;
 mod heat;
+pub mod lyapunov;
 mod newton;
 mod observe;
+pub mod sections;
 mod switching;
 
 use std::time::Instant;
@@ -21,9 +24,12 @@ use crate::energy::EnergyBook;
 use crate::error::{Error, Result};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Stats};
 use crate::model::Model;
-use crate::monitor::{Monitor, MonitorResult};
+use crate::monitor::reference::ReferenceStates;
+use crate::monitor::{Monitor, MonitorResult, References};
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
+use lyapunov::{LyapunovBook, Shadow};
+use sections::Sections;
 
 pub use crate::settings::RunSettings;
 
@@ -54,6 +60,13 @@ pub struct RunOutput {
     pub monitors: Vec<MonitorResult>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
+    /// The references the monitors were measured against, at the output times (only with
+    /// [`crate::monitor::ReferenceGrid::record`]: for error traces).
+    pub references: Vec<ReferenceStates>,
+    /// The channels at the section times ([`RunSettings::sections`]), when asked for.
+    pub sections: Option<Recording>,
+    /// What the Lyapunov shadow found ([`RunSettings::lyapunov`]), when asked for.
+    pub lyapunov: Option<LyapunovBook>,
 }
 
 /// The model as an [`OdeSystem`]. Its fields by the file that works them: this one (the
@@ -80,6 +93,8 @@ pub struct MechanismSystem<'a> {
     /// current step (k × monitors).
     pub monitors: Vec<Monitor>,
     monitor_values: Vec<f64>,
+    /// The sample times of the current step.
+    monitor_times: Vec<f64>,
     /// Work integrals, when the `energy` channel is recorded.
     energy: Option<EnergyBook>,
     /// Wear of each clearance joint that models it.
@@ -100,6 +115,10 @@ pub struct MechanismSystem<'a> {
     /// Penetration \[m\] within which a contact onset or end is grazing and not located as a
     /// switching point ([`crate::clearance::grazing`]): the run's `atol` (0 outside a run).
     pub gap_resolution: f64,
+
+    // sections.rs, lyapunov.rs
+    pub sections: Option<Sections>,
+    pub shadow: Option<Box<Shadow<'a>>>,
 
     // newton.rs
     /// Columns `S e_k` of the constrained mobility (m × m, column-major; only the columns of
@@ -125,6 +144,7 @@ impl<'a> MechanismSystem<'a> {
             budget: None,
             monitors: Vec::new(),
             monitor_values: Vec::new(),
+            monitor_times: Vec::new(),
             scratch2: Vec::new(),
             energy: channels.energy.then(|| EnergyBook::new(model)),
             wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
@@ -149,6 +169,8 @@ impl<'a> MechanismSystem<'a> {
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
             gap_resolution: 0.0,
+            sections: None,
+            shadow: None,
         }
     }
 
@@ -188,6 +210,12 @@ impl OdeSystem for MechanismSystem<'_> {
         self.step_memory.copy_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
+        if self.sections.is_some() {
+            self.record_sections(t1, dense)?;
+        }
+        if self.shadow.is_some() {
+            self.follow_shadow(t0, t1, dense);
+        }
         self.last_t = t1;
         self.last_y.copy_from_slice(y1);
         self.accepted += 1;
@@ -253,9 +281,21 @@ impl OdeSystem for MechanismSystem<'_> {
 
 /// Run a compiled model with validated settings ([`RunSettings::validate`]; a monitor that does
 /// not fit the model is an `Err`); a run that fails part-way is an `Ok` whose
-/// `error` says why, with everything recorded until then.
+/// `error` says why, with everything recorded until then. Its monitors are measured against no
+/// reference run (a monitor that names one is an `Err`: [`simulate_measured`]).
 pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
+    simulate_measured(model, rs, &References::default(), stop)
+}
+
+/// [`simulate`] with the reference runs its monitors are measured against (rust/batch.rs makes
+/// them): each must have the model's bodies, and a monitor that names a reference not given is
+/// an `Err` before the run.
+pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &References, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
     rs.validate_for(model)?;
+    for run in [&references.own_ideal, &references.nominal].into_iter().flatten() {
+        crate::monitor::reference::check_bodies(run, &model.body_names)?;
+    }
+    let monitors = rs.monitors.iter().enumerate().map(|(i, spec)| Monitor::new(i, spec.clone(), references)).collect::<Result<Vec<_>>>()?;
     let method = rs.method_for(model);
     let start = Instant::now();
     let (q0, qd0) = match assemble(model, rs.t0) {
@@ -274,6 +314,9 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                references: Vec::new(),
+                sections: None,
+                lyapunov: None,
             })
         }
     };
@@ -282,13 +325,25 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.gap_resolution = rs.ode.atol;
-    sys.monitors.extend(rs.monitors.iter().map(|spec| Monitor::new(spec.clone())));
+    sys.monitors = monitors;
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;
     }
     sys.energy_start(rs.t0, &y0)?;
     sys.wear_mark = rs.wear_mark;
     sys.wear_start(rs.t0, &y0);
+    if let Some(spec) = &rs.sections {
+        sys.sections = Some(Sections::new(spec, rs.t0, rs.t_end, rs.channels, model));
+        sys.sections_start(rs.t0, &y0)?;
+    }
+    if let Some(spec) = rs.lyapunov {
+        let mut shadow = Shadow::new(model, spec, method, rs.ode.clone());
+        shadow.sys.gap_resolution = rs.ode.atol;
+        if spec.start == rs.t0 {
+            shadow.start_at(rs.t0, &y0, &sys.memory);
+        }
+        sys.shadow = Some(Box::new(shadow));
+    }
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
@@ -305,8 +360,14 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         max_violation[0] = max_violation[0].max(v[0]);
         max_violation[1] = max_violation[1].max(v[1]);
     }
+    // The references at the output times, for error traces.
+    let recorded = match rs.reference {
+        Some(grid) if grid.record => [&references.own_ideal, &references.nominal].into_iter().flatten().map(|r| r.states_at(&sys.recording.t)).collect(),
+        _ => Vec::new(),
+    };
     Ok(RunOutput {
         method,
+        references: recorded,
         impacts: sys.memory.iter().map(|m| m.impacts).collect(),
         recording: sys.recording,
         stats,
@@ -318,5 +379,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
         wear: sys.wear,
+        sections: sys.sections.map(|s| s.recording),
+        lyapunov: sys.shadow.map(|s| s.book),
     })
 }
