@@ -110,7 +110,7 @@ pub fn pose_at_zero(model: &Model) -> Result<Vec<f64>> {
             let suspect = match widest_gap(&ideal, &mut ws, &model.q_guess) {
                 Some((name, gap)) if gap > GAP_SUSPECT * span(&model.q_guess) => format!(
                     "{name} has its two points {} m apart at the pose given, the most of any joint (furthest from closing now: {}, |Φ| = {:.3e})",
-                    crate::compile::g(gap, 3),
+                    crate::text::g(gap, 3),
                     furthest.0,
                     furthest.1
                 ),

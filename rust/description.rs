@@ -576,11 +576,11 @@ pub fn from_json(text: &str) -> crate::error::Result<MechanismDesc> {
 }
 
 /// [`from_json`] for a parsed JSON value: the names by which elements refer to one another
-/// resolved ([`crate::compile::names::resolve`]), then read through serde.
+/// resolved ([`crate::names::resolve`]), then read through serde.
 #[cfg(feature = "serde")]
 pub fn from_value(mut v: serde_json::Value) -> crate::error::Result<MechanismDesc> {
     use crate::error::Error;
-    crate::compile::names::resolve(&mut v)?;
+    crate::names::resolve(&mut v)?;
     serde_path_to_error::deserialize::<_, MechanismDesc>(&v).map_err(|e| {
         let why = e.inner().to_string();
         // Inside an internally tagged enum (a joint's model, a force) serde's path stops at the

@@ -20,6 +20,8 @@ pub mod integrate;
 pub mod kkt;
 pub mod laws;
 pub mod model;
+#[cfg(feature = "serde")]
+pub mod names;
 pub mod monitor;
 pub mod pose;
 pub mod rank;
@@ -28,6 +30,7 @@ pub mod settings;
 pub mod simulate;
 pub mod system;
 pub mod table;
+mod text;
 
 #[cfg(feature = "python")]
 mod python;

@@ -7,7 +7,7 @@
 
 use crate::assembly::span;
 use crate::compile::plausibility::{ends, global};
-use crate::compile::g;
+use crate::text::g;
 use crate::description::{BodyRef, JointDesc, MechanismDesc};
 use crate::error::{Error, Warning};
 

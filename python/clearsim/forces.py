@@ -96,7 +96,7 @@ class Harmonic:
 #: A load: a constant, a table (see the module docstring) or a :class:`Harmonic`.
 Load = Union[float, Sequence[Any], Mapping[str, Any], Harmonic]
 #: A body as an entry names it: a body's name (or "ground"), resolved to its index by the core
-#: when the mechanism compiles (rust/compile/names.rs), so elements may be added in any order.
+#: when the mechanism compiles (rust/names.rs), so elements may be added in any order.
 BodyRef = Optional[str]
 
 

@@ -238,7 +238,7 @@ class Mechanism(Running):
 
     def _ref(self, field: str, name: Any, allow_ground: bool = True) -> str:
         """A reference to a body by name, checked for its type now and resolved by the core when
-        the mechanism compiles (``rust/compile/names.rs``): bodies may be added later."""
+        the mechanism compiles (``rust/names.rs``): bodies may be added later."""
         if not isinstance(name, str) or not name:
             raise InputError(f"invalid {field} = {name!r}: must be a body's name", field=field, value=name)
         if name == GROUND and not allow_ground:

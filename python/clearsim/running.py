@@ -345,7 +345,7 @@ class Running:
         if ideal_kwargs.get("extremes") not in (None, True, False):
             ideal_kwargs["extremes"] = [n for n in ideal_kwargs["extremes"] if (n[0] if isinstance(n, (tuple, list)) else n) in ideal.body_names]
         ideal_settings = ideal.run_settings(t_end, **ideal_kwargs)
-        raws = run_descriptions([self.description(), ideal.description()], [settings, ideal_settings])
+        raws = run_descriptions([self._description(), ideal._description()], [settings, ideal_settings])  # read only: no copies
         actual, twin = raws
         if isinstance(actual, BaseException):
             raise actual

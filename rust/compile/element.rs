@@ -6,7 +6,7 @@
 use serde::de::DeserializeOwned;
 use serde_json::Value;
 
-use super::names::placeholders;
+use crate::names::placeholders;
 use super::validate;
 use crate::error::{Error, Result};
 

@@ -1,4 +1,4 @@
-//! From what the user gives to what runs: a description by names (`names.rs`: resolved into
+//! From what the user gives to what runs: a description by names (`crate::names`: resolved into
 //! indices) read into a [`MechanismDesc`], checked once (`validate.rs`: every bad value named
 //! with its field; `element.rs`: one element alone, as it is added), compiled into a [`Model`]
 //! (flat arrays and enums, only the parts the scene uses) and assembled at t = 0 once
@@ -7,15 +7,12 @@
 
 #[cfg(feature = "serde")]
 mod element;
-#[cfg(feature = "serde")]
-pub mod names;
 pub mod plausibility;
-mod text;
 mod validate;
 
 #[cfg(feature = "serde")]
 pub use element::check_element;
-pub(crate) use text::{g, num, quoted};
+pub(crate) use crate::text::{g, num, quoted};
 pub use validate::{check_finite_bearing_ratio, FINITE_BEARING_L_OVER_D, MAX_FILM_CLEARANCE_RATIO};
 
 use crate::assembly::pose_at_zero;

@@ -9,7 +9,7 @@ use crate::assembly::extent;
 use crate::description::*;
 use crate::error::Warning;
 
-use super::g;
+use crate::text::g;
 
 /// A journal radius above this fraction of the mechanism's span, or a bearing length above this
 /// multiple of it, is more likely millimetres than metres.

@@ -449,13 +449,13 @@ fn check_settings(settings: &Bound<'_, PyAny>) -> PyResult<()> {
 
 /// The ideal counterpart of a description ([`MechanismDesc::idealized`], the one implementation
 /// of idealisation): read through serde, idealised, and handed back as plain data with bodies
-/// named again ([`crate::compile::names::unresolve`]; written by serde with every default filled
+/// named again ([`crate::names::unresolve`]; written by serde with every default filled
 /// in, read by Python's `json`: floats round-trip exactly).
 #[pyfunction]
 fn idealize<'py>(py: Python<'py>, description: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
     let desc = read_description(description)?.idealized();
     let mut v = serde_json::to_value(&desc).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    crate::compile::names::unresolve(&mut v);
+    crate::names::unresolve(&mut v);
     to_plain(py, &v)
 }
 

@@ -87,7 +87,7 @@ pub fn failure_hint(model: &Model, error: &Error, failure: Option<&(String, f64)
         FilmModel::LongBearingPaperClosedForm => "long_paper",
         FilmModel::Finite => "finite",
     };
-    let at = format!("joint '{name}' has a {} µm '{kind}' film (R/c = {ratio:.0})", crate::compile::g(c * 1e6, 3));
+    let at = format!("joint '{name}' has a {} µm '{kind}' film (R/c = {ratio:.0})", crate::text::g(c * 1e6, 3));
     if *eps >= 0.9 && error.time() == Some(0.0) {
         return Some(format!(
             "hint: {at} and its journal was released at rest against the wall with the drive already at speed: the film pushes with a force so large and so nonlinear that the first steps cannot converge: start it centred or off the wall (docs/hard_cases.md lists the clearances each film releases from)"

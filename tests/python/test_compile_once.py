@@ -107,3 +107,37 @@ def test_a_batch_run_assembles_once() -> None:
     before = _core.assembly_count()
     (raw,) = _core.run_batch([m.description()], m.run_settings(0.002, dt_out=1e-4), 1)
     assert raw["error"] is None and _core.assembly_count() - before == 1
+
+
+def test_a_study_sample_is_described_once_and_assembled_once(crossings: List[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    """Eight dry Study samples (random clearance, errors against each sample's own ideal twin):
+    one core batch, each sample's mechanism described once and not copied, not compiled on the
+    Python side, assembled once in the batch, and one reference run for all eight (their ideal
+    twins are the same mechanism: rust/batch.rs runs it once). Before: each sample called
+    ``_core.idealize`` and copied its description five times."""
+    import math
+
+    import numpy as np
+
+    from clearsim.reliability import Normal, Output, Study
+
+    batches: List[int] = []
+    real_batch = _core.run_batch
+
+    def batch_counted(descriptions: Any, *args: Any, **kwargs: Any) -> Any:
+        batches.append(len(descriptions))
+        return real_batch(descriptions, *args, **kwargs)
+
+    monkeypatch.setattr(_core, "run_batch", batch_counted)
+    copies: List[str] = []
+    real_copy = Mechanism.description
+    monkeypatch.setattr(Mechanism, "description", lambda self: copies.append("copy") or real_copy(self))
+    study = Study(lambda c: models.slider_crank("dry", clearance=c), {"c": Normal(0.5e-3, 0.01e-3)},
+                  Output(body="slider", component="x"), 1e-3, omega=500 * math.pi / 3, cycles=0.25, progress=False)  # fmt: skip
+    study.run_samples({"c": np.array([0.5e-3])})  # the first sample's pose check (a compile)
+    crossings.clear(), batches.clear(), copies.clear()
+    before = _core.assembly_count()
+    study.run_samples({"c": np.linspace(0.49e-3, 0.51e-3, 8)})
+    assert batches == [8] and copies == []
+    assert crossings.count("description built") == 8 and "_core.compile" not in crossings
+    assert _core.assembly_count() - before == 8 + 1  # each sample, and their one ideal reference

@@ -14,7 +14,7 @@ use std::collections::HashMap;
 
 use serde_json::Value;
 
-use super::text::quoted;
+use crate::text::quoted;
 use crate::error::{Error, Result};
 
 /// The fixed frame's name.
@@ -197,7 +197,7 @@ pub fn unresolve(v: &mut Value) {
 /// `entry` (one element of `group`, as added: its references still names) with every body
 /// reference set to a placeholder the typed description accepts (body 0) and a load table's
 /// driver replaced alike: for checking the element's
-/// own values before the others it names exist ([`super::check_element`]).
+/// own values before the others it names exist (`compile/element.rs`).
 pub fn placeholders(group: &str, entry: &Value) -> Value {
     let mut e = entry.clone();
     let fields = body_fields(group, entry);
