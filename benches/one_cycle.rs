@@ -6,8 +6,8 @@
 //! valgrind --tool=cachegrind --cache-sim=no <binary> nine_bar_lubricated radau
 //! ```
 //!
-//! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`) and a method, `rk45`
-//! (default), `dop853` or `radau`. Prints the statistics of the run and the wall time; divide
+//! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`), a method, `rk45`
+//! (default), `dop853` or `radau`, and optionally `bearings` or `film_monitors` (below). Prints the statistics of the run and the wall time; divide
 //! cachegrind's `I refs` by the right-hand sides for instructions per right-hand side. The
 //! settings are the benches' (`common::bench_run`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
 //! model (the dry nine-bar) takes a different number of steps after any change of round-off:
@@ -33,7 +33,19 @@ fn main() {
         }
     };
     let model = common::model(name);
-    let rs = common::bench_run(method, common::cycle(name), 1000);
+    let mut rs = common::bench_run(method, common::cycle(name), 1000);
+    // A third argument adds what a run may ask for: `bearings` (the bearing summary, as
+    // `simulate(..., bearings=True)` and `clearsim run` ask), `film_monitors` (exact monitors of
+    // the film thickness and power loss, what every lubricated run paid for before issue 37).
+    match args.get(2).map(String::as_str) {
+        Some("bearings") => rs.bearings = true,
+        Some("film_monitors") => rs.monitors = common::film_monitors(&model, rs.t0, rs.t_end),
+        Some(other) => {
+            eprintln!("unknown option {other:?}: bearings or film_monitors");
+            std::process::exit(2);
+        }
+        None => {}
+    }
     let start = std::time::Instant::now();
     let out = simulate(&model, &rs, None).expect("a valid run");
     let wall = start.elapsed();

@@ -34,6 +34,10 @@ pub struct RunSettings {
     /// A time \[s\] in [t0, t_end] at which the wear books are also read
     /// ([`crate::clearance::wear::WearBook::at_mark`]): what wears after it is the difference.
     pub wear_mark: Option<f64>,
+    /// Track the bearing summary of every lubricated joint along the steps (minimum film,
+    /// peak and mean power loss: [`crate::simulate::BearingSummary`]); off unless asked, as
+    /// it costs a force evaluation per joint and step where the method has none to reuse.
+    pub bearings: bool,
 }
 
 /// Most output times a spacing `dt_out` may ask for (each holds every stored channel).
@@ -241,6 +245,9 @@ pub struct RunSettingsDesc {
     /// A time \[s\] at which the wear books are also read (the output's `*_at_mark`).
     #[serde(default)]
     pub wear_mark: Option<f64>,
+    /// [`RunSettings::bearings`].
+    #[serde(default)]
+    pub bearings: bool,
 }
 
 #[cfg(feature = "serde")]
@@ -279,6 +286,7 @@ impl RunSettingsDesc {
             max_wall_time: self.max_seconds,
             monitors: self.monitors,
             wear_mark: self.wear_mark,
+            bearings: self.bearings,
         };
         rs.validate()?;
         Ok(rs)

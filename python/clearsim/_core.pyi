@@ -70,6 +70,10 @@ class RunSettings(TypedDict):
     # A time [s] in [t0, t_end] at which the wear books are also read: each result's "wear"
     # entry then has bearing_at_mark, journal_at_mark [m] and volume_at_mark [m³].
     wear_mark: NotRequired[float]
+    # Track the bearing summary of every lubricated joint along the steps (rust/simulate/bearings.rs):
+    # the result's "bearings" then lists per clearance joint None (dry) or min_film_thickness [m],
+    # t_min_film [s], peak_power_loss [W], t_peak_power_loss [s], mean_power_loss [W], energy_loss [J].
+    bearings: NotRequired[bool]
 
 __version__: str
 JOINT_COLUMNS: List[str]

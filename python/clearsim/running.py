@@ -17,7 +17,6 @@ from . import _core
 from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
-from .joint_readings import film_monitors
 from .result import Result, extreme_monitors
 from .schema import ATOL, COMPONENTS, DEFAULT_OUTPUTS, H_MIN, INTEGRATORS, MAX_STEPS, OUTPUTS, RTOL
 
@@ -41,6 +40,7 @@ class RunOptions(TypedDict, total=False):
     max_seconds: Optional[float]  # [s] of wall time
     extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
+    bearings: bool  # track the bearing summary (Result.bearing_summary)
 
 #: Most outputs a dt_out grid may ask for (each holds every stored channel; the core's
 #: ``MAX_OUTPUTS``, which checks it).
@@ -210,6 +210,7 @@ class Running:
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[str]] = False,
         extremes_from: Optional[float] = None,
+        bearings: bool = False,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`).
 
@@ -259,9 +260,8 @@ class Running:
         if extremes is not False:
             start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
-        films = film_monitors(self.description(), self.clearance_joint_names, t0, t_end)
-        if films:
-            settings["monitors"] = settings.get("monitors", []) + films
+        if bearings:
+            settings["bearings"] = True
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
@@ -302,6 +302,12 @@ class Running:
             :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on: independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
+        bearings:
+            Track the bearing summary of every lubricated joint (:meth:`Result.bearing_summary`:
+            minimum film thickness located between the steps, peak and mean power loss at every
+            step's end; independent of ``dt_out``). Off by default: it costs one force evaluation
+            per joint and step where the method has none to reuse (RK45 and RADAU5 have: 0.2–1.3 %
+            more instructions per step; docs/performance.md, "What a run pays for").
 
         progress:
             Show a progress bar (simulated time, with the time left) for runs that take longer

@@ -4,6 +4,7 @@
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
 //! `newton.rs` (the implicit methods' Jacobian), `diagnosis.rs` (where a failed run stood).
 
+mod bearings;
 mod diagnosis;
 mod newton;
 mod observe;
@@ -24,6 +25,7 @@ use crate::monitor::{Monitor, MonitorResult};
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 
+pub use bearings::BearingSummary;
 pub use crate::settings::RunSettings;
 
 /// Polled between steps (about every 64 accepted steps) with the time reached \[s\]; returning
@@ -53,6 +55,12 @@ pub struct RunOutput {
     pub monitors: Vec<MonitorResult>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
+    /// Evaluations of the clearance joints' force laws over the run, by every caller (a count
+    /// of work for the performance fingerprint; [`crate::clearance::force_evaluations`]).
+    pub force_evaluations: u64,
+    /// The bearing summary per clearance joint when the run asked for it
+    /// ([`RunSettings::bearings`]; `None` for a dry joint), else empty.
+    pub bearings: Vec<Option<BearingSummary>>,
 }
 
 /// The model as an [`OdeSystem`]. Its fields by the file that works them: this one (the
@@ -60,6 +68,11 @@ pub struct RunOutput {
 pub struct MechanismSystem<'a> {
     pub model: &'a Model,
     pub ws: Workspace,
+    /// The outputs' own workspace, so that evaluating them leaves `ws` holding what the steps
+    /// evaluated last: an implicit method's f(t1, y1), kept by the observers that evaluate it
+    /// first (`Workspace::evaluate_and_keep`), is then not computed twice. Built at the first
+    /// output that needs it.
+    output_ws: Option<Workspace>,
     pub memory: Vec<ImpactMemory>,
     /// The memory as it was during the step last accepted (what its outputs are evaluated with).
     step_memory: Vec<ImpactMemory>,
@@ -88,11 +101,17 @@ pub struct MechanismSystem<'a> {
     /// The oil temperature of each lubricated joint that models it (rust/clearance/thermal.rs).
     pub heat: Vec<Option<HeatBook>>,
 
+    // bearings.rs
+    /// The bearing summary of each lubricated joint, when the run asks for it (else empty).
+    bearings: Vec<Option<bearings::BearingBook>>,
+
     // switching.rs
     /// Each clearance joint's kinematics at the last and the next sample of a step
     /// ([`OdeSystem::switching_point`]).
     switch_prev: Vec<(f64, JointKinematics)>,
     switch_next: Vec<JointKinematics>,
+    /// Each clearance joint's kinematics at the step's end.
+    switch_end: Vec<JointKinematics>,
     /// The state components the clearance joints' kinematics read (q and q̇ of their bodies):
     /// all that the switch search takes from the dense output.
     switch_components: Vec<usize>,
@@ -117,6 +136,7 @@ impl<'a> MechanismSystem<'a> {
         MechanismSystem {
             model,
             ws: Workspace::new(model),
+            output_ws: None,
             memory: vec![ImpactMemory::default(); model.clearance.len()],
             step_memory: vec![ImpactMemory::default(); model.clearance.len()],
             recording: Recording::new(channels, capacity, model),
@@ -129,10 +149,12 @@ impl<'a> MechanismSystem<'a> {
             wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
             wear_mark: None,
             heat: model.clearance.iter().map(|c| c.film.and_then(|f| f.heat).map(HeatBook::new)).collect(),
+            bearings: Vec::new(),
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
             switch_next: vec![JointKinematics::default(); model.clearance.len()],
+            switch_end: vec![JointKinematics::default(); model.clearance.len()],
             switch_components: {
                 let n = 3 * model.n_bodies();
                 let mut bodies: Vec<usize> = model.clearance.iter().flat_map(|c| [c.bearing, c.journal]).flatten().map(|b| b as usize).collect();
@@ -222,17 +244,18 @@ impl OdeSystem for MechanismSystem<'_> {
     }
 
     fn output(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        let ws = self.output_ws.get_or_insert_with(|| Workspace::new(self.model));
         if self.recording.needs_evaluation() {
             // Outputs lie inside the step just accepted: the memory it was integrated with.
-            self.ws.evaluate(self.model, &self.step_memory, t, y)?;
+            ws.evaluate(self.model, &self.step_memory, t, y)?;
         }
-        self.recording.push(t, y, &self.ws, &self.step_memory);
+        self.recording.push(t, y, ws, &self.step_memory);
         if self.heat.iter().any(Option::is_some) {
             let temps = self.heat.iter().map(|b| b.as_ref().map_or(f64::NAN, |b| b.temperature_at(t)));
             self.recording.temperature.extend(temps);
         }
         if let Some(book) = &self.energy {
-            let e = EnergyBook::stored(self.model, &self.ws);
+            let e = EnergyBook::stored(self.model, ws);
             self.recording.energy.extend_from_slice(&e);
             self.recording.energy.extend_from_slice(&book.work_at(t));
         }
@@ -245,6 +268,7 @@ impl OdeSystem for MechanismSystem<'_> {
 /// `error` says why, with everything recorded until then.
 pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
     rs.validate_for(model)?;
+    let evaluations_before = crate::clearance::force_evaluations();
     let method = rs.method_for(model);
     let start = Instant::now();
     let (q0, qd0) = match assemble(model, rs.t0) {
@@ -263,6 +287,8 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
+                bearings: Vec::new(),
             })
         }
     };
@@ -280,6 +306,10 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     sys.wear_mark = rs.wear_mark;
     sys.wear_start(rs.t0, &y0);
     sys.heat_start(rs.t0);
+    if rs.bearings {
+        sys.bearings = vec![None; model.clearance.len()];
+        sys.bearings_start(rs.t0, &y0);
+    }
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
@@ -309,5 +339,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
         wear: sys.wear,
+        force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
+        bearings: sys.bearings.iter().map(|b| b.map(|b| b.summary)).collect(),
     })
 }
