@@ -101,7 +101,8 @@ class Result(JointReadings):
         self.failure = raw.get("error")
         self.q0: np.ndarray = raw["q0"]
         self.qd0: np.ndarray = raw["qd0"]
-        #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate.
+        #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate (the
+        #: compiled mechanism's own, shared by its runs: read it, do not change it).
         self.description: Optional[Dict[str, Any]] = None
         #: The monitors the run was given (its settings' ``monitors``); set by Mechanism.simulate.
         self.monitor_specs: List[Dict[str, Any]] = []

@@ -121,6 +121,10 @@ class Running:
     """What a :class:`clearsim.Mechanism` does with its description: compile, run, check."""
 
     _compiled: Any
+    #: The description the compiled model was built from (given to its results, which share it:
+    #: a run copies no description) and the compiled model whose pose given was checked last.
+    _compiled_description: Optional[Dict[str, Any]] = None
+    _pose_checked_for: Any = None
     if TYPE_CHECKING:  # provided by Mechanism (mechanism.py, the class that mixes this in)
         _bodies: List[Dict[str, Any]]
         _clearance: List[Dict[str, Any]]
@@ -136,7 +140,9 @@ class Running:
     def compile(self) -> "_core.CompiledModel":
         """The compiled Rust model (cached until the mechanism changes)."""
         if self._compiled is None:
-            self._compiled = _core.compile(self.description())
+            desc = self.description()
+            self._compiled = _core.compile(desc)
+            self._compiled_description = desc
         return self._compiled
 
     @property
@@ -455,17 +461,25 @@ class Running:
 
     def _checked_assembly(self, t0: float = 0.0) -> None:
         """:meth:`check_assembly` before a run from ``t0``: the pose given is checked at t = 0,
-        whatever ``t0``; an assembly that fails altogether is left to the run, whose error carries
-        the diagnosis and an empty partial result."""
+        whatever ``t0``, once per compiled model (the check depends on the mechanism alone: the
+        runs after the first repeat neither its assembly nor its warnings); an assembly that fails
+        altogether is left to the run, whose error carries the diagnosis and an empty partial
+        result."""
+        compiled = self.compile()
+        if self._pose_checked_for is compiled:
+            return
         try:
-            q0 = np.asarray(self.compile().initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
+            q0 = np.asarray(compiled.initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
         except ClearsimError:
             return
         self._check_shift(q0)
+        self._pose_checked_for = compiled
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         res = Result(raw, self.body_names, self.clearance_joint_names)
-        res.description = self.description()
+        # The compiled model's description when there is one (shared, not copied per run).
+        compiled_desc = self._compiled_description if self._compiled is not None else None
+        res.description = compiled_desc if compiled_desc is not None else self.description()
         res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []
         err = raw.get("error")
         if err is not None:
