@@ -312,7 +312,7 @@ class Running:
             Track the bearing summary of every lubricated joint (:meth:`Result.bearing_summary`:
             minimum film thickness located between the steps, peak and mean power loss at every
             step's end; independent of ``dt_out``). Off by default: it costs one force evaluation
-            per joint and step where the method has none to reuse (RK45 and RADAU5 have: 0.2–1.3 %
+            per joint and step where the method has none to reuse (RK45 and RADAU5 have one: 0.6–1.8 %
             more instructions per step; docs/performance.md, "What a run pays for").
 
         progress:
