@@ -39,6 +39,8 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
         monitors: Vec::new(),
         wear_mark: None,
         bearings: false,
+        sections: None,
+        lyapunov: None,
     }
 }
 
