@@ -120,7 +120,8 @@ class JointReadings:
         ``lambda`` = min film / σ (below ~3 the asperities carry load: mixed lubrication); with a
         heat model (``thermal``) also ``temperature_start`` and ``temperature_end`` [K], the oil
         temperature at the run's first and last output (the state itself there: independent of
-        ``dt_out``).
+        ``dt_out``). All over one window, which ``window_start`` and ``window_end`` [s] name: the
+        run, or from ``simulate(extremes_from=)`` on (the window of :meth:`Result.extremes` too).
 
         Tracked only when the run asks for it, ``simulate(..., bearings=True)`` (``clearsim run``
         does): a mechanism with a lubricated joint run without it raises an :class:`InputError`
@@ -142,6 +143,8 @@ class JointReadings:
             if found is None:
                 continue  # a dry joint has no film (its gap's minimum, the penetration, is in Result.extremes)
             entry: Dict[str, Any] = {
+                "window_start": float(found["window_start"]),
+                "window_end": float(found["window_end"]),
                 "min_film_thickness": float(found["min_film_thickness"]),
                 "t_min_film": float(found["t_min_film"]),
                 "peak_power_loss": float(found["peak_power_loss"]),
@@ -173,7 +176,9 @@ def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]
     heat = any("temperature_end" in b for b in bearings.values())
     head = "| lubricated joint | min film [µm] | λ = h_min/σ | at t [s] | crank angle [deg] | peak power loss [W] | mean power loss [W] |"
     head += " oil T start [K] | oil T end [K] |" if heat else ""
-    lines = ["", head, "|---" * head.count(" | ") + "|---|"]
+    windows = sorted({(b["window_start"], b["window_end"]) for b in bearings.values() if "window_start" in b})
+    over = "; ".join(f"t = {a:.6g} to {b:.6g} s" for a, b in windows) or "the run"
+    lines = ["", f"Bearings over {over} (minimum, peak and mean tracked at every integration step):", "", head, "|---" * head.count(" | ") + "|---|"]
     for joint, b in bearings.items():
         row = (
             f"| {joint} | {num(b.get('min_film_thickness'), 1e6)} | {num(b.get('lambda'), fmt='.3g')} | {num(b.get('t_min_film'), fmt='.6g')} | "

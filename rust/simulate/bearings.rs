@@ -2,7 +2,10 @@
 //! ([`RunSettings::bearings`](crate::settings::RunSettings::bearings); `Result.bearing_summary()`,
 //! docs/physics.md §4, "Film thickness, friction and power"): per lubricated clearance joint the
 //! minimum film thickness h = c − |e| and when, located between the step ends on the step's dense
-//! output, and the peak and the time integral of the power loss at the step ends.
+//! output, and the peak and the time integral of the power loss at the step ends, over the
+//! window from [`RunSettings::bearings_from`](crate::settings::RunSettings::bearings_from) (or
+//! the run's start) to its end: the books start at the window's start, the state there read off
+//! the dense output of the step that holds it.
 //!
 //! Cheap by construction (issue 37: a run pays only for what it asks): per step and joint one
 //! kinematics at the step's end, the joint's force there taken from the step's own last
@@ -19,6 +22,9 @@ use crate::monitor::golden_section;
 /// What the summary reports for one lubricated clearance joint over the run (so far).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BearingSummary {
+    /// The window the summary covers \[s\]: from its start to the last step's end booked.
+    pub window_start: f64,
+    pub window_end: f64,
     /// Smallest film thickness h = c − |e| \[m\] and its time \[s\] (located on the dense output).
     pub min_film_thickness: f64,
     pub t_min_film: f64,
@@ -64,7 +70,7 @@ const SEARCH_WIDENING: f64 = 1.5;
 impl BearingBook {
     /// The book at the run's start (t, film thickness h \[m\], its rate ḣ \[m/s\], power loss P \[W\]).
     pub fn new(t: f64, h: f64, h_dot: f64, power: f64) -> Self {
-        let summary = BearingSummary { min_film_thickness: h, t_min_film: t, peak_power_loss: power, t_peak_power_loss: t, energy_loss: 0.0, time: 0.0 };
+        let summary = BearingSummary { window_start: t, window_end: t, min_film_thickness: h, t_min_film: t, peak_power_loss: power, t_peak_power_loss: t, energy_loss: 0.0, time: 0.0 };
         BearingBook { summary, t, h, h_dot, power, t_before: f64::NAN, power_before: f64::NAN }
     }
 
@@ -76,6 +82,7 @@ impl BearingBook {
         let s = &mut self.summary;
         s.energy_loss += integral(self.t_before, self.power_before, t0, self.power, t1, power1);
         s.time += dt;
+        s.window_end = t1;
         if power1 > s.peak_power_loss {
             (s.peak_power_loss, s.t_peak_power_loss) = (power1, t1);
         }
@@ -127,7 +134,8 @@ impl MechanismSystem<'_> {
         (r.film_thickness, -k.delta_dot, r.power_loss)
     }
 
-    /// Start the bearing books of the lubricated joints at the initial state (when asked).
+    /// Start the bearing books of the lubricated joints at the state `y` at `t`: the run's
+    /// initial state, or the window's start (when asked).
     pub fn bearings_start(&mut self, t: f64, y: &[f64]) {
         for j in 0..self.bearings.len() {
             if self.model.clearance[j].film.is_some() {
@@ -137,9 +145,25 @@ impl MechanismSystem<'_> {
         }
     }
 
-    /// Book the accepted step (t0, t1] (module doc). An implicit method's f(t1, y1) is
-    /// evaluated here and kept for its next step, which needs it.
+    /// Book the accepted step (t0, t1] (module doc): nothing before the window's start; the
+    /// step that holds it starts the books at the state there, on its dense output, and is
+    /// booked from there. An implicit method's f(t1, y1) is evaluated here and kept for its next
+    /// step, which needs it.
     pub(super) fn bearings_step(&mut self, t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<()> {
+        if let Some(w) = self.bearings_from {
+            if t1 < w {
+                return Ok(());
+            }
+            self.bearings_from = None;
+            if t1 == w {
+                self.bearings_start(t1, y1);
+                return Ok(());
+            }
+            let mut s = std::mem::take(&mut self.scratch);
+            dense.eval(w, &mut s);
+            self.bearings_start(w, &s);
+            self.scratch = s;
+        }
         let explicit = dense.end_rate().is_some();
         if !explicit {
             self.ws.evaluate_and_keep(self.model, &self.memory, t1, y1)?;

@@ -269,8 +269,10 @@ mod tests {
                 channels: Channels::default(),
                 max_wall_time: None,
                 monitors: vec![],
+                reference: None,
                 wear_mark: None,
                 bearings: false,
+                bearings_from: None,
                 sections: None,
                 lyapunov: Some(spec),
             };

@@ -37,8 +37,10 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
         channels: clearsim::record::Channels::default(),
         max_wall_time: None,
         monitors: Vec::new(),
+        reference: None,
         wear_mark: None,
         bearings: false,
+        bearings_from: None,
         sections: None,
         lyapunov: None,
     }
@@ -48,9 +50,9 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
 /// [t0, t_end] (4 samples a step): what `clearsim` ran on every lubricated run before the bearing
 /// summary was asked for (issue 37), kept to measure what exact monitors cost.
 pub fn film_monitors(model: &Model, t0: f64, t_end: f64) -> Vec<clearsim::monitor::MonitorSpec> {
-    use clearsim::monitor::{MonitorSpec, Quantity};
-    let spec = |coordinate, quantity| MonitorSpec {
-        coordinate,
+    use clearsim::monitor::{MonitorSpec, Quantity, Target};
+    let spec = |j, quantity| MonitorSpec {
+        target: Target::Joint(j),
         quantity,
         reference: None,
         t_start: t0,

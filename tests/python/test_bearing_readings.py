@@ -129,6 +129,31 @@ def test_a_run_tracks_the_bearing_summary_only_when_asked_and_says_how_to_ask() 
     assert np.array_equal(tracked.film_thickness("pin"), plain.film_thickness("pin"))
 
 
+def test_the_summary_says_its_window_and_follows_extremes_from() -> None:
+    """bearing_summary's means run over one window, which it names (window_start, window_end
+    [s], and the printed table's caption): the run, or from extremes_from on — whether or not the
+    extremes track the joint (its mean power changed with extremes=True before). Its mean power
+    is the stored power's time average over that window (trapezoids on a fine grid); its minimum
+    film and peak power are found in that window."""
+    from clearsim.joint_readings import summary_markdown
+
+    m = rotor("finite", 0.04, 1000.0)  # the journal sinks from the centre: the loss changes in time
+    whole = m.simulate(0.1, dt_out=1e-3, bearings=True, progress=False).bearing_summary()["pin"]
+    assert (whole["window_start"], whole["window_end"]) == (0.0, pytest.approx(0.1, abs=1e-15))
+    late = [m.simulate(0.1, dt_out=2e-5, extremes=e, extremes_from=0.05, bearings=True, progress=False) for e in (False, True)]
+    a, b = (r.bearing_summary()["pin"] for r in late)
+    assert a == b and (a["window_start"], a["window_end"]) == (0.05, pytest.approx(0.1, abs=1e-15))
+    t, p = late[0].t, late[0].power_loss("pin")
+    keep = t >= 0.05
+    average = float(np.sum(0.5 * (p[keep][1:] + p[keep][:-1]) * np.diff(t[keep]))) / 0.05
+    assert a["mean_power_loss"] == pytest.approx(average, rel=1e-3)
+    h = late[0].film_thickness("pin")
+    assert a["min_film_thickness"] <= h[keep].min() and a["peak_power_loss"] >= p[keep].max() * (1 - 3e-3)  # the peak at step ends
+    assert 0.05 <= a["t_min_film"] <= 0.1 and 0.05 <= a["t_peak_power_loss"] <= 0.1
+    assert abs(whole["mean_power_loss"] / a["mean_power_loss"] - 1) > 1e-3  # the window matters here
+    assert "t = 0.05 to 0.1 s" in "\n".join(summary_markdown(late[0].summary()["bearings"]))
+
+
 def test_dry_friction_moment_and_power_in_contact() -> None:
     """A dry pin pressed against its bearing by the load while turning: R_j F_t on the journal,
     −R_b F_t on the bearing, and the friction power −F_t · slip ≈ c_f F_N R_j ω."""
