@@ -19,7 +19,6 @@ from . import _core, plausibility
 from .batch import run_descriptions
 from .errors import InputError, InterruptedRun, check_choice, check_finite
 from .dynamics.readings import section_spec
-from .joint_readings import film_monitors
 from .points import PointsLike, tracked_points
 from .result import Result, extreme_monitors
 from .schema import ATOL, COMPONENTS, DEFAULT_OUTPUTS, H_MIN, INTEGRATORS, MAX_STEPS, OUTPUTS, RTOL
@@ -44,6 +43,7 @@ class RunOptions(TypedDict, total=False):
     max_seconds: Optional[float]  # [s] of wall time
     extremes: Union[bool, Sequence[Any]]  # bodies, clearance joints and (body, (x, y)) points (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
+    bearings: bool  # track the bearing summary (Result.bearing_summary)
     sections: Union[None, float, Tuple[float, float]]  # Poincaré sections: period [s] or (period [s], phase [rad])
 
 #: Most outputs a dt_out grid may ask for (each holds every stored channel; the core's
@@ -196,6 +196,7 @@ class Running:
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[Any]] = False,
         extremes_from: Optional[float] = None,
+        bearings: bool = False,
         sections: Union[None, float, Tuple[float, float]] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`).
@@ -249,11 +250,12 @@ class Running:
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end)
         elif extremes_from is not None and not t_end > start:
             raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
+        if bearings:
+            settings["bearings"] = True
+            if start > t0:
+                settings["bearings_from"] = start
         if sections is not None:
             settings["sections"] = section_spec(sections)
-        films = film_monitors(self._description(), self.clearance_joint_names, start, t_end)
-        if films:
-            settings["monitors"] = settings.get("monitors", []) + films
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
@@ -298,6 +300,13 @@ class Running:
             :meth:`Result.bearing_summary` too, which says it): independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
+        bearings:
+            Track the bearing summary of every lubricated joint (:meth:`Result.bearing_summary`:
+            minimum film thickness located between the steps, peak and mean power loss at every
+            step's end; independent of ``dt_out``), over the run or from ``extremes_from`` on
+            (the summary's ``window_start``, ``window_end``). Off by default: it costs one force evaluation
+            per joint and step where the method has none to reuse (RK45 and RADAU5 have one: 0.6–1.8 %
+            more instructions per step; docs/performance.md, "What a run pays for").
         sections:
             Poincaré sections: ``period`` [s] or ``(period, phase)`` (phase [rad], default 0):
             the stored channels at the exact times t_k = (k + phase/2π) · period in [t0, t_end]
