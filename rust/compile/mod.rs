@@ -12,7 +12,7 @@ mod validate;
 
 #[cfg(feature = "serde")]
 pub use element::check_element;
-pub(crate) use crate::text::{g, num, quoted};
+pub(crate) use crate::text::{num, quoted};
 pub use validate::{check_finite_bearing_ratio, FINITE_BEARING_L_OVER_D, MAX_FILM_CLEARANCE_RATIO};
 
 use crate::assembly::pose_at_zero;
