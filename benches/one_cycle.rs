@@ -7,7 +7,7 @@
 //! ```
 //!
 //! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`) and a method, `rk45`
-//! (default), `dop853` or `radau`. Prints the statistics of the run and the wall time; divide
+//! (default), `dop853`, `radau` or `rodas4`. Prints the statistics of the run and the wall time; divide
 //! cachegrind's `I refs` by the right-hand sides for instructions per right-hand side. The
 //! settings are the benches' (`common::bench_run`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
 //! model (the dry nine-bar) takes a different number of steps after any change of round-off:
@@ -27,8 +27,9 @@ fn main() {
         "rk45" => Method::Rk45,
         "dop853" => Method::Dop853,
         "radau" => Method::Radau,
+        "rodas4" => Method::Rodas4,
         other => {
-            eprintln!("unknown method {other:?}: rk45, dop853 or radau");
+            eprintln!("unknown method {other:?}: rk45, dop853, radau or rodas4");
             std::process::exit(2);
         }
     };

@@ -146,6 +146,14 @@ impl Workspace {
     }
 
     fn evaluate_afresh(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
+        self.eval_loads(model, memory, t, y);
+        self.solve_kkt(t)
+    }
+
+    /// The KKT system's parts at (t, q, q̇) without solving it: constraints and their Jacobian
+    /// rows, `c` and the generalised forces `force` (what [`Workspace::evaluate`] solves for q̈;
+    /// the implicit methods difference them for their Newton matrices).
+    pub fn eval_loads(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) {
         let n = 3 * model.n_bodies();
         let (q, qd) = (&y[..n], &y[n..2 * n]);
         self.eval_constraints(model, t, q, qd);
@@ -169,7 +177,6 @@ impl Workspace {
             self.joint_kin[j] = k;
             self.joint_force[j] = f;
         }
-        self.solve_kkt(t)
     }
 
     /// ‖Φ‖₂ and ‖Φ̇‖₂ of the last evaluation.

@@ -10,8 +10,8 @@
 //! - `explicit_rk.rs`: the RK4, DOPRI5 and DOP853 steppers, with `tableau.rs` (Butcher tableaus
 //!   with their sources) and `dense.rs` (their continuous extensions).
 //! - `rodas4.rs`: the RODAS4 stepper; `radau.rs`: the RADAU5 stepper, with `radau_newton.rs`
-//!   (its two Newton matrices: build, factorise, solve); `lu.rs`: the real and complex LU both
-//!   use.
+//!   (its two Newton matrices: build, factorise, solve); `lu.rs`: the real and complex dense LU
+//!   both use; `lifted.rs`: their sparse lifted form for large mechanisms, on `sparse_lu.rs`.
 //! - `controller.rs`: error norms, step-size control (PI, predictive, the Newton limit) and the
 //!   initial step.
 
@@ -23,16 +23,18 @@ pub mod controller;
 pub mod dense;
 mod driver;
 mod explicit_rk;
+mod lifted;
 mod lu;
 mod method;
 mod ode;
 mod radau;
 mod radau_newton;
 mod rodas4;
+mod sparse_lu;
 pub mod tableau;
 
 pub use method::{Method, Settings, Stats};
-pub use ode::{DenseOutput, OdeSystem};
+pub use ode::{DenseOutput, LiftedPattern, OdeSystem};
 
 /// Integrate `sys` from `(t0, y0)` to `t_end`, calling `sys.output` at each time of `t_out`
 /// (sorted, inside `[t0, t_end]`; a time equal to `t0` is output from `y0`).

@@ -365,7 +365,7 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
             }
             self.differenced_left = self.differenced_left.saturating_sub(1);
             newton.update(sys, stats, t, y, &self.f0, differenced)?;
-            (self.need_w, self.fails_on_w, self.w_from_hook) = (false, 0, newton.half.is_some() && !differenced);
+            (self.need_w, self.fails_on_w, self.w_from_hook) = (false, 0, newton.structured() && !differenced);
         } else if self.fails_on_w >= 3 && self.w_from_hook {
             newton.update(sys, stats, t, y, &self.f0, true)?;
             (self.fails_on_w, self.w_from_hook, self.differenced_left) = (0, false, DIFFERENCED_SPELL);

@@ -2,9 +2,11 @@
 //! [`OdeSystem`] ([`MechanismSystem`]: right-hand side, outputs, the step bookkeeping), and
 //! what a failed run keeps. The system's other roles live beside it: `observe.rs` (monitors,
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
-//! `newton.rs` (the implicit methods' Jacobian), `diagnosis.rs` (where a failed run stood).
+//! `newton.rs` (the implicit methods' Jacobian), `lifted.rs` (the same in sparse lifted form, for
+//! large mechanisms), `diagnosis.rs` (where a failed run stood).
 
 mod diagnosis;
+mod lifted;
 mod newton;
 mod observe;
 mod switching;
@@ -18,7 +20,7 @@ use crate::clearance::{ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::energy::EnergyBook;
 use crate::error::{Error, Result};
-use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Stats};
+use crate::integrate::{integrate, DenseOutput, LiftedPattern, Method, OdeSystem, Stats};
 use crate::model::Model;
 use crate::monitor::{Monitor, MonitorResult};
 use crate::record::{Channels, Recording};
@@ -110,6 +112,9 @@ pub struct MechanismSystem<'a> {
     /// The generalised force of one stiff item at the pose and at a probed pose.
     g_base: Vec<f64>,
     g_probe: Vec<f64>,
+    // lifted.rs
+    /// The lifted pattern's layout, built when an implicit method asks for it.
+    lifted: Option<Box<lifted::LiftedLayout>>,
 }
 
 impl<'a> MechanismSystem<'a> {
@@ -145,6 +150,7 @@ impl<'a> MechanismSystem<'a> {
             mobility_done: vec![false; 3 * model.n_bodies()],
             g_base: vec![0.0; 3 * model.n_bodies()],
             g_probe: vec![0.0; 3 * model.n_bodies()],
+            lifted: None,
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
             gap_resolution: 0.0,
@@ -215,6 +221,15 @@ impl OdeSystem for MechanismSystem<'_> {
     /// See newton.rs.
     fn acceleration_jacobian(&mut self, t: f64, y: &[f64], a_q: &mut [f64], a_v: &mut [f64]) -> Result<bool> {
         self.stiff_jacobian(t, y, a_q, a_v)
+    }
+
+    /// See lifted.rs.
+    fn lifted_pattern(&mut self) -> Option<LiftedPattern> {
+        self.lifted_pattern_of()
+    }
+
+    fn lifted_jacobian(&mut self, t: f64, y: &[f64], exact: bool, a0: &mut [f64], k_q: &mut [f64], k_v: &mut [f64]) -> Result<usize> {
+        self.lifted_values(t, y, exact, a0, k_q, k_v)
     }
 
     fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
