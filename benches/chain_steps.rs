@@ -7,6 +7,9 @@
 //! instructions with `valgrind --tool=cachegrind --cache-sim=no`). The issue-37 target: N = 160 within 16×
 //! the N = 20 cost.
 //! Where the time goes: `perf record -F 5000 <binary> radau 160` and `perf report --no-children`.
+//! An argument that is not a number is read as a mechanism description in JSON (the roller
+//! chain: `python benches/roller_chain.py --json roller_chain.json`), run for 5 ms; its line
+//! gives its number of bodies for N.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -53,15 +56,23 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let sizes: Vec<usize> = if args.len() > 1 { args[1..].iter().map(|a| a.parse().expect("a size")).collect() } else { vec![20, 40, 80, 160, 320] };
+    // Sizes of the chain, or a description in JSON (a scene's `m.description()`, as
+    // `benches/roller_chain.py --json` writes it), run for 5 ms.
+    let items: Vec<String> = if args.len() > 1 { args[1..].to_vec() } else { ["20", "40", "80", "160", "320"].map(String::from).to_vec() };
     // CHAIN_RUNS=1 for instruction counts (valgrind --tool=cachegrind): one run per size.
     let runs: usize = std::env::var("CHAIN_RUNS").ok().and_then(|v| v.parse().ok()).unwrap_or(3);
     println!("{name}, chain with a lubricated joint every 4th link, {} ms", T_END * 1e3);
     println!("{:>5} {:>7} {:>9} {:>10} {:>9} {:>12}", "N", "steps", "rejected", "rhs/step", "jac/step", "µs/step");
     let mut first = None;
-    for n in sizes {
-        let model = Model::compile(&common::lubricated_chain(n, 4)).unwrap();
-        let rs = common::bench_run(method, T_END, 10);
+    for item in items {
+        let (n, model, rs) = match item.parse::<usize>() {
+            Ok(n) => (n, Model::compile(&common::lubricated_chain(n, 4)).unwrap(), common::bench_run(method, T_END, 10)),
+            Err(_) => {
+                let text = std::fs::read_to_string(&item).unwrap_or_else(|e| panic!("{item}: {e}"));
+                let model = Model::compile(&clearsim::description::from_json(&text).unwrap()).unwrap();
+                (model.n_bodies(), model, common::bench_run(method, 0.005, 10))
+            }
+        };
         let mut best = f64::INFINITY;
         let mut stats = None;
         for _ in 0..runs {
