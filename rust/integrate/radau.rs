@@ -267,7 +267,8 @@ impl Radau5Stepper {
             }
             let mut eval = || -> Result<(), Error> {
                 for s in 0..3 {
-                    for ((yt, &yi), &zi) in ytmp.iter_mut().zip(y).zip(&z[s * n..(s + 1) * n]) {
+                    // Zipped slices of length n: no bounds checks in RADAU5's innermost loops.
+                    for ((yt, &yi), &zi) in ytmp[..n].iter_mut().zip(&y[..n]).zip(&z[s * n..(s + 1) * n]) {
                         *yt = yi + zi;
                     }
                     let ts = if s == 2 { t1 } else { t + k.c[s] * hs };
@@ -287,11 +288,9 @@ impl Radau5Stepper {
             {
                 let (r1, rest) = fz.split_at_mut(n);
                 let (r2, r3) = rest.split_at_mut(n);
-                let (w1s, rest) = w.split_at(n);
-                let (w2s, w3s) = rest.split_at(n);
-                // Iterators over equal lengths: no index checks in the iteration's hot loops.
-                let stages = r1.iter_mut().zip(r2.iter_mut()).zip(r3.iter_mut());
-                for (((r1, r2), r3), ((&w1, &w2), &w3)) in stages.zip(w1s.iter().zip(w2s).zip(w3s)) {
+                let r3 = &mut r3[..n];
+                let (wa, wb, wc) = (&w[..n], &w[n..2 * n], &w[2 * n..3 * n]);
+                for (((((r1, r2), r3), &w1), &w2), &w3) in r1.iter_mut().zip(r2.iter_mut()).zip(r3.iter_mut()).zip(wa).zip(wb).zip(wc) {
                     let (f1, f2, f3) = (*r1, *r2, *r3);
                     let a1 = k.ti[0][0] * f1 + k.ti[0][1] * f2 + k.ti[0][2] * f3;
                     let a2 = k.ti[1][0] * f1 + k.ti[1][1] * f2 + k.ti[1][2] * f3;
@@ -302,8 +301,8 @@ impl Radau5Stepper {
                 }
                 newton.solve_real(r1);
                 newton.solve_complex(r2, r3);
-                for (((a, b), c), &s) in r1.iter().zip(r2.iter()).zip(r3.iter()).zip(scal) {
-                    dyno += (a / s).powi(2) + (b / s).powi(2) + (c / s).powi(2);
+                for (((&x1, &x2), &x3), &s) in r1.iter().zip(r2.iter()).zip(r3.iter()).zip(&scal[..n]) {
+                    dyno += (x1 / s).powi(2) + (x2 / s).powi(2) + (x3 / s).powi(2);
                 }
             }
             let dyno = (dyno / (3 * n).max(1) as f64).sqrt();

@@ -2,11 +2,13 @@
 //! from the system's second-order hook [`OdeSystem::acceleration_jacobian`] or by forward
 //! differences of `f`, both matrices factorised for a step size, and the solves with them, in
 //! full form, in the half-size structured form of a second-order system, or — for a large
-//! mechanism — in the sparse lifted form of `lifted.rs` ([`NewtonSystems`]).
-//! The dense LU factorisations are `lu.rs`'s; the iteration that uses the solves is `radau.rs`'s.
+//! mechanism — in the sparse lifted form of `lifted.rs` ([`NewtonSystems`]); first-order states
+//! after (q, v) border the structured and the lifted form alike (`border.rs`). The dense LU
+//! factorisations are `lu.rs`'s; the iteration that uses the solves is `radau.rs`'s.
 
 use faer::Mat;
 
+use super::border::Border;
 use super::lifted::Lifted;
 use super::lu::{ComplexLu, Lu};
 use super::method::Stats;
@@ -29,8 +31,11 @@ pub(super) struct NewtonSystems {
     /// The lifted form, when the system offers it and is large enough (`half` and the dense
     /// storage then unused).
     lifted: Option<Lifted>,
-    /// `m = n/2` for a second-order system with the structured hook, else `None`.
+    /// `m = (n − k)/2` for a second-order system with the structured hook, else `None`.
     pub(super) half: Option<usize>,
+    /// Structured form with `k` first-order states after (q, v)
+    /// ([`OdeSystem::first_order_states`]): their rows and columns (`border.rs`).
+    border: Option<Border>,
     jac: Mat<f64>,
     w_q: Vec<f64>,
     w_v: Vec<f64>,
@@ -70,26 +75,39 @@ impl NewtonSystems {
 
     pub(super) fn new<S: OdeSystem>(sys: &mut S, t: f64, y: &[f64]) -> Result<Self, Error> {
         let n = y.len();
-        let m = n / 2;
-        if let Some(pattern) = sys.lifted_pattern().filter(|p| p.stiff_coords > LIFTED_ABOVE && 2 * p.coords == n) {
-            let mut ns = Self::with_matrices(0, false, Vec::new(), Vec::new());
+        let extra = sys.first_order_states().min(n);
+        let m = (n - extra) / 2;
+        if let Some(pattern) = sys.lifted_pattern().filter(|p| p.stiff_coords > LIFTED_ABOVE && 2 * p.coords + extra == n) {
+            let mut ns = Self::with_matrices(0, 0, false, Vec::new(), Vec::new());
             ns.lifted = Some(Lifted::new(pattern, true));
+            if extra > 0 {
+                // The oil temperatures border the lifted core as they border the dense one.
+                let mut border = Border::new(m, extra);
+                sys.border_jacobian(t, y, &mut border.a_z, &mut border.g_y)?;
+                ns.border = Some(border);
+            }
             return Ok(ns);
         }
         let mut w_q = vec![0.0; m * m];
         let mut w_v = vec![0.0; m * m];
-        let structured = n.is_multiple_of(2) && n > 0 && sys.acceleration_jacobian(t, y, &mut w_q, &mut w_v)?;
-        Ok(Self::with_matrices(n, structured, w_q, w_v))
+        let structured = (n - extra).is_multiple_of(2) && m > 0 && sys.acceleration_jacobian(t, y, &mut w_q, &mut w_v)?;
+        let mut ns = Self::with_matrices(n, extra, structured, w_q, w_v);
+        if let Some(b) = ns.border.as_mut() {
+            sys.border_jacobian(t, y, &mut b.a_z, &mut b.g_y)?;
+        }
+        Ok(ns)
     }
 
-    /// The storage for a state of size `n`, in structured form with `W_q`, `W_v` (`m × m`,
-    /// column-major, `m = n/2`) or in full form.
-    fn with_matrices(n: usize, structured: bool, w_q: Vec<f64>, w_v: Vec<f64>) -> Self {
-        let m = n / 2;
+    /// The storage for a state of size `n` with `extra` first-order states after (q, v), in
+    /// structured form with `W_q`, `W_v` (`m × m`, column-major, `m = (n − extra)/2`) or in full
+    /// form.
+    fn with_matrices(n: usize, extra: usize, structured: bool, w_q: Vec<f64>, w_v: Vec<f64>) -> Self {
+        let m = (n - extra) / 2;
         let k = if structured { m } else { n };
         let mut ns = NewtonSystems {
             lifted: None,
             half: structured.then_some(m),
+            border: (structured && extra > 0).then(|| Border::new(m, extra)),
             jac: if structured { Mat::zeros(0, 0) } else { Mat::zeros(n, n) },
             w_q,
             w_v,
@@ -121,10 +139,16 @@ impl NewtonSystems {
             // Differenced: the whole K (constraint curvature, Baumgarte terms) in place of its
             // stiff part, still sparse.
             stats.rhs_evals += lifted.update(sys, t, y, differenced)?;
+            if let Some(b) = self.border.as_mut() {
+                sys.border_jacobian(t, y, &mut b.a_z, &mut b.g_y)?;
+            }
             return Ok(());
         }
         if self.half.is_some() && !differenced {
             sys.acceleration_jacobian(t, y, &mut self.w_q, &mut self.w_v)?;
+            if let Some(b) = self.border.as_mut() {
+                sys.border_jacobian(t, y, &mut b.a_z, &mut b.g_y)?;
+            }
             self.find_active();
             return Ok(());
         }
@@ -142,10 +166,24 @@ impl NewtonSystems {
                     }
                 }
                 Some(m) => {
-                    // Rows m.. of column j: ∂q̈/∂q_j (j < m) or ∂q̈/∂q̇_{j−m}.
-                    let col = if j < m { &mut self.w_q[j * m..(j + 1) * m] } else { &mut self.w_v[(j - m) * m..(j - m + 1) * m] };
+                    // Rows m..2m of column j: ∂q̈/∂q_j (j < m), ∂q̈/∂q̇_{j−m} (j < 2m) or, in
+                    // the border, ∂q̈/∂z_{j−2m}; and the border's rows ∂ż/∂y_j.
+                    let col = if j < m {
+                        &mut self.w_q[j * m..(j + 1) * m]
+                    } else if j < 2 * m {
+                        &mut self.w_v[(j - m) * m..(j - m + 1) * m]
+                    } else if let Some(b) = self.border.as_mut() {
+                        &mut b.a_z[(j - 2 * m) * m..(j - 2 * m + 1) * m]
+                    } else {
+                        &mut []
+                    };
                     for (i, c) in col.iter_mut().enumerate() {
                         *c = (self.df[m + i] - f0[m + i]) / delta;
+                    }
+                    if let Some(b) = self.border.as_mut() {
+                        for (r, i) in (2 * m..n).enumerate() {
+                            b.g_y[r * n + j] = (self.df[i] - f0[i]) / delta;
+                        }
                     }
                 }
             }
@@ -173,6 +211,38 @@ impl NewtonSystems {
 
     /// Factorise both systems for `σ₁ = sigma` and `σ₂ = a + ib`.
     pub(super) fn factor(&mut self, sigma: f64, a: f64, b: f64) {
+        self.factor_core(sigma, a, b);
+        if let Some(mut border) = self.border.take() {
+            border.factor_real(sigma, |x| self.solve_real_core(x));
+            border.factor_complex(a, b, |xr, xi| self.solve_complex_core(xr, xi));
+            self.border = Some(border);
+        }
+    }
+
+    /// `x ← (σ₁ I − W)⁻¹ x`.
+    pub(super) fn solve_real(&mut self, x: &mut [f64]) {
+        match self.border.take() {
+            None => self.solve_real_core(x),
+            Some(mut border) => {
+                border.solve_real(x, |v| self.solve_real_core(v));
+                self.border = Some(border);
+            }
+        }
+    }
+
+    /// `(xr + i xi) ← (σ₂ I − W)⁻¹ (xr + i xi)`.
+    pub(super) fn solve_complex(&mut self, xr: &mut [f64], xi: &mut [f64]) {
+        match self.border.take() {
+            None => self.solve_complex_core(xr, xi),
+            Some(mut border) => {
+                border.solve_complex(xr, xi, |vr, vi| self.solve_complex_core(vr, vi));
+                self.border = Some(border);
+            }
+        }
+    }
+
+    /// [`Self::factor`] without the border: the full matrix, or the (q, v) core.
+    fn factor_core(&mut self, sigma: f64, a: f64, b: f64) {
         if let Some(lifted) = self.lifted.as_mut() {
             lifted.factor_real(sigma);
             lifted.factor_complex(a, b);
@@ -224,8 +294,8 @@ impl NewtonSystems {
         }
     }
 
-    /// `x ← (σ₁ I − W)⁻¹ x`.
-    pub(super) fn solve_real(&mut self, x: &mut [f64]) {
+    /// [`Self::solve_real`] on the full state, or on the (q, v) core (`x` 2m long).
+    fn solve_real_core(&mut self, x: &mut [f64]) {
         if let Some(lifted) = self.lifted.as_mut() {
             lifted.solve_real(x);
             return;
@@ -272,8 +342,8 @@ impl NewtonSystems {
         }
     }
 
-    /// `(xr + i xi) ← (σ₂ I − W)⁻¹ (xr + i xi)`.
-    pub(super) fn solve_complex(&mut self, xr: &mut [f64], xi: &mut [f64]) {
+    /// [`Self::solve_complex`] on the full state, or on the (q, v) core (2m long).
+    fn solve_complex_core(&mut self, xr: &mut [f64], xi: &mut [f64]) {
         if let Some(lifted) = self.lifted.as_mut() {
             lifted.solve_complex(xr, xi);
             return;
@@ -365,7 +435,7 @@ mod tests {
                 w_q[c * m..(c + 1) * m].fill(0.0);
                 w_v[c * m..(c + 1) * m].fill(0.0);
             }
-            let mut ns = NewtonSystems::with_matrices(2 * m, true, w_q.clone(), w_v.clone());
+            let mut ns = NewtonSystems::with_matrices(2 * m, 0, true, w_q.clone(), w_v.clone());
             assert_eq!(ns.active.len(), m - zero_cols.len());
             let n = 2 * m;
             // W x for the full matrix.

@@ -195,7 +195,7 @@ impl LiftedLayout {
             lambda: vec![0.0; rows],
             base: vec![0.0; dim],
             probed: vec![0.0; dim],
-            probe: vec![0.0; 2 * m],
+            probe: vec![0.0; model.state_dim()], // (q, q̇) and any oil temperatures
             steps: vec![0.0; nb],
         }
     }
@@ -252,7 +252,7 @@ impl MechanismSystem<'_> {
         if !exact {
             for (idx, item) in stiff_items(model).enumerate() {
                 let bodies = self.stiff_item_bodies(item);
-                let d = self.stiff_block(item, t);
+                let d = self.stiff_block(item, t, y);
                 for (slot, b) in bodies.iter().enumerate() {
                     if b.is_none() {
                         continue;
@@ -277,7 +277,7 @@ impl MechanismSystem<'_> {
         self.ws.evaluate(model, &self.memory, t, y)?;
         l.qdd.copy_from_slice(&self.ws.qdd);
         l.lambda.copy_from_slice(&self.ws.lambda);
-        self.residual(t, y, &l.qdd, &l.lambda, &mut l.base);
+        self.residual(t, y, &l.qdd, &l.lambda, &mut l.base)?;
         let mut evaluated = 2;
         l.probe.copy_from_slice(y);
         for g in 0..l.groups() {
@@ -290,7 +290,7 @@ impl MechanismSystem<'_> {
                     l.probe[j] = y[j] + step;
                     *s = l.probe[j] - y[j]; // the step actually taken
                 }
-                self.residual(t, &l.probe, &l.qdd, &l.lambda, &mut l.probed);
+                self.residual(t, &l.probe, &l.qdd, &l.lambda, &mut l.probed)?;
                 evaluated += 1;
                 let target = if comp < 3 { &mut *k_q } else { &mut *k_v };
                 for (&s, &b) in l.steps.iter().zip(group) {
@@ -307,10 +307,10 @@ impl MechanismSystem<'_> {
     }
 
     /// `ρ = (g − Φqᵀλ, c − Φq q̈)` at `(t, y)` with `q̈`, `λ` given, into `out` (`m + rows`).
-    fn residual(&mut self, t: f64, y: &[f64], qdd: &[f64], lambda: &[f64], out: &mut [f64]) {
+    fn residual(&mut self, t: f64, y: &[f64], qdd: &[f64], lambda: &[f64], out: &mut [f64]) -> Result<()> {
         let model = self.model;
         let m = 3 * model.n_bodies();
-        self.ws.eval_loads(model, &self.memory, t, y);
+        self.ws.eval_loads(model, &self.memory, t, y)?;
         let (g, rest) = out.split_at_mut(m);
         g.copy_from_slice(&self.ws.force);
         for ((jr, &l), (c, o)) in self.ws.jac[..model.rows].iter().zip(lambda).zip(self.ws.c.iter().zip(rest.iter_mut())) {
@@ -322,5 +322,6 @@ impl MechanismSystem<'_> {
             }
             *o = c - jr.dot(qdd);
         }
+        Ok(())
     }
 }

@@ -40,7 +40,7 @@ impl MechanismSystem<'_> {
                     }
                 }
             }
-            let d = self.stiff_block(item, t);
+            let d = self.stiff_block(item, t, y);
             for (slot, b) in bodies.iter().enumerate() {
                 let Some(b) = b.map(|b| b as usize) else { continue };
                 for comp in 0..6 {
@@ -78,6 +78,9 @@ impl MechanismSystem<'_> {
     pub(super) fn difference_step_among(&self, j: usize, y: &[f64], joints: impl Iterator<Item = usize>) -> f64 {
         let m = 3 * self.model.n_bodies();
         let generic = (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt();
+        if j >= 2 * m {
+            return generic; // an oil temperature (heat.rs): no body's clearance scale
+        }
         let (b, comp) = ((j % m) / 3, (j % m) % 3 + if j >= m { 3 } else { 0 });
         let x = [y[3 * b], y[3 * b + 1], y[3 * b + 2], y[m + 3 * b], y[m + 3 * b + 1], y[m + 3 * b + 2]];
         let mut step = generic;
@@ -117,15 +120,15 @@ impl MechanismSystem<'_> {
     /// clearance joint's law gives them with an exact chain rule where it can
     /// ([`ClearanceJoint::force_derivatives`]); otherwise the force is differenced body by body
     /// (forces, kinematics and moment arms recomputed, impact memory held).
-    pub(super) fn stiff_block(&mut self, item: Stiff, t: f64) -> [[f64; 12]; 6] {
+    pub(super) fn stiff_block(&mut self, item: Stiff, t: f64, y: &[f64]) -> [[f64; 12]; 6] {
         if let Stiff::Joint(j) = item {
-            if let Some(d) = self.model.clearance[j].force_derivatives(&self.ws.kin, &self.memory[j]) {
+            if let Some(d) = self.model.clearance[j].force_derivatives(&self.ws.kin, &self.model.clearance[j].memory_at(&self.memory[j], y)) {
                 return d;
             }
         }
         let bodies = self.stiff_item_bodies(item);
         let mut d = [[0.0; 12]; 6];
-        self.stiff_force(item, t, &bodies, false);
+        self.stiff_force(item, t, y, &bodies, false);
         for (slot, b) in bodies.iter().enumerate() {
             let Some(b) = b.map(|b| b as usize) else { continue };
             let saved = self.ws.kin[b];
@@ -137,7 +140,7 @@ impl MechanismSystem<'_> {
                 let delta = x[comp] - keep; // the step actually taken (exact in floating point)
                 self.ws.kin[b] = BodyKin::new(&x[..3], &x[3..]);
                 x[comp] = keep;
-                self.stiff_force(item, t, &bodies, true);
+                self.stiff_force(item, t, y, &bodies, true);
                 self.ws.kin[b] = saved;
                 for (oslot, ob) in bodies.iter().enumerate() {
                     let Some(ob) = ob.map(|ob| ob as usize) else { continue };
@@ -174,11 +177,15 @@ impl MechanismSystem<'_> {
         steps
     }
 
-    /// The generalised force of one stiff item on its bodies, into `g_probe` (`probe`) or `g_base`.
-    fn stiff_force(&mut self, item: Stiff, t: f64, bodies: &[Option<u32>; 2], probe: bool) {
+    /// The generalised force of one stiff item on its bodies (the state `y` giving a joint's oil
+    /// temperature), into `g_probe` (`probe`) or `g_base`.
+    fn stiff_force(&mut self, item: Stiff, t: f64, y: &[f64], bodies: &[Option<u32>; 2], probe: bool) {
         let g = if probe { &mut self.g_probe } else { &mut self.g_base };
         match item {
-            Stiff::Joint(j) => joint_generalised_force(&self.model.clearance[j], &self.ws.kin, &self.memory[j], g),
+            Stiff::Joint(j) => {
+                let joint = &self.model.clearance[j];
+                joint_generalised_force(joint, &self.ws.kin, &joint.memory_at(&self.memory[j], y), g)
+            }
             Stiff::Force(i) => {
                 for &b in bodies.iter().flatten() {
                     g[3 * b as usize..3 * b as usize + 3].fill(0.0);
@@ -191,7 +198,7 @@ impl MechanismSystem<'_> {
 
 /// The generalised forces of one clearance joint on its two bodies, written to their entries
 /// of `g` (the other entries are left alone).
-fn joint_generalised_force(joint: &ClearanceJoint, kin: &[BodyKin], memory: &ImpactMemory, g: &mut [f64]) {
+pub(super) fn joint_generalised_force(joint: &ClearanceJoint, kin: &[BodyKin], memory: &ImpactMemory, g: &mut [f64]) {
     for &b in [joint.bearing, joint.journal].iter().flatten() {
         g[3 * b as usize..3 * b as usize + 3].fill(0.0);
     }
