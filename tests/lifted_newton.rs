@@ -145,6 +145,12 @@ impl OdeSystem for DenseOnly<'_, '_> {
     fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
         self.0.difference_step(j, y)
     }
+    fn first_order_states(&self) -> usize {
+        self.0.first_order_states()
+    }
+    fn border_jacobian(&mut self, t: f64, y: &[f64], a_z: &mut [f64], z_y: &mut [f64]) -> clearsim::error::Result<()> {
+        self.0.border_jacobian(t, y, a_z, z_y)
+    }
 }
 
 /// RADAU5 on a 24-link chain with a lubricated joint at every 4th (27 stiff coordinates: the
@@ -153,8 +159,30 @@ impl OdeSystem for DenseOnly<'_, '_> {
 /// to far below the tolerance.
 #[test]
 fn radau5_through_the_lifted_form_runs_as_through_the_dense_form() {
-    let model = Model::compile(&common::lubricated_chain(24, 4)).unwrap();
-    let y0 = common::initial_state(&model);
+    radau5_lifted_against_dense(Model::compile(&common::lubricated_chain(24, 4)).unwrap());
+}
+
+/// The same with the six films' oil temperatures as states (Vogel viscosity, a heat balance
+/// each; `y = (q, q̇, T…)`): the temperatures border the lifted Newton matrices (`border.rs`'s
+/// Schur complement around the lifted solves) as they border the dense ones.
+#[test]
+fn radau5_through_the_lifted_form_with_oil_temperatures_runs_as_through_the_dense_form() {
+    use clearsim::description::{ClearanceModelDesc, ThermalDesc, ViscosityDesc};
+    let mut desc = common::lubricated_chain(24, 4);
+    for cj in &mut desc.clearance_joints {
+        if let ClearanceModelDesc::Lubricated(film) = &mut cj.model {
+            film.viscosity = ViscosityDesc::Vogel { vogel: [6.4e-5, 900.0, 170.0] };
+            film.thermal = Some(ThermalDesc { ambient: 300.0, heat_capacity: 1e-3, heat_transfer: 1e-3, initial: Some(310.0) });
+        }
+    }
+    let model = Model::compile(&desc).unwrap();
+    assert_eq!(model.state_dim(), 6 * 24 + 6);
+    radau5_lifted_against_dense(model);
+}
+
+fn radau5_lifted_against_dense(model: Model) {
+    let y = common::initial_state(&model);
+    let y0 = model.initial_state(&y[..y.len() / 2], &y[y.len() / 2..]); // (q, q̇) and any T
     let s = Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() };
     let t_end = 0.01;
     let mut lifted = MechanismSystem::new(&model, Channels::default(), 0, None);
@@ -163,9 +191,18 @@ fn radau5_through_the_lifted_form_runs_as_through_the_dense_form() {
     let st_d = integrate(&mut DenseOnly(&mut inner), Method::Radau, 0.0, &y0, t_end, &[], &s).unwrap();
     eprintln!("lifted {st_l:?}\ndense  {st_d:?}");
     assert_eq!((st_l.steps_accepted, st_l.steps_rejected), (st_d.steps_accepted, st_d.steps_rejected));
+    // The lifted form was taken: its differenced fallback Jacobians (after slow Newton
+    // iterations, at the same steps in both runs) cost 6 g + 2 residuals, the dense one's n.
+    assert!(2 * st_l.rhs_evals < st_d.rhs_evals, "lifted {} vs dense {} right-hand sides", st_l.rhs_evals, st_d.rhs_evals);
     let worst = lifted.last_y.iter().zip(&inner.last_y).map(|(a, b)| (a - b).abs() / (1e-9 + 1e-6 * b.abs())).fold(0.0, f64::max);
     eprintln!("largest end-state difference: {worst:.2e} of the error allowance");
     assert!(worst < 1e-3, "{worst:.3e}");
+    let m = 3 * model.n_bodies();
+    if model.heat_states() > 0 {
+        let (t0, t1) = (y0[2 * m], lifted.last_y[2 * m]);
+        eprintln!("first oil temperature: {t0} K -> {t1} K");
+        assert!((t1 - t0).abs() > 1e-3, "the temperature moved ({t0} -> {t1})");
+    }
 }
 
 /// RODAS4's Jacobian costs a fixed number of residuals whatever the size (groups of bodies ×
