@@ -111,7 +111,8 @@ class JointReadings:
         (``window``: [t_start, t_end] [s])."""
         results = self._raw.get("monitors") or []
         for spec, found in zip(self.monitor_specs, results):
-            if spec.get("exact") and spec["coordinate"] == j and spec["quantity"] == quantity and not spec.get("reference"):
+            # a point's monitor (extremes=[(body, (x, y))]) names its body and point, no coordinate
+            if spec.get("exact") and spec.get("coordinate") == j and "point" not in spec and spec["quantity"] == quantity and not spec.get("reference"):
                 return {**found, "window": (float(spec["t_start"]), float(spec["t_start"]) + float(spec["bin_width"]))}
         return None
 
