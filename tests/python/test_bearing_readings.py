@@ -236,11 +236,12 @@ def test_roughness_replaces_the_transition_band_and_is_checked() -> None:
 def test_the_summary_comes_with_a_point_among_the_extremes() -> None:
     """bearing_summary (and summary()) of a run that also tracks a body point's extremes
     (``extremes=[("rotor", (x, y))]``) is the same as without it. Before: ``KeyError:
-    'coordinate'`` (a point's monitor names its body and point, no coordinate; walk 5)."""
+    'coordinate'``, from repr(res) too (a point's monitor names its body and point, no coordinate; walk 5)."""
     m = rotor("finite", 0.04, 1000.0)
     plain = m.simulate(0.02, dt_out=1e-3, progress=False).bearing_summary()
     with_point = m.simulate(0.02, dt_out=1e-3, extremes=[("rotor", (0.01, 0.0))], progress=False)
     assert with_point.bearing_summary() == plain and with_point.summary()["bearings"] == plain
+    assert "pin: h_min" in repr(with_point)  # the Result's repr (a notebook's display) reads it too
     # the point's own extremes: a point 10 mm from the centroid of a rotor turning at OMEGA
     speed = with_point.extremes("rotor", "velocity", "magnitude", point=(0.01, 0.0))
     assert speed.max == pytest.approx(OMEGA * 0.01, rel=1e-3)
