@@ -507,7 +507,7 @@ def test_the_feeder_six_bar_walk(tmp_path, capsys):
     scene = load_scene_file(FEEDER)
     short = dict(dt_out=turn / 400, progress=False, rtol=1e-7, atol=1e-10)
     by_scene = scene.mechanism.simulate(0.05 * turn, **short)
-    by_build = feeder().simulate(0.05 * turn, extremes=[("arm", FINGER)], **short)
+    by_build = feeder().simulate(0.05 * turn, extremes=[("arm", FINGER)], bearings=True, **short)
     np.testing.assert_allclose(by_scene.point("arm", FINGER), by_build.point("arm", FINGER), rtol=0, atol=1e-9)
     # the finger's peak speed, tracked at every step, and the crank pin's film beside it
     # (bearing_summary raised KeyError: 'coordinate' when a point was tracked)
