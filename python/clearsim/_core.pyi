@@ -20,6 +20,7 @@ class Outputs(TypedDict, total=False):
     joints: bool
     violation: bool
     energy: bool
+    film: bool
 
 class Reference(TypedDict):
     """A reference curve for a monitor: values and rates at strictly increasing times [s]."""
@@ -74,6 +75,9 @@ class RunSettings(TypedDict):
 __version__: str
 JOINT_COLUMNS: List[str]
 ENERGY_COLUMNS: List[str]
+#: Per clearance joint and output of the ``film`` channel: side_leakage, supply_flow [m³/s],
+#: peak_pressure [Pa], peak_pressure_angle [rad] (rust/clearance/readings.rs).
+FILM_COLUMNS: List[str]
 
 class CompiledModel:
     """A validated, compiled mechanism."""
@@ -97,6 +101,13 @@ class CompiledModel:
     def jacobian(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def simulate(self, settings: Union[RunSettings, Mapping[str, Any]], progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
     def idealized(self) -> "CompiledModel": ...
+    def film_field(
+        self, joint: int, y: npt.NDArray[np.float64], temperature: Optional[float] = None, content: Optional[npt.NDArray[np.float64]] = None
+    ) -> Optional[Dict[str, Any]]:
+        """The film pressure of clearance joint ``joint`` (index) in the state ``y``: theta [rad],
+        z [m], pressure (nθ, nz) [Pa], peak_pressure [Pa], peak_angle [rad], side_leakage and
+        supply_flow [m³/s]; ``temperature`` [K] for a viscosity that follows it; ``content`` the
+        film content a run recorded (``cavitation="jfo"``; without it a flooded film). None if dry."""
 
 def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
     """Validate and compile a description (plain data or its JSON text), read by serde."""

@@ -153,7 +153,24 @@ def _joint_columns(run: SceneRun) -> Columns:
                 cols.append((column_name(f"{joint}.{name}", unit), data[:, k]))  # ε, state: [1] (csvfile.DIMENSIONLESS)
         if joint in heated:
             cols.append((column_name(f"{joint}.temperature", "K"), result.temperature(joint)))
+        cols += _film_columns(run, joint)
     return cols
+
+
+def _film_columns(run: SceneRun, joint: str) -> Columns:
+    """A lubricated joint's oil flow and peak pressure, when the scene's run stored them
+    (``[simulation] outputs = ["film"]``: :mod:`clearsim.film_readings`)."""
+    result = run.result
+    lubricated = {c["name"] for c in run.scene.mechanism.description()["clearance_joints"] if c["model"].get("kind") == "lubricated"}
+    if result._raw.get("film") is None or joint not in lubricated:
+        return []
+    flow = result.flow(joint)
+    return [
+        (column_name(f"{joint}.side_leakage", "m^3/s"), flow[:, 0]),
+        (column_name(f"{joint}.supply_flow", "m^3/s"), flow[:, 1]),
+        (column_name(f"{joint}.peak_pressure", "Pa"), result.peak_pressure(joint)),
+        (column_name(f"{joint}.peak_pressure_angle", "rad"), result.peak_pressure_angle(joint)),
+    ]
 
 
 def _clearances(scene: Scene) -> Dict[str, float]:
@@ -222,6 +239,12 @@ def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
         fig = plots.plot_journal_orbits(orbit, clearance, transition_band=band or None, title=title)
         return plots.save(fig, out_dir / "orbits.png")
 
+    def pressure(joint: str) -> Path:
+        # The film at its peak pressure over the run.
+        k = int(np.argmax(result.peak_pressure(joint)))
+        fig = plots.plot_film_pressure(result.pressure(joint, float(result.t[k])), title=f"{title}: film pressure of '{joint}' at its peak")
+        return plots.save(fig, out_dir / f"{joint}_pressure.png")
+
     def reliability() -> Path:
         spec = scene.reliability
         assert spec is not None
@@ -238,6 +261,9 @@ def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
                 step(f"{body}_{component}_error.png", lambda: error(body, component, errors))
     if out.joints and len(result.t):
         step("orbits.png", orbits)
+    for joint in out.joints:
+        if _film_columns(run, joint):
+            step(f"{joint}_pressure.png", lambda: pressure(joint))
     if run.reliability:
         step("reliability.png", reliability)
 

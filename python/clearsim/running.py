@@ -290,7 +290,10 @@ class Running:
             the dense output and never shorten a step.
         outputs:
             Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``,
-            ``"joints"``, ``"violation"`` (default: all but ``"reactions"``).
+            ``"joints"``, ``"violation"`` (default: all but ``"reactions"``, ``"energy"`` and
+            ``"film"``); ``"energy"`` the energy books (:meth:`Result.energy`), ``"film"`` each
+            lubricated joint's oil flow and peak pressure (:meth:`Result.flow`,
+            :meth:`Result.peak_pressure`; a finite film solves its Reynolds equation at each output).
         h_max, h_min, max_steps:
             Step limits [s] and the step budget.
         max_seconds:

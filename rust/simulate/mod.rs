@@ -4,6 +4,7 @@
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
 //! `newton.rs` (the implicit methods' Jacobian), `diagnosis.rs` (where a failed run stood).
 
+mod cavitation;
 mod diagnosis;
 mod newton;
 mod observe;
@@ -186,9 +187,11 @@ impl OdeSystem for MechanismSystem<'_> {
     /// after it (switching.rs, docs/physics.md §3, P3), the last state, the wall-time budget
     /// and the stop check.
     fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
-        self.step_memory.copy_from_slice(&self.memory);
+        self.step_memory.clone_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
+        // The film content of mass-conserving joints moves on (rust/simulate/cavitation.rs).
+        let moved = self.memory.iter().any(|m| m.film.is_some()) && self.cavitation_step(t0, t1, dense);
         // A viscosity that followed the oil temperature changed f(t1, y1): an explicit method's
         // last stage is stale (rust/clearance/thermal.rs).
         let heated = self.memory.iter().zip(&self.step_memory).any(|(a, b)| a.viscosity != b.viscosity);
@@ -209,7 +212,7 @@ impl OdeSystem for MechanismSystem<'_> {
                 }
             }
         }
-        Ok(changed || heated)
+        Ok(changed || heated || moved)
     }
 
     /// See newton.rs.
@@ -272,6 +275,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.gap_resolution = rs.ode.atol;
+    sys.cavitation_start(&y0);
     sys.monitors.extend(rs.monitors.iter().map(|spec| Monitor::new(spec.clone())));
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;
