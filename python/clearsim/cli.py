@@ -262,7 +262,8 @@ def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
     if out.joints and len(result.t):
         step("orbits.png", orbits)
     for joint in out.joints:
-        if _film_columns(run, joint):
+        # The picture solves the film from the stored state at its peak (needs "states").
+        if _film_columns(run, joint) and "q" in result._raw:
             step(f"{joint}_pressure.png", lambda: pressure(joint))
     if run.reliability:
         step("reliability.png", reliability)

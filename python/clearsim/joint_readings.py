@@ -116,12 +116,18 @@ class JointReadings(FilmReadings):
 
     def driver_angle(self, t: float) -> Optional[float]:
         """The first driver's body angle [deg] at ``t`` [s], interpolated between the stored
-        outputs (``None`` without a driver or stored states)."""
+        outputs, carried on at the stored speed past them (``None`` without a driver or stored
+        states)."""
         drivers = (self.description or {}).get("drivers") or []
         q = self._raw.get("q")
         if not drivers or q is None or not len(self.t) or not math.isfinite(t):
             return None
         b = int(drivers[0]["body"])
+        qd = self._raw.get("qd")
+        if qd is not None and (t > self.t[-1] or t < self.t[0]):
+            # Past the outputs (a run's end between two grid points): on with the stored speed.
+            k = -1 if t > self.t[-1] else 0
+            return float(np.degrees(q[k, 3 * b + 2] + qd[k, 3 * b + 2] * (t - self.t[k])))
         return float(np.degrees(np.interp(t, self.t, q[:, 3 * b + 2])))
 
     def crank_cycle(self) -> Tuple[float, float]:
