@@ -25,36 +25,37 @@ use std::sync::{Arc, Mutex};
 #[derive(Debug)]
 pub struct FilmContent {
     pub film: JfoFilm,
-    /// Content m (units of c) by generation parity: `content[g % 2]` is generation g.
+    /// The fill θ_f ∈ [0, 1] of every node by generation parity: `content[g % 2]` is generation g.
     content: [Vec<f64>; 2],
     /// The newest generation.
     pub generation: u64,
     /// Oil fed through the supply groove and leaked at the ends since the start \[m³\].
     pub supplied: f64,
     pub leaked: f64,
-    /// Scratch: the rates of a step's three solves.
+    /// Scratch: the rates of a step's three solves, their mean, the fill.
     rates: [Vec<f64>; 3],
+    mean: Vec<f64>,
+    scratch: Vec<f64>,
+    h_start: Vec<f64>,
 }
 
 /// A joint's content as its memory holds it.
 pub type SharedContent = Arc<Mutex<FilmContent>>;
 
 impl FilmContent {
-    /// A bearing of diameter-to-length ratio `k`, flooded (full everywhere) at eccentricity
-    /// ratio `eps`.
-    pub fn flooded(k: f64, eps: f64) -> Self {
+    /// A bearing of diameter-to-length ratio `k`, flooded (full everywhere).
+    pub fn flooded(k: f64) -> Self {
         let film = JfoFilm::new(k);
-        let mut m = vec![0.0; JFO_THETA * JFO_ZETA];
-        film.full_content(eps, &mut m);
-        FilmContent { film, content: [m.clone(), m], generation: 0, supplied: 0.0, leaked: 0.0, rates: [Vec::new(), Vec::new(), Vec::new()] }
+        let m = vec![1.0; JFO_THETA * JFO_ZETA];
+        FilmContent { film, content: [m.clone(), m], generation: 0, supplied: 0.0, leaked: 0.0, rates: [Vec::new(), Vec::new(), Vec::new()], mean: Vec::new(), scratch: Vec::new(), h_start: Vec::new() }
     }
 
     /// A bearing of diameter-to-length ratio `k` holding the content `m` (as recorded by a run's
     /// `film` channel), or `None` if `m` is not one.
     pub fn holding(k: f64, m: &[f64]) -> Option<Self> {
-        (m.len() == JFO_THETA * JFO_ZETA && m.iter().all(|v| v.is_finite())).then(|| {
+        (m.len() == JFO_THETA * JFO_ZETA && m.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v))).then(|| {
             let film = JfoFilm::new(k);
-            FilmContent { film, content: [m.to_vec(), m.to_vec()], generation: 0, supplied: 0.0, leaked: 0.0, rates: [Vec::new(), Vec::new(), Vec::new()] }
+            FilmContent { film, content: [m.to_vec(), m.to_vec()], generation: 0, supplied: 0.0, leaked: 0.0, rates: [Vec::new(), Vec::new(), Vec::new()], mean: Vec::new(), scratch: Vec::new(), h_start: Vec::new() }
         })
     }
 
@@ -81,16 +82,16 @@ impl FilmContent {
         self.film.reading(m, g.journal_radius, g.clearance, g.length, g.viscosity, s.eps_dot)
     }
 
-    /// Advance the content over an accepted step of `dt` [s] whose film states at its start,
-    /// middle and end are `states` (each solved with the step's content), sub-stepped so that
-    /// the transport's Courant number stays at most ½: `states_at(f)` gives the film state at
-    /// the fraction f ∈ [0, 1] of the step. Books the oil supplied and leaked (Simpson's rule).
-    pub fn advance(&mut self, g: &BearingGeometry, dt: f64, states_at: &mut dyn FnMut(f64) -> FilmState) {
-        let s = [states_at(0.0), states_at(0.5), states_at(1.0)];
-        let fastest = s.iter().fold(0.0f64, |a, x| a.max(x.wedge.abs()));
-        let n = (JfoFilm::courant(fastest, dt) / 0.5).ceil().clamp(1.0, 1e5) as usize;
+    /// Advance the content over an accepted step of `dt` [s]: `states_at(f)` gives the film state
+    /// at the fraction f ∈ [0, 1] of the step, `shift` [rad] how far the content moves relative to
+    /// the line of centres over it (the mean surface speed's travel less the line of centres'
+    /// turn). Sub-stepped so that the transport moves at most half a cell per sub-step; in each,
+    /// the pressure part of the rate by Simpson's rule over its start, middle and end (solved at
+    /// the sub-step's start content). Books the oil supplied and leaked.
+    pub fn advance(&mut self, g: &BearingGeometry, dt: f64, shift: f64, states_at: &mut dyn FnMut(f64) -> FilmState) {
+        let cell = std::f64::consts::TAU / JFO_THETA as f64;
+        let n = (2.0 * shift.abs() / cell).ceil().clamp(1.0, 1e4) as usize;
         let old = (self.generation % 2) as usize;
-        let new = 1 - old;
         let (a, b) = self.content.split_at_mut(1);
         let (from, to) = if old == 0 { (&a[0], &mut b[0]) } else { (&b[0], &mut a[0]) };
         to.clone_from(from);
@@ -98,26 +99,32 @@ impl FilmContent {
         for r in self.rates.iter_mut() {
             r.resize(from.len(), 0.0);
         }
-        let mut mean = vec![0.0; from.len()];
+        let mut mean = std::mem::take(&mut self.mean);
+        mean.resize(from.len(), 0.0);
+        let mut h_start = std::mem::take(&mut self.h_start);
         for sub in 0..n {
-            let fr = [sub as f64 / n as f64, (sub as f64 + 0.5) / n as f64, (sub as f64 + 1.0) / n as f64];
             let mut flows = [(0.0, 0.0); 3];
-            for (k, f) in fr.iter().enumerate() {
-                let st = if n == 1 { s[k] } else { states_at(*f) };
+            for k in 0..3 {
+                let st = states_at((sub as f64 + 0.5 * k as f64) / n as f64);
                 self.film.solve(to, st.clamped_eps(), st.eps_dot, st.wedge);
                 let r = self.film.reading(to, g.journal_radius, g.clearance, g.length, g.viscosity, st.eps_dot);
                 flows[k] = (r.supply, r.side_leakage);
-                self.rates[k].copy_from_slice(&self.film.rate);
+                self.rates[k].copy_from_slice(&self.film.pressure_rate);
+                if k == 0 {
+                    h_start.clear();
+                    h_start.extend_from_slice(self.film.gaps());
+                }
             }
             for (i, v) in mean.iter_mut().enumerate() {
                 *v = (self.rates[0][i] + 4.0 * self.rates[1][i] + self.rates[2][i]) / 6.0;
             }
             // The last solve was at the sub-step's end: its gap and its full nodes.
-            self.film.apply(to, &mean, h);
+            self.film.apply(to, &h_start, &mean, h, shift / n as f64, &mut self.scratch);
             self.supplied += h * (flows[0].0 + 4.0 * flows[1].0 + flows[2].0) / 6.0;
             self.leaked += h * (flows[0].1 + 4.0 * flows[1].1 + flows[2].1) / 6.0;
         }
-        let _ = new;
+        self.mean = mean;
+        self.h_start = h_start;
         self.generation += 1;
     }
 }
@@ -130,11 +137,11 @@ impl PartialEq for FilmContent {
 
 /// The film force `(F_ξ, F_η)` \[N\] of a mass-conserving film in the state `s` with the content
 /// `memory` holds (its generation); a memory without content (outside a run: `CompiledModel.rhs`,
-/// tests) sees a film flooded at the state's ε.
+/// tests) sees a flooded film.
 pub fn film_force(g: &BearingGeometry, s: FilmState, memory: &super::ImpactMemory) -> (f64, f64) {
     match &memory.film {
         Some(content) => content.lock().unwrap_or_else(|e| e.into_inner()).evaluate(memory.film_generation, g, s).force,
-        None => FilmContent::flooded(2.0 * g.journal_radius / g.length, s.clamped_eps()).evaluate(0, g, s).force,
+        None => FilmContent::flooded(2.0 * g.journal_radius / g.length).evaluate(0, g, s).force,
     }
 }
 
@@ -150,7 +157,7 @@ pub fn readings(g: &BearingGeometry, s: FilmState, memory: &super::ImpactMemory,
             &mut guard
         }
         None => {
-            own = FilmContent::flooded(2.0 * g.journal_radius / g.length, s.clamped_eps());
+            own = FilmContent::flooded(2.0 * g.journal_radius / g.length);
             &mut own
         }
     };

@@ -29,7 +29,7 @@ use std::f64::consts::TAU;
 pub const JFO_THETA: usize = 90;
 /// Nodes across the bearing's half width (from the mid-plane; P = 0 at the end, not a node).
 pub const JFO_ZETA: usize = 8;
-/// Content within this of a full gap counts as full (units of c).
+/// A fill within this of 1 counts as full.
 const FULL: f64 = 1e-10;
 
 /// What one evaluation of the film gives (dimensional where a unit is named).
@@ -64,11 +64,13 @@ pub struct JfoFilm {
     hf3: Vec<f64>,
     hc3: Vec<f64>,
     fill: Vec<f64>,
-    /// Couette rate, ∂H/∂t − Couette (q of the LCP), P, the rate r = Couette + ½ L P.
+    /// Couette rate, ∂H/∂t − Couette (q of the LCP), P, the rate r = Couette + ½ L P and its
+    /// pressure part ½ L P.
     couette: Vec<f64>,
     q: Vec<f64>,
     pub pressure: Vec<f64>,
     pub rate: Vec<f64>,
+    pub pressure_rate: Vec<f64>,
     eligible: Vec<bool>,
     free: Vec<bool>,
     band: Vec<f64>,
@@ -113,6 +115,7 @@ impl JfoFilm {
             q: vec![0.0; N],
             pressure: vec![0.0; N],
             rate: vec![0.0; N],
+            pressure_rate: vec![0.0; N],
             eligible: vec![false; N],
             free: vec![false; N],
             band: vec![0.0; NU * (NZ + 1)],
@@ -131,18 +134,17 @@ impl JfoFilm {
         self.h[i]
     }
 
-    /// The gap H of every cell at `eps` (cell means): a full film's content.
-    pub fn full_content(&self, eps: f64, out: &mut [f64]) {
-        for i in 0..NT {
-            let h = 1.0 + eps * self.cos_mean[i];
-            out[i * NZ..(i + 1) * NZ].iter_mut().for_each(|v| *v = h);
-        }
+    /// The gaps H of the cells at the last solve's ε (cell means of 1 + ε cos θ).
+    pub fn gaps(&self) -> &[f64] {
+        &self.h
     }
 
-    /// Solve the film for the content `m` (N = [`JFO_THETA`] × [`JFO_ZETA`], row-major in θ) at
-    /// eccentricity ratio `eps`, its rate `eps_dot` [1/s] and the wedge speed `wedge` [rad/s]:
-    /// the pressure P [1/s] and the content's rate [`Self::rate`] (in units of c per second).
-    pub fn solve(&mut self, m: &[f64], eps: f64, eps_dot: f64, wedge: f64) {
+    /// Solve the film with the fill `fill` (the fraction θ_f ∈ [0, 1] of each node's gap the oil
+    /// fills; N = [`JFO_THETA`] × [`JFO_ZETA`] values, row-major in θ) at eccentricity ratio `eps`,
+    /// its rate `eps_dot` [1/s] and the wedge speed `wedge` [rad/s]: the pressure P [1/s] and the
+    /// oil's rate [`Self::rate`] (m = θ_f H, in units of c per second). A full node (θ_f = 1) stays
+    /// full while the gap moves within a step (the pressure holds it so, or lets it go: the LCP).
+    pub fn solve(&mut self, fill: &[f64], eps: f64, eps_dot: f64, wedge: f64) {
         let w2 = 0.5 * wedge;
         for i in 0..NT {
             let hf = 1.0 + eps * self.cos_face[i];
@@ -154,7 +156,7 @@ impl JfoFilm {
         for i in 0..NT {
             for j in 0..NZ {
                 let n = i * NZ + j;
-                self.fill[n] = if i == 0 { 1.0 } else { (m[n] / self.h[i]).min(1.0) };
+                self.fill[n] = if i == 0 { 1.0 } else { fill[n].clamp(0.0, 1.0) };
             }
         }
         for i in 0..NT {
@@ -169,14 +171,15 @@ impl JfoFilm {
                 let flux_w = up_w * (1.0 + eps * self.cos_face[wst]);
                 self.couette[n] = -w2 * (flux_e - flux_w) / DTH;
                 self.q[n] = dhdt - self.couette[n];
-                self.eligible[n] = i > 0 && m[n] >= self.h[i] - FULL;
+                self.eligible[n] = i > 0 && fill[n] >= 1.0 - FULL;
             }
         }
         self.solve_lcp();
         for i in 0..NT {
             for j in 0..NZ {
                 let n = i * NZ + j;
-                self.rate[n] = self.couette[n] + 0.5 * self.laplacian(i, j);
+                self.pressure_rate[n] = 0.5 * self.laplacian(i, j);
+                self.rate[n] = self.couette[n] + self.pressure_rate[n];
             }
         }
     }
@@ -334,8 +337,8 @@ impl JfoFilm {
     }
 
     /// Force, flows, peak and oil of the last solve for a bearing of journal radius `r`,
-    /// clearance `c`, length `l` [m] and viscosity `mu` [Pa s], with the content `m` it was solved for.
-    pub fn reading(&self, m: &[f64], r: f64, c: f64, l: f64, mu: f64, eps_dot: f64) -> JfoReading {
+    /// clearance `c`, length `l` [m] and viscosity `mu` [Pa s], with the fill it was solved for.
+    pub fn reading(&self, fill: &[f64], r: f64, c: f64, l: f64, mu: f64, eps_dot: f64) -> JfoReading {
         let p_scale = 6.0 * mu * r * r / (c * c);
         let (mut ix, mut iy, mut leak, mut supply, mut oil) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (mut peak, mut at) = (0.0, usize::MAX);
@@ -344,7 +347,7 @@ impl JfoFilm {
             for j in 0..NZ {
                 let n = i * NZ + j;
                 col += zw(j) * self.pressure[n] * DZ;
-                oil += zw(j) * DZ * DTH * if i == 0 { self.h[0] } else { m[n].min(self.h[i]) };
+                oil += zw(j) * DZ * DTH * self.h[i] * if i == 0 { 1.0 } else { fill[n].clamp(0.0, 1.0) };
                 if j == 0 && self.pressure[n] > peak {
                     peak = self.pressure[n];
                     at = i;
@@ -370,15 +373,29 @@ impl JfoFilm {
         }
     }
 
-    /// Apply `dt` [s] × `rate` (the mean rate of a step's solves, [`Self::rate`]) to the
-    /// content `m`, then hold the supply groove full, the nodes the last solve held full (P > 0)
-    /// exactly full, and every other within [0, H], H at the last solve's ε (the step's end).
-    pub fn apply(&self, m: &mut [f64], rate: &[f64], dt: f64) {
+    /// Advance the fill over a (sub-)step of `dt` [s]: the oil m = θ_f H (H at the step's
+    /// start, `h_start`) gains `dt` × `pressure_rate` (the mean of the step's solves'
+    /// [`Self::pressure_rate`]) and is carried `shift` [rad] around the bearing with the mean
+    /// surface speed (upwind in θ_f; |shift| ≤ ½ cell keeps it stable and positive); the new fill
+    /// is m over the gap at the last solve's ε (the step's end), the supply groove and the nodes
+    /// the last solve held full (P > 0) full, every other within [0, 1].
+    pub fn apply(&self, fill: &mut [f64], h_start: &[f64], pressure_rate: &[f64], dt: f64, shift: f64, scratch: &mut Vec<f64>) {
+        scratch.clear();
+        scratch.extend(fill.iter().enumerate().map(|(n, v)| if n < NZ { 1.0 } else { v.clamp(0.0, 1.0) }));
+        let c = shift / DTH;
         for i in 0..NT {
-            let h = self.h[i];
+            let (e, w) = ((i + 1) % NT, (i + NT - 1) % NT);
+            let (hf_e, hf_w) = (self.hf3[i].cbrt(), self.hf3[w].cbrt());
             for j in 0..NZ {
                 let n = i * NZ + j;
-                m[n] = if i == 0 || (self.free[n] && self.pressure[n] > 0.0) { h } else { (m[n] + dt * rate[n]).clamp(0.0, h) };
+                if i == 0 || (self.free[n] && self.pressure[n] > 0.0) {
+                    fill[n] = 1.0;
+                    continue;
+                }
+                let up_e = if c >= 0.0 { scratch[n] } else { scratch[e * NZ + j] };
+                let up_w = if c >= 0.0 { scratch[w * NZ + j] } else { scratch[n] };
+                let m = scratch[n] * h_start[i] + dt * pressure_rate[n] - c * (up_e * hf_e - up_w * hf_w);
+                fill[n] = (m / self.h[i]).clamp(0.0, 1.0);
             }
         }
     }
@@ -417,8 +434,7 @@ mod tests {
                 if eps > 0.8 {
                     continue;
                 }
-                let mut m = vec![0.0; N];
-                film.full_content(eps, &mut m);
+                let m = vec![1.0; N];
                 film.solve(&m, eps, 0.0, 100.0);
                 let (r, c, l, mu) = (0.01, 1e-5, 0.02 / k, 0.01);
                 let f = film.reading(&m, r, c, l, mu, 0.0).force;

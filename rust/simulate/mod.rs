@@ -63,7 +63,7 @@ pub struct MechanismSystem<'a> {
     pub ws: Workspace,
     pub memory: Vec<ImpactMemory>,
     /// The memory as it was during the step last accepted (what its outputs are evaluated with).
-    step_memory: Vec<ImpactMemory>,
+    pub(super) step_memory: Vec<ImpactMemory>,
     pub recording: Recording,
     stop: Option<StopCheck<'a>>,
     /// Start of the run and its wall-time budget \[s\] ([`RunSettings::max_wall_time`]).
@@ -275,7 +275,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.gap_resolution = rs.ode.atol;
-    sys.cavitation_start(&y0);
+    sys.cavitation_start();
     sys.monitors.extend(rs.monitors.iter().map(|spec| Monitor::new(spec.clone())));
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;
