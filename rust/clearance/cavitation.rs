@@ -138,6 +138,8 @@ impl PartialEq for FilmContent {
 /// The film force `(F_ξ, F_η)` \[N\] of a mass-conserving film in the state `s` with the content
 /// `memory` holds (its generation); a memory without content (outside a run: `CompiledModel.rhs`,
 /// tests) sees a flooded film.
+#[cold]
+#[inline(never)]
 pub fn film_force(g: &BearingGeometry, s: FilmState, memory: &super::ImpactMemory) -> (f64, f64) {
     match &memory.film {
         Some(content) => content.lock().unwrap_or_else(|e| e.into_inner()).evaluate(memory.film_generation, g, s).force,

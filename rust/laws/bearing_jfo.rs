@@ -441,6 +441,7 @@ mod tests {
                 let psi = c / r;
                 let so = f.0.hypot(f.1) * psi * psi / (l * 2.0 * r * mu * 100.0);
                 let beta = f.1.abs().atan2(-f.0).to_degrees();
+                eprintln!("flooded JFO film vs Butenschön, B/D {bd}, ε {eps}: So {:+.2} %, β {:+.2}°", 100.0 * (so / so_tab - 1.0), beta - beta_tab);
                 assert!((so / so_tab - 1.0).abs() < 0.03 && (beta - beta_tab).abs() < 2.0, "B/D {bd} ε {eps}: So {so:.4} vs {so_tab}, β {beta:.2} vs {beta_tab}");
             }
         }

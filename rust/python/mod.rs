@@ -76,6 +76,7 @@ fn input_error(py: Python<'_>, field: &str, value: impl std::fmt::Display, reaso
 // ---------------------------------------------------------------- reading plain data
 
 mod de;
+mod film;
 
 /// Run settings from Python plain data (the dict `Mechanism.run_settings` builds), through serde
 /// ([`crate::settings::RunSettingsDesc`]) and validated. A key or value that does not fit is an
@@ -202,13 +203,7 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
         d.set_item("energy", array2(py, &rec.energy, crate::energy::ENERGY_COLUMNS.len())?)?;
     }
     if ch.film {
-        let w = crate::clearance::FILM_COLUMNS.len();
-        d.set_item("film", PyArray1::from_slice(py, &rec.film).reshape([rec.t.len(), rec.clearance_joints, w])?)?;
-        if !rec.film_content.is_empty() {
-            let per = crate::laws::bearing_jfo::JFO_THETA * crate::laws::bearing_jfo::JFO_ZETA;
-            let n = rec.film_content.len() / (per * rec.t.len().max(1));
-            d.set_item("film_content", PyArray1::from_slice(py, &rec.film_content).reshape([rec.t.len(), n, per])?)?;
-        }
+        film::recorded(py, rec, &d)?;
     }
     d.set_item("q0", PyArray1::from_slice(py, &out.q0))?;
     d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;
@@ -432,10 +427,8 @@ impl CompiledModel {
     }
 
     /// The film pressure of clearance joint `joint` (its index) in the state `y` (docs/physics.md
-    /// §4, "Oil flow and pressure"): `{"theta": (nθ,), "z": (nz,), "pressure": (nθ, nz) [Pa],
-    /// "peak_pressure", "peak_angle", "side_leakage", "supply_flow"}`, θ from the widest gap
-    /// counter-clockwise [rad], z from the mid-plane [m]; `temperature` [K] the oil's at that
-    /// instant, for a viscosity that follows it (Vogel's law). `None` for a dry joint.
+    /// §4, "Oil flow and pressure"; `film.rs`); `temperature` [K] the oil's then, `content` the
+    /// fill a mass-conserving joint's run recorded. `None` for a dry joint.
     #[pyo3(signature = (joint, y, temperature=None, content=None))]
     fn film_field<'py>(
         &self,
@@ -446,48 +439,7 @@ impl CompiledModel {
         content: Option<PyReadonlyArray1<'py, f64>>,
     ) -> PyResult<Option<Bound<'py, PyDict>>> {
         let y = self.state_vector(py, &y)?;
-        let Some(cj) = self.model.clearance.get(joint) else {
-            return Err(input_error(py, "joint", joint, &format!("must be below {}", self.model.clearance.len())));
-        };
-        let n = 3 * self.model.n_bodies();
-        let k = cj.kinematics_with(|b| match b {
-            None => crate::constraints::BodyKin::GROUND,
-            Some(i) => {
-                let o = 3 * i as usize;
-                crate::constraints::BodyKin::new(&y[o..o + 3], &y[n + o..n + o + 3])
-            }
-        });
-        let vogel = cj.film.as_ref().and_then(|f| f.heat).and_then(|h| h.vogel);
-        let viscosity = match (vogel, temperature) {
-            (Some(v), Some(t)) if v.holds_at(t) => v.viscosity(t),
-            _ => 0.0,
-        };
-        let mut memory = ImpactMemory { viscosity, ..ImpactMemory::default() };
-        if let (Some(m), Some(film)) = (content, cj.film.as_ref().filter(|f| f.mass_conserving)) {
-            let m: Vec<f64> = m.as_array().iter().copied().collect();
-            let k = 2.0 * film.geometry.journal_radius / film.geometry.length;
-            let Some(c) = crate::clearance::cavitation::FilmContent::holding(k, &m) else {
-                return Err(input_error(py, "content", format!("array of length {}", m.len()), "must be the film content a run recorded"));
-            };
-            memory.film = Some(c.shared());
-        }
-        let (field, r) = py.detach(|| {
-            let f = cj.force(&k, &memory);
-            let mut scratch = cj.film_scratch();
-            let r = cj.flow_and_peak(&k, &f, &memory, scratch.as_mut());
-            (cj.film_field(&k, &f, &memory, scratch.as_mut()), r)
-        });
-        let Some(field) = field else { return Ok(None) };
-        let d = PyDict::new(py);
-        let nz = field.z.len();
-        d.set_item("theta", PyArray1::from_slice(py, &field.theta))?;
-        d.set_item("z", PyArray1::from_slice(py, &field.z))?;
-        d.set_item("pressure", array2(py, &field.pressure, nz)?)?;
-        d.set_item("peak_pressure", r.peak_pressure)?;
-        d.set_item("peak_angle", r.peak_angle)?;
-        d.set_item("side_leakage", r.side_leakage)?;
-        d.set_item("supply_flow", r.supply)?;
-        Ok(Some(d))
+        film::film_field(py, &self.model, joint, &y, temperature, content)
     }
 
     /// The ideal counterpart: every clearance joint made a revolute joint.

@@ -18,6 +18,7 @@ EXAMPLES = {
     "slider_crank_guide_clearance.toml": 0.01,
     "four_bar_spring.toml": 0.1,
     "compressor.toml": 0.01,
+    "con_rod_bearing.toml": 0.005,
 }
 
 
