@@ -36,6 +36,7 @@ import numpy as np
 from . import __version__, models
 from .csvfile import column_name, report_header, write_columns, write_rows
 from .errors import ClearsimError
+from .film_readings import film_columns
 from .joint_readings import summary_markdown
 from .schema import INTEGRATORS, body_unit
 from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
@@ -158,19 +159,9 @@ def _joint_columns(run: SceneRun) -> Columns:
 
 
 def _film_columns(run: SceneRun, joint: str) -> Columns:
-    """A lubricated joint's oil flow and peak pressure, when the scene's run stored them
-    (``[simulation] outputs = ["film"]``: :mod:`clearsim.film_readings`)."""
-    result = run.result
-    lubricated = {c["name"] for c in run.scene.mechanism.description()["clearance_joints"] if c["model"].get("kind") == "lubricated"}
-    if result._raw.get("film") is None or joint not in lubricated:
-        return []
-    flow = result.flow(joint)
-    return [
-        (column_name(f"{joint}.side_leakage", "m^3/s"), flow[:, 0]),
-        (column_name(f"{joint}.supply_flow", "m^3/s"), flow[:, 1]),
-        (column_name(f"{joint}.peak_pressure", "Pa"), result.peak_pressure(joint)),
-        (column_name(f"{joint}.peak_pressure_angle", "rad"), result.peak_pressure_angle(joint)),
-    ]
+    """A lubricated joint's oil flow and peak pressure, when the run stored them (``[simulation]
+    outputs = ["film"]``: :func:`clearsim.film_readings.film_columns`)."""
+    return [(column_name(f"{joint}.{name}", unit), values) for name, unit, values in film_columns(run.result, joint)]
 
 
 def _clearances(scene: Scene) -> Dict[str, float]:

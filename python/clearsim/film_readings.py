@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -153,6 +153,18 @@ def _output_index(t_out: np.ndarray, t: float) -> int:
     return k
 
 
+def film_columns(res: FilmReadings, joint: str) -> List[Tuple[str, str, np.ndarray]]:
+    """``(name, unit, values)`` of a lubricated joint's film readings for a CSV file (``side_leakage``,
+    ``supply_flow`` [m^3/s], ``peak_pressure`` [Pa], ``peak_pressure_angle`` [rad] from the widest
+    gap), or none if the run did not store the ``film`` channel or the joint has no film."""
+    models = {c["name"]: c["model"] for c in (res.description or {}).get("clearance_joints", [])}
+    if res._raw.get("film") is None or models.get(joint, {}).get("kind") != "lubricated":
+        return []
+    flow = res.flow(joint)
+    return [("side_leakage", "m^3/s", flow[:, 0]), ("supply_flow", "m^3/s", flow[:, 1]),
+            ("peak_pressure", "Pa", res.peak_pressure(joint)), ("peak_pressure_angle", "rad", res.peak_pressure_angle(joint))]  # fmt: skip
+
+
 def film_summary(res: FilmReadings, joint: str) -> Dict[str, Any]:
     """The film readings' part of :meth:`clearsim.Result.bearing_summary` for ``joint`` when the
     run stored the ``film`` channel (else empty): ``peak_pressure`` [Pa] with ``t_peak_pressure``
@@ -179,4 +191,4 @@ def film_summary(res: FilmReadings, joint: str) -> Dict[str, Any]:
     }
 
 
-__all__ = ["FilmPressure", "FilmReadings", "film_summary"]
+__all__ = ["FilmPressure", "FilmReadings", "film_columns", "film_summary"]
