@@ -52,6 +52,38 @@ pub enum AngleLaw {
     Polynomial { coefficients: Vec<f64> },
     /// θ given at sample times, interpolated by a natural cubic spline (C² so that θ̈ exists).
     Samples { times: Vec<f64>, angles: Vec<f64> },
+    /// θ = offset + amplitude · cos(omega · t + phase) (\[rad\], ω \[rad/s\], phase \[rad\]).
+    Harmonic(Harmonic),
+}
+
+/// offset + amplitude · cos(omega · t + phase): a smooth periodic load or motion
+/// (`clearsim.Harmonic`), omega \[rad/s\] > 0, phase \[rad\], amplitude and offset in the
+/// unit of what it gives (N, N m, rad).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Harmonic {
+    pub amplitude: f64,
+    pub omega: f64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub phase: f64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub offset: f64,
+}
+
+impl Harmonic {
+    /// (value, first, second time derivative) at t.
+    #[inline]
+    pub fn eval(&self, t: f64) -> (f64, f64, f64) {
+        let (s, c) = (self.omega * t + self.phase).sin_cos();
+        let a = self.amplitude;
+        (self.offset + a * c, -a * self.omega * s, -a * self.omega * self.omega * c)
+    }
+
+    /// The value at t.
+    #[inline]
+    pub fn value(&self, t: f64) -> f64 {
+        self.offset + self.amplitude * (self.omega * t + self.phase).cos()
+    }
 }
 
 /// A driving constraint on a body's angle.
@@ -282,6 +314,8 @@ pub struct Table {
 pub enum Profile {
     Constant { value: f64 },
     Table { argument: TableArgument, table: Table },
+    /// offset + amplitude · cos(omega · t + phase), in time.
+    Harmonic(Harmonic),
 }
 
 /// The frame a force's direction is given in.

@@ -5,7 +5,7 @@
 //! runs none of this code.
 
 use crate::constraints::{BodyKin, V2};
-use crate::description::{Profile, Table, TableArgument};
+use crate::description::{Harmonic, Profile, Table, TableArgument};
 
 /// A piecewise-linear table y(x), x strictly increasing, held at its end values outside
 /// [x₀, x_last]; with a period, x is first wrapped into [x₀, x₀ + period).
@@ -93,12 +93,14 @@ impl PiecewiseLinear {
     }
 }
 
-/// A scalar load, constant or tabulated.
+/// A scalar load, constant, tabulated or harmonic in time.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Magnitude {
     Constant(f64),
     OfTime(PiecewiseLinear),
     OfAngle(u32, PiecewiseLinear),
+    /// offset + amplitude · cos(ω t + phase): smooth, so no step ends anywhere for it.
+    Harmonic(Harmonic),
 }
 
 impl Magnitude {
@@ -116,6 +118,7 @@ impl Magnitude {
             Profile::Constant { value } => Magnitude::Constant(*value),
             Profile::Table { argument: TableArgument::Time, table } => Magnitude::OfTime(PiecewiseLinear::new(table)),
             Profile::Table { argument: TableArgument::Angle { body }, table } => Magnitude::OfAngle(*body as u32, PiecewiseLinear::new(table)),
+            Profile::Harmonic(h) => Magnitude::Harmonic(*h),
         }
     }
 
@@ -125,6 +128,7 @@ impl Magnitude {
             Magnitude::Constant(v) => *v,
             Magnitude::OfTime(tab) => tab.eval(t),
             Magnitude::OfAngle(b, tab) => tab.eval(kin[*b as usize].th),
+            Magnitude::Harmonic(h) => h.value(t),
         }
     }
 }
@@ -363,6 +367,19 @@ mod tests {
         assert!((g[0] + tension * 0.6).abs() < 1e-12 && (g[1] + tension * 0.8).abs() < 1e-12);
         assert!((e.power(0.0, &kin) + 2.0 * 2.2 * 2.2).abs() < 1e-12);
         assert!((e.potential(&kin) - 0.5 * 100.0 * 0.01).abs() < 1e-12);
+    }
+
+    #[test]
+    fn harmonic_torque_is_offset_plus_amplitude_cosine() {
+        let h = Harmonic { amplitude: 1.5, omega: 2.0 / 3.0, phase: 0.3, offset: -0.2 };
+        let e = ForceElement::Torque { body: 0, reaction: None, magnitude: Magnitude::new(&Profile::Harmonic(h)) };
+        let kin = [BodyKin::new(&[0.0; 3], &[0.0, 0.0, 2.0])];
+        for t in [0.0, 1.0, 7.3] {
+            let want = -0.2 + 1.5 * (2.0 / 3.0 * t + 0.3f64).cos();
+            assert!((e.value(t, &kin) - want).abs() < 1e-15);
+            assert!((e.power(t, &kin) - 2.0 * want).abs() < 1e-14);
+            assert_eq!(e.time_break_in(0.0, 100.0), None);
+        }
     }
 
     #[test]

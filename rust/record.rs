@@ -11,7 +11,8 @@ pub struct Channels {
     pub states: bool,
     /// q̈ of every body (one KKT solve per output time).
     pub accelerations: bool,
-    /// Lagrange multipliers λ.
+    /// Lagrange multipliers λ, and from them each ideal joint's and driver's force and torque on
+    /// its second body ([`crate::constraints::Constraint::reaction`]).
     pub reactions: bool,
     /// Per clearance joint: see [`JOINT_COLUMNS`].
     pub joints: bool,
@@ -47,6 +48,8 @@ pub struct Recording {
     /// read without its model.
     pub coordinates: usize,
     pub constraint_rows: usize,
+    /// Number of ideal joints and drivers (model order: joints, then drivers).
+    pub constraints: usize,
     pub clearance_joints: usize,
     pub t: Vec<f64>,
     /// 3 per body.
@@ -55,6 +58,9 @@ pub struct Recording {
     pub qdd: Vec<f64>,
     /// One per constraint row.
     pub lambda: Vec<f64>,
+    /// Three per ideal joint or driver (model order): the force \[N\] (x, y) and couple
+    /// \[N m\] it exerts on its second body, global frame ([`crate::constraints::Constraint::reaction`]).
+    pub reactions: Vec<f64>,
     /// `JOINT_COLUMNS.len()` per clearance joint.
     pub joints: Vec<f64>,
     /// ‖Φ‖, ‖Φ̇‖.
@@ -74,6 +80,8 @@ pub struct Recording {
     readers: Vec<crate::clearance::ClearanceJoint>,
     /// The finite films' solvers of the `film` channel (one per joint; `None` for other films).
     film_scratch: Vec<Option<crate::laws::film_field::FiniteScratch>>,
+    /// The ideal joints and drivers whose reactions the `reactions` channel stores (empty without it).
+    holders: Vec<crate::constraints::Constraint>,
 }
 
 impl Recording {
@@ -84,12 +92,14 @@ impl Recording {
             channels: Some(channels),
             coordinates: n,
             constraint_rows: model.rows,
+            constraints: model.constraints.len(),
             clearance_joints: model.clearance.len(),
             t: Vec::with_capacity(capacity),
             q: cap(channels.states, n),
             qd: cap(channels.states, n),
             qdd: cap(channels.accelerations, n),
             lambda: cap(channels.reactions, model.rows),
+            reactions: cap(channels.reactions, 3 * model.constraints.len()),
             joints: cap(channels.joints, JOINT_COLUMNS.len() * model.clearance.len()),
             violation: cap(channels.violation, 2),
             energy: cap(channels.energy, crate::energy::ENERGY_COLUMNS.len()),
@@ -98,6 +108,7 @@ impl Recording {
             film_content: Vec::new(),
             readers: if channels.joints || channels.film { model.clearance.clone() } else { Vec::new() },
             film_scratch: if channels.film { model.clearance.iter().map(|c| c.film_scratch()).collect() } else { Vec::new() },
+            holders: if channels.reactions { model.constraints.clone() } else { Vec::new() },
         }
     }
 
@@ -121,6 +132,12 @@ impl Recording {
         }
         if ch.reactions {
             self.lambda.extend_from_slice(&ws.lambda);
+            let mut r = 0;
+            for con in &self.holders {
+                let m = con.rows();
+                self.reactions.extend_from_slice(&con.reaction(&ws.kin, &ws.lambda[r..r + m]));
+                r += m;
+            }
         }
         if ch.joints {
             for (((k, f), joint), mem) in ws.joint_kin.iter().zip(&ws.joint_force).zip(&self.readers).zip(memory) {

@@ -34,6 +34,55 @@ pub struct RunSettings {
     /// A time \[s\] in [t0, t_end] at which the wear books are also read
     /// ([`crate::clearance::wear::WearBook::at_mark`]): what wears after it is the difference.
     pub wear_mark: Option<f64>,
+    /// Stroboscopic samples at exact times ([`SectionSpec`]; `None`: none recorded).
+    pub sections: Option<SectionSpec>,
+    /// A shadow trajectory for the largest Lyapunov exponent ([`LyapunovSpec`]; `None`: none).
+    pub lyapunov: Option<LyapunovSpec>,
+}
+
+/// Poincaré (stroboscopic) sections: the run's channels recorded at the exact times
+/// t_k = (k + phase/2π) · period (k integer, t_k in [t0, t_end]) from the dense output of the
+/// step that holds them, whatever the output grid (`rust/simulate/sections.rs`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(deny_unknown_fields))]
+pub struct SectionSpec {
+    /// \[s\], > 0.
+    pub period: f64,
+    /// \[rad\] of the period, counted from t = 0.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub phase: f64,
+}
+
+impl SectionSpec {
+    /// The section times in [t0, t_end] \[s\], as k runs: (k + phase/2π) · period; one that
+    /// misses an end of the run by rounding alone (1e-12 of the times) is put on it.
+    pub fn times(&self, t0: f64, t_end: f64) -> impl Iterator<Item = f64> {
+        let (p, shift) = (self.period, self.phase / std::f64::consts::TAU);
+        let tol = 1e-12 * t0.abs().max(t_end.abs()).max(p);
+        let first = (((t0 - tol) / p - shift).ceil() - 1.0) as i64;
+        (first..)
+            .map(move |k| (k as f64 + shift) * p)
+            .skip_while(move |t| *t < t0 - tol)
+            .take_while(move |t| *t <= t_end + tol)
+            .map(move |t| t.clamp(t0, t_end))
+    }
+}
+
+/// The largest Lyapunov exponent by two nearby trajectories (Benettin et al. 1980): from
+/// `start` a shadow run starts `d0` away from the run in a weighted norm and is brought back to
+/// that distance every `interval`, the logarithm of its growth booked each time
+/// (`rust/simulate/lyapunov.rs`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(deny_unknown_fields))]
+pub struct LyapunovSpec {
+    /// When the shadow starts \[s\] (after the transient), in [t0, t_end).
+    pub start: f64,
+    /// Renormalisation interval τ \[s\], > 0.
+    pub interval: f64,
+    /// Distance kept between the two runs, in the norm √(Σ δq² + Σ (δq̇/Ω)²) \[m, rad\], > 0.
+    pub d0: f64,
+    /// Ω \[rad/s\] of that norm, > 0.
+    pub velocity_scale: f64,
 }
 
 /// Most output times a spacing `dt_out` may ask for (each holds every stored channel).
@@ -162,12 +211,43 @@ impl RunSettings {
         for (i, m) in self.monitors.iter().enumerate() {
             m.validate(i)?;
         }
+        if let Some(sec) = &self.sections {
+            if !(sec.period > 0.0 && sec.period.is_finite()) {
+                return Err(Error::invalid("sections.period", num(sec.period), "must be a positive, finite time [s]"));
+            }
+            if !sec.phase.is_finite() {
+                return Err(Error::invalid("sections.phase", num(sec.phase), "must be a finite angle [rad]"));
+            }
+            let count = (self.t_end - self.t0) / sec.period;
+            if !(count <= MAX_OUTPUTS) {
+                return Err(Error::invalid("sections.period", num(sec.period), format!("gives {} sections, more than {}", g3(count), g3(MAX_OUTPUTS))));
+            }
+        }
+        if let Some(ly) = &self.lyapunov {
+            if !(ly.start >= self.t0 && ly.start < self.t_end) {
+                return Err(Error::invalid("lyapunov.start", num(ly.start), format!("must lie in [t0, t_end) = [{}, {})", num(self.t0), num(self.t_end))));
+            }
+            for (field, v) in [("lyapunov.interval", ly.interval), ("lyapunov.d0", ly.d0), ("lyapunov.velocity_scale", ly.velocity_scale)] {
+                if !(v > 0.0 && v.is_finite()) {
+                    return Err(Error::invalid(field, num(v), "must be positive and finite"));
+                }
+            }
+            if let Some(Method::Rk4 { .. }) = self.method {
+                return Err(Error::invalid("integrator", "rk4", "a Lyapunov exponent needs an adaptive integrator (its runs restart every interval)"));
+            }
+        }
         Ok(())
     }
 
     /// The monitors against the compiled model: each names a body coordinate (below 3 × bodies)
     /// or a clearance joint that exists (their own fields are checked by [`Self::validate`]).
     pub fn validate_for(&self, model: &Model) -> Result<()> {
+        if self.lyapunov.is_some() {
+            if let Some(c) = model.clearance.iter().find(|c| c.wear.is_some() || c.film.is_some_and(|f| f.heat.is_some())) {
+                let why = "a Lyapunov exponent follows (q, q̇) alone: this joint's wear or oil temperature is state outside it";
+                return Err(Error::invalid(format!("clearance joint '{}'", c.name), "wear or thermal model", why));
+            }
+        }
         for spec in &self.monitors {
             if spec.quantity.of_joint() {
                 if spec.coordinate >= model.clearance.len() {
@@ -241,6 +321,10 @@ pub struct RunSettingsDesc {
     /// A time \[s\] at which the wear books are also read (the output's `*_at_mark`).
     #[serde(default)]
     pub wear_mark: Option<f64>,
+    #[serde(default)]
+    pub sections: Option<SectionSpec>,
+    #[serde(default)]
+    pub lyapunov: Option<LyapunovSpec>,
 }
 
 #[cfg(feature = "serde")]
@@ -279,6 +363,8 @@ impl RunSettingsDesc {
             max_wall_time: self.max_seconds,
             monitors: self.monitors,
             wear_mark: self.wear_mark,
+            sections: self.sections,
+            lyapunov: self.lyapunov,
         };
         rs.validate()?;
         Ok(rs)
@@ -356,6 +442,20 @@ mod tests {
             assert_eq!(ours.len(), old.len(), "({t0}, {t_end}, {dt})");
             assert!(ours.iter().zip(&old).all(|(a, b)| a.to_bits() == b.to_bits()), "({t0}, {t_end}, {dt})");
         }
+    }
+
+    #[test]
+    fn section_times_are_exact_multiples_inside_the_run() {
+        let sec = SectionSpec { period: 0.1, phase: std::f64::consts::PI };
+        let t: Vec<f64> = sec.times(0.02, 0.4).collect();
+        assert_eq!(t, vec![0.05, 1.5 * 0.1, 2.5 * 0.1, 3.5 * 0.1]);
+        let sec = SectionSpec { period: 0.1, phase: 0.0 };
+        assert_eq!(sec.times(0.0, 0.3).collect::<Vec<_>>(), vec![0.0, 0.1, 0.2, 0.3], "the last one lands on t_end by rounding");
+        assert_eq!(sec.times(-0.25, -0.05).collect::<Vec<_>>(), vec![-0.2, -0.1]);
+        let e = read(serde_json::json!({"integrator": "rk45", "t_end": 1.0, "sections": {"period": 0.0}})).unwrap_err().to_string();
+        assert_eq!(e, "invalid sections.period = 0.0: must be a positive, finite time [s]");
+        let e = read(serde_json::json!({"integrator": "rk45", "t_end": 1.0, "lyapunov": {"start": 1.0, "interval": 0.1, "d0": 1e-8, "velocity_scale": 1.0}})).unwrap_err().to_string();
+        assert_eq!(e, "invalid lyapunov.start = 1.0: must lie in [t0, t_end) = [0.0, 1.0)");
     }
 
     #[test]

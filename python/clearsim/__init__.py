@@ -7,6 +7,7 @@ analyses the results. SI units throughout.
 from . import _core
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, ReliabilityError, SimulationError
 from .joints import Archard, Dry, Lubricated, Thermal, Vogel
+from .forces import Harmonic
 from .mechanism import GROUND, Mechanism
 from .result import Result
 from . import models, reliability
@@ -22,6 +23,7 @@ __all__ = [
     "ClearsimError",
     "Dry",
     "GROUND",
+    "Harmonic",
     "InputError",
     "InterruptedRun",
     "Lubricated",

@@ -16,6 +16,8 @@ class Outputs(TypedDict, total=False):
 
     states: bool
     accelerations: bool
+    #: λ ("lambda", one column per constraint row) and "reactions" (N, ideal joints + drivers, 3):
+    #: each one's force x, y [N] and couple [N m] on its second body (rust/constraints, Constraint::reaction)
     reactions: bool
     joints: bool
     violation: bool
@@ -42,6 +44,24 @@ class Monitor(TypedDict):
     reference: NotRequired[Optional[Reference]]
     samples_per_step: NotRequired[int]
     exact: NotRequired[bool]  # extremes located on the exact quantity between samples
+
+class Sections(TypedDict):
+    """Poincaré sections (rust/simulate/sections.rs): the run's channels at the exact times
+    (k + phase/2π) · period [s] in [t0, t_end]; the result's "sections" holds them (t, q, qd, qdd,
+    joints, ... as the result's own)."""
+
+    period: float
+    phase: NotRequired[float]  # rad
+
+class Lyapunov(TypedDict):
+    """A shadow run for the largest Lyapunov exponent (rust/simulate/lyapunov.rs): from ``start``
+    [s], ``d0`` [m, rad] away in the norm √(Σ δq² + Σ (δq̇/velocity_scale)²), renormalised every
+    ``interval`` [s]; the result's "lyapunov" holds t, log_growth, steps, rhs_evaluations, error."""
+
+    start: float
+    interval: float
+    d0: float
+    velocity_scale: float  # rad/s
 
 class RunSettings(TypedDict):
     """The settings dict of one run (rust/settings.rs; built by ``Mechanism.run_settings``).
@@ -71,6 +91,8 @@ class RunSettings(TypedDict):
     # A time [s] in [t0, t_end] at which the wear books are also read: each result's "wear"
     # entry then has bearing_at_mark, journal_at_mark [m] and volume_at_mark [m³].
     wear_mark: NotRequired[float]
+    sections: NotRequired[Sections]
+    lyapunov: NotRequired[Lyapunov]
 
 __version__: str
 JOINT_COLUMNS: List[str]

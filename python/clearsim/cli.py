@@ -3,14 +3,16 @@
 Subcommands::
 
     clearsim run SCENE.toml [-o OUTDIR] [--no-plots] [--t-end T] [--integrator NAME] [-q]
+    clearsim reliability SCENE.toml [-o OUTDIR] [--methods LIST] [--samples N] [-q]
+    clearsim sweep SCENE.toml [-o OUTDIR] [--count N] [--cycles N] [--transient-cycles N] [-q]
     clearsim paper [-o OUTDIR] [--quick] [--cycles N] [-q]
     clearsim info
     clearsim --version
 
 ``run`` writes into OUTDIR (default ``clearsim-<scene name>``): CSV files with a header row
-naming every column and its unit (``bodies.csv``, ``bodies_ideal.csv``, ``errors.csv``,
-``joints.csv``, ``reliability_<quantity>.csv``), PNG figures and ``summary.json`` /
-``summary.md``. A :class:`clearsim.ClearsimError` is printed as one line on stderr with exit
+naming every column and its unit (``bodies.csv``, ``bodies_ideal.csv`` — bodies and tracked
+points —, ``errors.csv``, ``joints.csv``, ``reactions.csv``, ``reliability_<quantity>.csv``),
+PNG figures and ``summary.json`` / ``summary.md``. A :class:`clearsim.ClearsimError` is printed as one line on stderr with exit
 code 2 (no traceback); a failed simulation also writes its partial results. Any other failure
 (a bug) is one line too, with exit code 1; ``--debug`` adds the traceback. A failure while the
 outputs are written stops only that output: the others and the summary (``summary.md`` of
@@ -33,45 +35,16 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tupl
 
 import numpy as np
 
-from . import __version__, models
+from . import __version__, cli_readings, models
 from .csvfile import column_name, report_header, write_columns, write_rows
+from .cli_support import EXIT_ERROR, EXIT_FAILURE, OutputsFailed, _describe, _positive_float, _positive_int, _summary_on_failure
+from .export import error_columns
 from .errors import ClearsimError
 from .film_readings import film_columns
 from .joint_readings import summary_markdown
 from .schema import INTEGRATORS, body_unit
+from .sweep_command import add_sweep_parser
 from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
-
-#: Exit code of every clearsim error (input, simulation) — the code argparse uses for usage errors.
-EXIT_ERROR = 2
-#: Exit code of any other failure (a bug in clearsim or a library: ``--debug`` shows where).
-EXIT_FAILURE = 1
-
-
-class OutputsFailed(RuntimeError):
-    """A command stopped, or some of its outputs could not be written; what was written and the
-    summary naming the failure are on disk.
-
-    ``failed`` lists (output or command, exception); ``files`` the paths written; the first
-    exception is the ``__cause__``."""
-
-    def __init__(self, message: str, failed: Sequence[Tuple[str, BaseException]], files: Sequence[Path]) -> None:
-        super().__init__(message)
-        self.failed = list(failed)
-        self.files = list(files)
-        self.__cause__ = failed[0][1]
-
-
-def _describe(err: BaseException) -> str:
-    """``Type: message`` on one line (a ClearsimError: its message). An error passed through
-    another library with the original traceback in its text (OpenTURNS does that) is named by
-    the traceback's last line."""
-    text = str(err)
-    if "Traceback (most recent call last)" in text:
-        last = text.strip().splitlines()[-1]
-        return last.split("clearsim.errors.", 1)[-1] if "clearsim.errors." in last else last
-    text = " ".join(text.split())
-    return text if isinstance(err, ClearsimError) else f"{type(err).__name__}: {text}" if text else type(err).__name__
-
 
 class _Steps:
     """The outputs of a command, each written on its own: one that fails does not stop the others."""
@@ -104,25 +77,25 @@ def _unit(quantity: str, component: str) -> str:
 
 
 def _body_columns(run: SceneRun, which: str) -> Columns:
-    """Columns of the selected body quantities: ``which`` = ``"result"``, ``"ideal"`` or
-    ``"errors"`` (clearance − ideal)."""
+    """Columns of the selected body quantities, then of the tracked points' (``[outputs]
+    points``): ``which`` = ``"result"``, ``"ideal"`` or ``"errors"`` (clearance − ideal,
+    :func:`clearsim.export.error_columns`: the columns of ``Result.errors_table``)."""
     out = run.scene.outputs
+    if which == "errors":
+        names = list(out.bodies) + [p.name for p in out.points]
+        keys = [(name, ERROR_QUANTITIES[q]) for name in names for q in out.quantities]
+        ordered = {key: run.errors[key] for key in keys if key in run.errors}
+        return [(column_name(name, unit), values) for name, unit, values in error_columns(ordered, out.components)]
+    result = run.result if which == "result" else run.ideal
+    assert result is not None
     cols: Columns = []
     for body in out.bodies:
         for quantity in out.quantities:
-            error = ERROR_QUANTITIES[quantity]
-            if which == "errors":
-                if (body, error) not in run.errors:
-                    continue
-                data, name = run.errors[(body, error)], f"{error}_error"
-            else:
-                result = run.result if which == "result" else run.ideal
-                assert result is not None
-                data, name = getattr(result, quantity)(body), quantity
+            data = getattr(result, quantity)(body)
             for component in out.components:
                 c = COMPONENTS.index(component)
-                cols.append((column_name(f"{body}.{name}.{component}", _unit(quantity, component)), data[:, c]))
-    return cols
+                cols.append((column_name(f"{body}.{quantity}.{component}", _unit(quantity, component)), data[:, c]))
+    return cols + cli_readings.point_columns(result, out.points, out.quantities, out.components)
 
 
 def _joint_columns(run: SceneRun) -> Columns:
@@ -258,6 +231,14 @@ def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
             step(f"{joint}_pressure.png", lambda: pressure(joint))
     if run.reliability:
         step("reliability.png", reliability)
+    if out.points and len(result.t):
+        step("points.png", lambda: cli_readings.points_figure(result, out_dir / "points.png", title))
+        for p in out.points:
+            for component in cli_readings.point_components(out.components):
+                c = ("x", "y").index(component)
+                errors = {ERROR_QUANTITIES[q]: run.errors[(p.name, ERROR_QUANTITIES[q])][:, c] for q in out.quantities if (p.name, ERROR_QUANTITIES[q]) in run.errors}
+                if errors:
+                    step(f"{p.name}_{component}_error.png", lambda: error(p.name, component, errors))
 
 
 def _transition_band(joint: Dict[str, Any]) -> float:
@@ -298,11 +279,7 @@ def summarize(run: SceneRun) -> Dict[str, Any]:
     if run.ideal is not None:
         out["ideal_run"] = run.ideal.summary()
     if run.errors:
-        out["max_abs_error"] = {
-            f"{body}.{quantity}_error.{component}": float(np.max(np.abs(err[:, COMPONENTS.index(component)]))) if len(err) else None
-            for (body, quantity), err in run.errors.items()
-            for component in scene.outputs.components
-        }
+        out["max_abs_error"] = {name: float(np.max(np.abs(values))) if len(values) else None for name, _, values in error_columns(run.errors, scene.outputs.components)}
     if run.reliability:
         spec = scene.reliability
         assert spec is not None
@@ -348,6 +325,7 @@ def _markdown(summary: Dict[str, Any], files: Sequence[Path]) -> str:
             f"{r['wall_time']:.3g} | {'–' if viol is None else f'{viol:.3g}'} | {impacts} |"
         )
     lines += summary_markdown(run.get("bearings"))
+    lines += cli_readings.reaction_markdown(run.get("reactions"))
     if run.get("failure"):
         lines += ["", f"**The run stopped early:** {run['failure']}"]
     if "max_abs_error" in summary:
@@ -388,7 +366,7 @@ def write_run(
     scene, result = run.scene, run.result
     step = _Steps()
     if scene.outputs.csv:
-        if scene.outputs.bodies:
+        if scene.outputs.bodies or scene.outputs.points:
             step("bodies.csv", lambda: write_csv(out_dir / "bodies.csv", result.t, _body_columns(run, "result")))
             if run.ideal is not None:
                 ideal = run.ideal
@@ -396,6 +374,9 @@ def write_run(
             step("errors.csv", lambda: _errors_csv(run, out_dir))
         if scene.outputs.joints:
             step("joints.csv", lambda: write_csv(out_dir / "joints.csv", result.t, _joint_columns(run)))
+        reactions = cli_readings.reaction_table(result)
+        if reactions:
+            step("reactions.csv", lambda: write_csv(out_dir / "reactions.csv", result.t, reactions))
         for quantity, fosm in run.reliability.items():
             step(f"reliability_{quantity}.csv", lambda: _fosm_csv(out_dir / f"reliability_{quantity}.csv", fosm, _fosm_unit(scene, quantity)))
     if plots and scene.outputs.plots:
@@ -479,6 +460,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
         for joint, b in r.get("bearings", {}).items():
             extra_b = (f", λ = {b['lambda']:.3g}" if "lambda" in b else "") + (f", oil {b['temperature_start']:.5g} → {b['temperature_end']:.5g} K" if "temperature_end" in b else "")
             print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W")
+        for text in cli_readings.reaction_text(r.get("reactions", {})):
+            print(text)
         for q, res in run.reliability.items():
             print(f"FOSM {q}: min R = {res.min_reliability:.6f} (β = {res.min_beta:.3f}) at {res.min_angle:g}°")
         if run.reliability_failure:
@@ -524,29 +507,6 @@ def _cmd_paper(args: argparse.Namespace) -> int:
     return 0
 
 
-@contextlib.contextmanager
-def _summary_on_failure(out_dir: Path, command: str, summary: str) -> Iterator[None]:
-    """If the body fails, write what it had written (files changed since it began) and the
-    cause into ``out_dir/summary`` (appended if the command wrote it already), then re-raise
-    the failure as :class:`OutputsFailed` (or a ClearsimError as itself, named there too)."""
-    began = time.time() - 1.0  # file times are coarse on some file systems
-    try:
-        yield
-    except (Exception, KeyboardInterrupt) as err:
-        if not out_dir.is_dir():
-            raise
-        path = out_dir / summary
-        written = sorted(p for p in out_dir.rglob("*") if p.is_file() and p.stat().st_mtime >= began and p != path)
-        fresh = not path.exists() or path.stat().st_mtime < began
-        lines = [f"# {command} stopped early", ""] if fresh else ["", "## Stopped early", ""]
-        lines += [f"Cause: {_describe(err)}", "", "Written before it stopped: " + (", ".join(f"`{p.relative_to(out_dir)}`" for p in written) or "nothing"), ""]
-        with path.open("w" if fresh else "a", encoding="utf-8") as fh:
-            fh.write("\n".join(lines) + "\n")
-        if isinstance(err, (ClearsimError, KeyboardInterrupt)):
-            raise
-        raise OutputsFailed(f"{command} stopped: {_describe(err)}; {summary} in {out_dir} lists what was written", [(command, err)], written) from err
-
-
 def _first_line(obj: Any) -> str:
     """The docstring's first paragraph as plain text (reST ``literals`` and :role:`x` unwrapped)."""
     import re
@@ -575,26 +535,6 @@ def _cmd_info(args: argparse.Namespace) -> int:
             print(f"  {path.name}")
     print("\nScene file format: python -m pydoc clearsim.scene")
     return 0
-
-
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not (value > 0 and math.isfinite(value)):
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive number")
-    return value
-
-
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} must be a positive integer")
-    return value
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -647,6 +587,8 @@ def build_parser() -> argparse.ArgumentParser:
     paper.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     paper.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")
     paper.set_defaults(func=_cmd_paper)
+
+    add_sweep_parser(sub)
 
     info = sub.add_parser("info", help="version and model catalogue", description="Print the version and the model catalogue.")
     info.set_defaults(func=_cmd_info)

@@ -17,6 +17,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from .draw_points import PointMarks, paths_of, widen
 from .errors import InputError
 
 #: Colours of the drawing (colour-blind safe).
@@ -451,12 +452,14 @@ def states_at(result: Any, times: np.ndarray) -> np.ndarray:
 
 def animate(
     result: Any, path: Union[str, Path], *, speed: float = 1.0, magnify: Optional[float] = None, fps: int = 25, t_start: Optional[float] = None, t_end: Optional[float] = None,
-    max_frames: int = 400, dpi: int = 100, orbits: bool = True,
+    max_frames: int = 400, dpi: int = 100, orbits: bool = True, points: Sequence[Any] = (),
 ) -> Path:  # fmt: skip
     """Animate a run: the mechanism at ``speed`` × real time (``speed=0.05``: twenty times
     slower), clearances magnified, with each revolute clearance joint's journal orbit (e/c, the
     clearance circle) in an inset. ``path`` ending in ``.gif`` (Pillow) or ``.mp4`` (needs
-    ffmpeg). At most ``max_frames`` frames: longer runs are sampled more coarsely."""
+    ffmpeg). At most ``max_frames`` frames: longer runs are sampled more coarsely. ``points``
+    (:class:`clearsim.points.TrackedPoint`) are marked and trace their path as the run goes."""
+
     import matplotlib.animation as animation
 
     from . import plots
@@ -507,7 +510,11 @@ def animate(
         ax.set_xlim(*xlim)
         ax.set_ylim(*ylim)
         clock = ax.set_title(f"t = {times[0]:.4f} s", fontsize=9)
-        moving: List[Any] = drawing.artists + [clock]
+        marks = PointMarks(ax, result.body_names, points, paths_of(result, points)) if points else None
+        if marks is not None:
+            marks.update(qs[0])
+            widen(ax, marks.extent(qs[0]))
+        moving: List[Any] = drawing.artists + (marks.artists if marks is not None else []) + [clock]
         traces = []
         for k, (axi, c) in enumerate(zip(insets, joints)):
             th = np.linspace(0, 2 * math.pi, 120)
@@ -525,6 +532,8 @@ def animate(
 
         def frame(i: int) -> None:
             drawing.update(qs[i])
+            if marks is not None:
+                marks.update(qs[i], int(upto[i]))
             clock.set_text(f"t = {times[i]:.4f} s")
             for k, (trace, dot) in enumerate(traces):
                 o = orbit[k][: max(1, upto[i])]

@@ -20,18 +20,73 @@ at its end values outside them:
   whichever way the crank turns. Without it, a crank-angle table covers one revolution only.
 
 A component left out of a force table is zero.
+
+Harmonic loads and motions
+--------------------------
+:class:`Harmonic` ``(amplitude, omega, phase=0.0, offset=0.0)`` is the smooth periodic value
+offset + amplitude · cos(omega · t + phase), omega in rad/s: a torque (``m.torque(body,
+Harmonic(...))``), a force component (``m.force(body, point, (Harmonic(...), 0.0))``) or a
+driver's angle law (``m.driver(body, law=Harmonic(...))``), evaluated in the core with no table
+(the driven pendulum of Baker & Gollub, a vibrating support). The core checks its numbers
+(omega positive, all finite) when the mechanism compiles.
 """
 
 from __future__ import annotations
 
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
+import math
+from dataclasses import dataclass
+
 import numpy as np
 
 from .errors import InputError, check_finite
 
-#: A load: a constant, or a table (see the module docstring).
-Load = Union[float, Sequence[float], Mapping[str, Any]]
+
+def _number(field: str, value: Any) -> float:
+    """``float(value)``, or an InputError naming ``field`` for what is not a number (a NaN or an
+    infinity passes: the core names it with its element when the mechanism compiles)."""
+    if isinstance(value, bool):
+        raise InputError(f"invalid {field} = {value!r}: must be a number", field=field, value=value)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"invalid {field} = {value!r}: must be a number", field=field, value=value) from None
+
+
+@dataclass(frozen=True)
+class Harmonic:
+    """offset + amplitude · cos(omega · t + phase): a smooth periodic load or motion.
+
+    ``omega`` [rad/s] (> 0), ``phase`` [rad]; ``amplitude`` and ``offset`` in the unit of what
+    it gives: N for a force component, N m for a torque, rad for a driver's angle. Evaluated in
+    the Rust core (no table); ``h(t)`` evaluates it here, ``h.period`` is 2π/ω [s]."""
+
+    amplitude: float
+    omega: float
+    phase: float = 0.0
+    offset: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("amplitude", "omega", "phase", "offset"):
+            object.__setattr__(self, name, _number(name, getattr(self, name)))
+
+    @property
+    def period(self) -> float:
+        """2π/ω [s]."""
+        return 2 * math.pi / self.omega
+
+    def __call__(self, t: Any) -> Any:
+        """The value at time(s) ``t`` [s]."""
+        return self.offset + self.amplitude * np.cos(self.omega * np.asarray(t, dtype=float) + self.phase)
+
+    def entry(self) -> Dict[str, Any]:
+        """The core's plain data (``Profile::Harmonic``, ``AngleLaw::Harmonic``)."""
+        return {"kind": "harmonic", "amplitude": self.amplitude, "omega": self.omega, "phase": self.phase, "offset": self.offset}
+
+
+#: A load: a constant, a table (see the module docstring) or a :class:`Harmonic`.
+Load = Union[float, Sequence[Any], Mapping[str, Any], Harmonic]
 #: A body as an entry names it: a body's name (or "ground"), resolved to its index when the
 #: mechanism compiles (clearsim.references), so elements may be added in any order.
 BodyRef = Optional[str]
@@ -83,6 +138,8 @@ def _profile(head: Dict[str, Any], ys: List[float]) -> Dict[str, Any]:
 
 
 def _constant(field: str, v: Any) -> Dict[str, Any]:
+    if isinstance(v, Harmonic):
+        return v.entry()
     return {"kind": "constant", "value": check_finite(field, v)}
 
 
@@ -128,7 +185,7 @@ def applied_force(name: str, body: str, point: List[float], value: Load, frame: 
         try:
             vx, vy = value  # type: ignore[misc]
         except (TypeError, ValueError):
-            raise InputError(f"invalid value = {value!r}: must be (fx, fy) [N] or a load table", field="value", value=value) from None
+            raise InputError(f"invalid value = {value!r}: must be (fx, fy) [N] (each a number or a Harmonic) or a load table", field="value", value=value) from None
         fx, fy = _constant("value[0]", vx), _constant("value[1]", vy)
     return {"kind": "force", "name": name, "body": body, "point": point, "frame": frame, "fx": fx, "fy": fy}
 

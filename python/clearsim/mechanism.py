@@ -273,31 +273,37 @@ class Mechanism(Running):
         polynomial: Optional[Sequence[float]] = None,
         times: Optional[Sequence[float]] = None,
         angles: Optional[Sequence[float]] = None,
+        law: Optional[_forces.Harmonic] = None,
         name: Optional[str] = None,
     ) -> "Mechanism":
         """Drive a body's angle: θ = angle0 + ω t (``omega`` [rad/s]; ``angle0`` [rad] defaults
         to the body's angle), or θ = Σ cₖ tᵏ (``polynomial``), or θ sampled at ``times`` and
-        interpolated by a natural cubic spline (``times``, ``angles``)."""
+        interpolated by a natural cubic spline (``times``, ``angles``), or θ =
+        offset + amplitude · cos(ω t + phase) (``law=clearsim.Harmonic(...)``, angles in rad)."""
         b = self._ref("body", body, allow_ground=False)
-        given = sum(x is not None for x in (omega, polynomial, times))
+        given = sum(x is not None for x in (omega, polynomial, times, law))
         if given != 1:
             raise InputError(
-                "invalid driver: give exactly one of omega, polynomial or times/angles", field="driver", value=body
+                "invalid driver: give exactly one of omega, polynomial, times/angles or law", field="driver", value=body
             )
-        if omega is not None:
+        if law is not None:
+            if not isinstance(law, _forces.Harmonic):
+                raise InputError(f"invalid law = {law!r}: must be a clearsim.Harmonic", field="law", value=law)
+            entry: Dict[str, Any] = law.entry()
+        elif omega is not None:
             # angle0 None: the body's angle, filled in when the mechanism compiles (references.resolve)
-            law = {"kind": "constant_speed", "omega": check_finite("omega", omega), "angle0": None if angle0 is None else check_finite("angle0", angle0)}
+            entry = {"kind": "constant_speed", "omega": check_finite("omega", omega), "angle0": None if angle0 is None else check_finite("angle0", angle0)}
         elif polynomial is not None:
-            law = {"kind": "polynomial", "coefficients": [check_finite(f"polynomial[{k}]", c) for k, c in enumerate(polynomial)]}
+            entry = {"kind": "polynomial", "coefficients": [check_finite(f"polynomial[{k}]", c) for k, c in enumerate(polynomial)]}
         else:
             if angles is None:
                 raise InputError("invalid angles = None: needed with times", field="angles", value=None)
-            law = {
+            entry = {
                 "kind": "samples",
                 "times": [check_finite(f"times[{k}]", c) for k, c in enumerate(times)],  # type: ignore[arg-type]
                 "angles": [check_finite(f"angles[{k}]", c) for k, c in enumerate(angles)],
             }
-        _insert(self._drivers, {"name": self._new_name("driver", name), "body": b, "law": law})
+        _insert(self._drivers, {"name": self._new_name("driver", name), "body": b, "law": entry})
         return self
 
     def clearance_joint(
@@ -451,7 +457,7 @@ class Mechanism(Running):
     def force(self, body: str, point: Point, value: "_forces.Load", frame: str = "global", name: Optional[str] = None) -> "Mechanism":
         """An applied force at ``point`` of ``body`` (body frame [m]).
 
-        ``value``: ``(F_x, F_y)`` [N], constant, or a load table in time or in a driver's angle
+        ``value``: ``(F_x, F_y)`` [N], each a number or a :class:`clearsim.Harmonic`, or a load table in time or in a driver's angle
         (``{"t": [...], "fx": [...], "fy": [...]}``, ``{"driver": "drive1", "angle": [...],
         "fy": [...], "period": 2π}``; see :mod:`clearsim.forces`), e.g. a stamping load over
         part of the stroke. ``frame="body"``: the components turn with the body (a follower
@@ -461,7 +467,8 @@ class Mechanism(Running):
         return self._add_force(_forces.applied_force(self._new_name("force", name), b, p, value, frame))
 
     def torque(self, body: str, value: "_forces.Load", name: Optional[str] = None, *, reaction: Optional[str] = None) -> "Mechanism":
-        """An applied torque [N m] on ``body`` (counter-clockwise positive): a number or a load
+        """An applied torque [N m] on ``body`` (counter-clockwise positive): a number, a
+        :class:`clearsim.Harmonic` (offset + amplitude · cos(ω t + phase)) or a load
         table (``{"t": [...], "torque": [...]}`` or ``{"driver": ..., "angle": [...], "torque":
         [...]}``, see :mod:`clearsim.forces`). With ``reaction``, the opposite torque acts on
         that body."""

@@ -187,3 +187,110 @@ def nine_bar(
 
 
 __all__ = ["slider_crank", "nine_bar", "NINE_BAR_POINTS", "NINE_BAR_INERTIA"]
+
+
+def driven_pendulum(drive: float, *, q: float = 2.0, drive_omega: float = 2.0 / 3.0, theta0: float = 0.2) -> Mechanism:
+    """Baker & Gollub's damped driven pendulum, θ'' + θ'/q + sin θ = g cos(ω_D t), as a
+    mechanism (Baker & Gollub, *Chaotic Dynamics*, 1996; docs/physics.md §13): body ``"bob"``
+    (1 kg, its centroid 0.5 m below the pivot, J = 0.75 kg m², so 1 kg m² about the pivot),
+    gravity 2 m/s² (m g l = 1 N m), a rotational damper of 1/q N m s to the ground and the
+    torque ``clearsim.Harmonic(drive, drive_omega)`` [N m, rad/s]. Its angle θ is the bob's body
+    angle, starting at ``theta0`` [rad] at rest. Time is the equation's own (1 s a unit), so the
+    Baumgarte rates are 5 1/s, a few times its natural frequency of 1 rad/s (the default 50 1/s,
+    set for machines turning at thousands of rpm, would make its steps 10–30 times shorter)."""
+    from .forces import Harmonic
+
+    m = Mechanism(gravity=(0.0, -2.0), baumgarte=(5.0, 5.0))
+    m.add_body("bob", mass=1.0, inertia=0.75, position=(0.5 * math.sin(theta0), -0.5 * math.cos(theta0)), angle=theta0)
+    m.revolute("ground", (0.0, 0.0), "bob", (0.0, 0.5), name="pivot")
+    m.rotational_spring("ground", "bob", 0.0, damping=1.0 / q, angle0=0.0, name="damper")
+    m.torque("bob", Harmonic(drive, drive_omega), name="drive")
+    return m
+
+
+def _ball_start(gamma: float, e: float, period: float, gravity: float) -> Tuple[float, float]:
+    """(table phase θ0 [rad], height [m] of the ball above the table at t = 0) that put a ball
+    moving with the table at t = 0 on the one-bounce-a-period orbit of restitution ``e``: it
+    lands at the phase φ of that orbit (cos φ = π(1 − e)/((1 + e) Γ), sin φ > 0) at −g T/2."""
+    w = 2 * math.pi / period
+    amp = gamma * gravity / w**2
+    phi = math.acos(math.pi * (1 - e) / ((1 + e) * gamma))
+    # Landing at ω t_i + θ0 = φ (mod 2π) at −gT/2 from the table's speed A ω cos θ0 at t = 0:
+    # ω t_i = Γ cos θ0 + π, so θ0 + Γ cos θ0 = φ − π (mod 2π), solved by bisection on [−π, π].
+    f = lambda th: th + gamma * math.cos(th)  # noqa: E731
+    target = phi - math.pi
+    while target < f(-math.pi):
+        target += 2 * math.pi
+    while target > f(math.pi):
+        target -= 2 * math.pi
+    lo, hi = -math.pi, math.pi
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if f(mid) < target:
+            lo = mid
+        else:
+            hi = mid
+    th0 = 0.5 * (lo + hi)
+    u0 = amp * w * math.cos(th0)
+    t_hit = (u0 + gravity * period / 2) / gravity
+    return th0, amp * math.sin(phi) - amp * math.sin(th0) + t_hit * (gravity * period / 2 - u0) / 2
+
+
+def bouncing_ball(
+    gamma: float,
+    *,
+    restitution: float = 0.5,
+    frequency: float = 50.0,
+    clearance: float = 2e-3,
+    ball_radius: float = 10e-3,
+    height: Optional[float] = None,
+    table_phase: Optional[float] = None,
+    gravity: float = 9.81,
+) -> Mechanism:
+    """A ball bouncing on a table that vibrates vertically, z = A sin(ω t) with the shaking
+    acceleration Γ = A ω²/g = ``gamma`` (Holmes 1982; docs/physics.md §13): a Scotch yoke
+    (``crank`` turning at ω = 2π ``frequency`` about a pivot 0.1 m beside the table's vertical
+    guide, ``block``, ``table``) moves the table exactly harmonically; the ``ball`` (33 g, a
+    steel ball's mass, radius ``ball_radius`` [m]) hits the bottom of a bore ``clearance`` [m]
+    larger in the table: a dry clearance joint ``"impact"`` (the Flores et al. law,
+    ``restitution`` c_e, no friction). A stiff, critically damped horizontal spring-damper
+    (``"centring"``, to a ground point 1 m aside) and rotational spring-damper (``"spin"``) hold
+    the ball on the vertical line and its angle at 0 (their motions decay at ≥ 250 1/s and their
+    vertical pull is below 1e-4 of its weight), so only its bouncing is left. The ball starts
+    moving with the table (a clearance joint starts held), ``height`` [m] above the table's
+    surface with the table at phase ``table_phase`` [rad] (z = A sin(ω t + table_phase)); by
+    default both are chosen so that it lands at the phase and speed of the one-bounce-a-period
+    orbit of c_e = ``restitution`` (cos φ = π(1 − c_e)/((1 + c_e) Γ), sin φ > 0, v = −g T/2:
+    Holmes 1982) when Γ allows that orbit (else it starts at the table's phase 0 from the orbit's
+    apex g T²/8): dropped anyhow, it may lock onto the table or bounce every other period. The
+    chosen phase is the crank driver's ``angle0``."""
+    w = 2 * math.pi * frequency
+    amp = gamma * gravity / w**2
+    period = 2 * math.pi / w
+    if gamma > math.pi * (1 - restitution) / (1 + restitution):
+        th0, h = _ball_start(gamma, restitution, period, gravity)
+    else:
+        th0, h = 0.0, gravity * period**2 / 8
+    th0 = th0 if table_phase is None else table_phase
+    h = h if height is None else height
+    z0 = amp * math.sin(th0)
+    m = Mechanism(gravity=(0.0, -gravity))
+    m.add_body("crank", mass=0.1, inertia=1e-5, position=(0.1, 0.0), angle=th0)
+    m.add_body("block", mass=0.01, inertia=1e-7, position=(0.1 + amp * math.cos(th0), z0))
+    m.add_body("table", mass=1.0, inertia=1e-3, position=(0.0, z0))
+    mass, e0 = 0.033, -clearance + h
+    m.add_body("ball", mass=mass, inertia=1.3e-6, position=(0.0, z0 + e0))
+    m.revolute("ground", (0.1, 0.0), "crank", (0.0, 0.0), name="crank-ground")
+    m.revolute("crank", (amp, 0.0), "block", (0.0, 0.0), name="crank-pin")
+    m.prismatic("table", (0.0, 0.0), "block", (0.0, 0.0), axis=(1.0, 0.0), name="slot")
+    m.prismatic("ground", (0.0, 0.0), "table", (0.0, 0.0), axis=(0.0, 1.0), name="table-guide")
+    stiffness = mass * 250.0**2
+    y_mid = -clearance + gravity * period**2 / 16  # the ball's mean height over the bounce
+    m.spring("ground", (-1.0, y_mid), "ball", (0.0, 0.0), stiffness, damping=2 * mass * 250.0, free_length=1.0, name="centring")
+    m.rotational_spring("ground", "ball", 1.3e-6 * 1000.0**2, damping=2 * 1.3e-6 * 1000.0, angle0=0.0, name="spin")
+    m.clearance_joint(
+        "impact", "table", (0.0, 0.0), "ball", (0.0, 0.0), journal_radius=ball_radius, clearance=clearance,
+        initial_eccentricity=(0.0, e0), model=Dry(normal_law="flores", restitution=restitution, friction=0.0),
+    )  # fmt: skip
+    m.driver("crank", omega=w, angle0=th0, name="shaker")
+    return m

@@ -10,7 +10,10 @@ import numpy as np
 
 from . import _core, display
 from .errors import InputError, check_choice
+from .dynamics.readings import DynamicsReadings
+from .joint_reactions import JointReactions
 from .joint_readings import JointReadings
+from .points import PointsLike, TrackedPoint, point_motion, tracked_points
 from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMNS, JOINT_MONITOR_UNITS, READING_MONITOR_UNITS
 
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
@@ -69,7 +72,7 @@ def extreme_monitors(
     return out
 
 
-class Result(JointReadings):
+class Result(JointReadings, JointReactions, DynamicsReadings):
     """Outputs of one simulation.
 
     Attributes
@@ -102,6 +105,10 @@ class Result(JointReadings):
         self.description: Optional[Dict[str, Any]] = None
         #: The monitors the run was given (its settings' ``monitors``); set by Mechanism.simulate.
         self.monitor_specs: List[Dict[str, Any]] = []
+        #: Named body points (:class:`clearsim.points.TrackedPoint`) that :meth:`plot_mechanism`,
+        #: :meth:`animate`, :meth:`to_pandas` and :meth:`save` show when given no ``points``: a
+        #: scene's ``[outputs] points`` (set by its run); empty otherwise.
+        self.tracked_points: List[TrackedPoint] = []
 
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"
@@ -163,7 +170,9 @@ class Result(JointReadings):
 
     @property
     def reactions(self) -> np.ndarray:
-        """(N, rows) Lagrange multipliers λ (needs ``outputs=[..., "reactions"]``)."""
+        """(N, rows) Lagrange multipliers λ (needs ``outputs=[..., "reactions"]``), one column per
+        constraint equation in the order of docs/physics.md §1, *Reactions*; by name and in
+        newtons: :meth:`joint_force`, :meth:`joint_torque`, :meth:`driver_torque`."""
         return self._channel("lambda", "reactions")
 
     def energy(self) -> Dict[str, np.ndarray]:
@@ -231,9 +240,17 @@ class Result(JointReadings):
         return self._joint_cols(joint, ["ex_dot", "ey_dot"])
 
     def joint_force(self, joint: str) -> np.ndarray:
-        """(N, 2) total force of the joint on the journal [N] (global); the bearing gets the
-        opposite."""
-        return self._joint_cols(joint, ["fx", "fy"])
+        """(N, 2) force [N] the joint exerts on its second body, global frame; the first body (or
+        the ground) takes the opposite (docs/physics.md §1, *Reactions*). A clearance joint: its
+        total force on the journal (contact, friction, film), stored by default. An ideal joint
+        (needs ``outputs=[..., "reactions"]``): a revolute joint's force on ``body_b`` at its
+        point (an ideal joint made from a clearance joint: on the journal, as the clearance
+        joint's); a prismatic joint's normal force on the slider (``body_b``), perpendicular to
+        the guide, at the slider's point, whose couple is :meth:`joint_torque`. A driver's torque
+        is :meth:`driver_torque`."""
+        if joint in self.joint_names:
+            return self._joint_cols(joint, ["fx", "fy"])
+        return self.ideal_joint_force(joint)
 
     def contact_force(self, joint: str) -> np.ndarray:
         """(N, 2) dry normal force F_N and friction force F_t [N] (before the transition blend)."""
@@ -251,18 +268,52 @@ class Result(JointReadings):
         """(N,) weight of the dry law in the transition blend (P18)."""
         return self._joint_cols(joint, ["w_dry"])[:, 0]
 
-    def error(self, ideal: "Result", body: str, quantity: str = "displacement") -> np.ndarray:
+    def error(self, ideal: "Result", body: str, quantity: str = "displacement", point: Optional[Sequence[float]] = None) -> np.ndarray:
         """Error of a body's motion against the ideal mechanism's run on the same output grid
-        (docs/physics.md §5): (N, 3) array of this response minus the ideal one for
+        (docs/physics.md §5), over the outputs both runs have: without ``point``, the (N, 3)
+        error of the body's centroid and angle, this response minus the ideal one for
         ``quantity`` = ``"displacement"`` [m, m, rad], ``"velocity"`` [m/s, m/s, rad/s] or
-        ``"acceleration"`` [m/s², m/s², rad/s²]."""
-        getters = {"displacement": Result.position, "velocity": Result.velocity, "acceleration": Result.acceleration}
-        check_choice("quantity", quantity, list(getters))
+        ``"acceleration"`` [m/s², m/s², rad/s²]; with ``point=(x, y)`` [m] (in the body's frame,
+        as joints take theirs), the (N, 2) error of that point's global x, y [m, m/s or m/s²]
+        (:meth:`point`)."""
+        check_choice("quantity", quantity, list(BODY_QUANTITIES))
         n = min(len(self.t), len(ideal.t))
         if not np.allclose(self.t[:n], ideal.t[:n], rtol=0, atol=1e-12 * (1 + abs(float(self.t[n - 1])) if n else 1)):
             raise InputError("invalid ideal: it was not run on the same output grid", field="ideal", value=ideal)
+        if point is not None:
+            return self.point(body, point, quantity)[:n] - ideal.point(body, point, quantity)[:n]
+        getters = {"displacement": Result.position, "velocity": Result.velocity, "acceleration": Result.acceleration}
         get = getters[quantity]
         return get(self, body)[:n] - get(ideal, body)[:n]
+
+    # ------------------------------------------------------------------ points
+    def point(self, body: str, point: Sequence[float], quantity: str = "displacement") -> np.ndarray:
+        """(N, 2) global motion of the point ``point`` = (x, y) [m] fixed on ``body`` (in the
+        body's frame, as joints take theirs), from the stored outputs: ``quantity``
+        ``"displacement"`` its position r + A p [m], ``"velocity"`` ṙ + θ̇ B p [m/s] or
+        ``"acceleration"`` r̈ + θ̈ B p − θ̇² A p [m/s²] (A the body's rotation, B p = A p turned
+        +90°; docs/physics.md §5, *Points*). ``point=(0, 0)`` is the centroid. Needs the
+        ``"states"`` output, and ``"accelerations"`` for the acceleration (both stored by default)."""
+        check_choice("quantity", quantity, list(BODY_QUANTITIES))
+        k = self._body(body)
+        cols = slice(3 * k, 3 * k + 3)
+        pose = self._channel("q", "states")[:, cols]
+        rate = self._channel("qd", "states")[:, cols] if quantity != "displacement" else None
+        accel = self._channel("qdd", "accelerations")[:, cols] if quantity == "acceleration" else None
+        return point_motion(pose, rate, accel, point, quantity)  # type: ignore[arg-type]
+
+    def errors_table(self, ideal: "Result", bodies: Optional[Sequence[str]] = None, points: Optional[PointsLike] = None, quantities: Optional[Sequence[str]] = None) -> Any:
+        """The errors against the ideal run ``ideal`` (:meth:`error`) as a pandas DataFrame
+        indexed by time ``t`` [s]: per body in ``bodies`` (default: every body, unless ``points``
+        are given) the columns ``<body>.<quantity>_error.<x|y|theta>``, per named point of
+        ``points`` (``{"tool": ("coupler", (0.1, 0.02))}``, body frame [m]) the columns
+        ``<name>.<quantity>_error.<x|y>``, for each ``quantity`` (default ``"displacement"``,
+        ``"velocity"`` and ``"acceleration"``); ``df.attrs["units"]`` gives each column's unit.
+        The same columns as ``clearsim run``'s ``errors.csv``. Needs pandas
+        (``pip install 'clearsim[io]'``)."""
+        from . import export
+
+        return export.errors_table(self, ideal, bodies, points, quantities)
 
     # ------------------------------------------------------------------ extremes
     def extremes(self, name: str, quantity: str, component: Optional[str] = None) -> Extremes:
@@ -304,36 +355,55 @@ class Result(JointReadings):
         )
 
     # ------------------------------------------------------------------ data out
-    def plot_mechanism(self, t: float, *, magnify: Optional[float] = None, ax: Any = None) -> Any:
+    def plot_mechanism(self, t: float, *, magnify: Optional[float] = None, ax: Any = None, points: Optional[PointsLike] = None, trace: bool = False) -> Any:
         """A figure of the mechanism at time ``t`` [s] of the run (positions interpolated
         between stored outputs), clearances magnified (``magnify``; default: the largest
-        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint)."""
-        from . import draw
+        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint).
+        ``points`` (``{"tool": ("coupler", (0.1, 0.02))}``, body frame [m]; default: the
+        :attr:`tracked_points`, a scene's ``[outputs] points``) are marked and named; with
+        ``trace=True`` each one's path over the whole run is drawn too (from every stored output)."""
+        from . import draw, draw_points
 
         self._need_description()
+        named = self._points(points)
+        if trace and not named:
+            raise InputError("invalid trace = True: no points to trace (give points={name: (body, (x, y))})", field="trace", value=trace)
         q = draw.states_at(self, np.array([float(t)]))[0]
-        return draw.plot_pose(self.description, q, magnify=magnify, t=float(t), ax=ax)  # type: ignore[arg-type]
+        fig = draw.plot_pose(self.description, q, magnify=magnify, t=float(t), ax=ax)  # type: ignore[arg-type]
+        if named:
+            draw_points.add_to_pose(fig.axes[0] if ax is None else ax, self, q, named, trace)
+        return fig
 
-    def animate(self, path: Any, *, speed: float = 1.0, magnify: Optional[float] = None, fps: int = 25, **kwargs: Any) -> Any:
+    def _points(self, points: Optional[PointsLike]) -> List[TrackedPoint]:
+        """The named points of ``points``, checked, or the :attr:`tracked_points` when ``None``."""
+        return list(self.tracked_points) if points is None else tracked_points(points, self.body_names)
+
+    def animate(self, path: Any, *, speed: float = 1.0, magnify: Optional[float] = None, fps: int = 25, points: Optional[PointsLike] = None, **kwargs: Any) -> Any:
         """Animate the run into ``path`` (``.gif``, or ``.mp4`` with ffmpeg) at ``speed`` × real
         time, clearances magnified, with each clearance joint's journal orbit in an inset
-        (:func:`clearsim.draw.animate`). Returns the path."""
+        (:func:`clearsim.draw.animate`); ``points`` (as :meth:`plot_mechanism`) are marked and
+        draw their path as the run goes. Returns the path."""
         from . import draw
 
         self._need_description()
+        kwargs["points"] = self._points(points)
         return draw.animate(self, path, speed=speed, magnify=magnify, fps=fps, **kwargs)
 
     def _need_description(self) -> None:
         if self.description is None:
             raise InputError("this result does not carry its mechanism (make it with Mechanism.simulate)", field="result", value=None)
 
-    def to_pandas(self) -> Any:
+    def to_pandas(self, points: Optional[PointsLike] = None) -> Any:
         """A pandas DataFrame indexed by time ``t`` [s], one column per stored output
-        (``slider9.y`` [m], ``slider9.y_dot`` [m/s], ``A.ex`` [m], ...); ``df.attrs["units"]``
-        gives the units. Needs pandas (``pip install 'clearsim[io]'``)."""
+        (``slider9.y`` [m], ``slider9.y_dot`` [m/s], ``A.ex`` [m], ...; with ``"reactions"``
+        stored, each ideal joint's ``fx``, ``fy`` [N] (a prismatic one also ``torque`` [N m]) and
+        each driver's ``torque`` [N m], as :meth:`joint_force`), and per named point of
+        ``points`` (``{"tool": ("coupler", (0.1, 0.02))}``) ``tool.x``, ``tool.x_dot``,
+        ``tool.x_ddot``, ... (:meth:`point`); ``df.attrs["units"]`` gives the units. Errors
+        against an ideal run: :meth:`errors_table`. Needs pandas (``pip install 'clearsim[io]'``)."""
         from . import export
 
-        return export.to_pandas(self)
+        return export.to_pandas(self, self._points(points))
 
     def to_xarray(self) -> Any:
         """An xarray Dataset over ``time`` [s] with ``position``/``velocity``/``acceleration``
@@ -343,12 +413,12 @@ class Result(JointReadings):
 
         return export.to_xarray(self)
 
-    def save(self, path: Any) -> Any:
-        """Write to ``.csv`` (units in the column names) or ``.nc`` (NetCDF, via xarray);
-        returns the path."""
+    def save(self, path: Any, points: Optional[PointsLike] = None) -> Any:
+        """Write to ``.csv`` (units in the column names; the columns of :meth:`to_pandas`, with
+        ``points`` as there) or ``.nc`` (NetCDF, via xarray; no points); returns the path."""
         from . import export
 
-        return export.save(self, path)
+        return export.save(self, path, self._points(points))
 
     def summary(self) -> Dict[str, Any]:
         out: Dict[str, Any] = dict(self.stats)
@@ -359,6 +429,9 @@ class Result(JointReadings):
         bearings = self.bearing_summary()
         if bearings:
             out["bearings"] = bearings
+        reactions = self.reaction_summary()
+        if reactions:
+            out["reactions"] = reactions
         out["failure"] = None if self.failure is None else str(self.failure)
         return out
 

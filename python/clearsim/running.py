@@ -17,7 +17,9 @@ from . import _core
 from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
+from .dynamics.readings import section_spec
 from .joint_readings import film_monitors
+from .points import PointsLike, tracked_points
 from .result import Result, extreme_monitors
 from .schema import ATOL, COMPONENTS, DEFAULT_OUTPUTS, H_MIN, INTEGRATORS, MAX_STEPS, OUTPUTS, RTOL
 
@@ -41,6 +43,7 @@ class RunOptions(TypedDict, total=False):
     max_seconds: Optional[float]  # [s] of wall time
     extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
+    sections: Union[None, float, Tuple[float, float]]  # Poincaré sections: period [s] or (period [s], phase [rad])
 
 #: Most outputs a dt_out grid may ask for (each holds every stored channel; the core's
 #: ``MAX_OUTPUTS``, which checks it).
@@ -153,15 +156,20 @@ class Running:
         check_choice("component", component, COMPONENTS)
         return 3 * b + COMPONENTS.index(component) + (3 * len(self._bodies) if velocity else 0)
 
-    def plot(self, t: float = 0.0, *, magnify: Optional[float] = None, ax: Any = None) -> Any:
+    def plot(self, t: float = 0.0, *, magnify: Optional[float] = None, ax: Any = None, points: Optional[PointsLike] = None) -> Any:
         """A figure of the mechanism as assembled at time ``t`` [s]: bodies, joints, drivers,
         force elements and the clearance joints magnified (``magnify``; default: the largest
-        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint).
+        clearance drawn at 2 % of the mechanism's size, the factor written beside each joint),
+        and the named ``points`` (``{"tool": ("coupler", (0.1, 0.02))}``, body frame [m]) marked.
         Check a scene you wrote with it before running."""
-        from . import draw
+        from . import draw, draw_points
 
+        named = tracked_points(points, self.body_names) if points is not None else []
         q = self.initial_state(float(t))[: 3 * len(self._bodies)]
-        return draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
+        fig = draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
+        if named:
+            draw_points.mark_pose(fig.axes[0] if ax is None else ax, self.body_names, q, named)
+        return fig
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
         """Consistent state y0 = (q0, q̇0) at ``t0`` [s]: the pose given (the pose at t = 0, the
@@ -210,6 +218,7 @@ class Running:
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[str]] = False,
         extremes_from: Optional[float] = None,
+        sections: Union[None, float, Tuple[float, float]] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`).
 
@@ -259,6 +268,8 @@ class Running:
         if extremes is not False:
             start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
+        if sections is not None:
+            settings["sections"] = section_spec(sections)
         films = film_monitors(self.description(), self.clearance_joint_names, t0, t_end)
         if films:
             settings["monitors"] = settings.get("monitors", []) + films
@@ -289,11 +300,13 @@ class Running:
             (increasing, inside [t0, t_end]; they take precedence over dt_out); outputs come from
             the dense output and never shorten a step.
         outputs:
-            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``,
-            ``"joints"``, ``"violation"`` (default: all but ``"reactions"``, ``"energy"`` and
-            ``"film"``); ``"energy"`` the energy books (:meth:`Result.energy`), ``"film"`` each
-            lubricated joint's oil flow and peak pressure (:meth:`Result.flow`,
-            :meth:`Result.peak_pressure`; a finite film solves its Reynolds equation at each output).
+            Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``
+            (the ideal joints' forces and drivers' torques: :meth:`Result.joint_force`,
+            :meth:`Result.driver_torque`), ``"joints"``, ``"violation"``, ``"energy"`` (the
+            energy books, :meth:`Result.energy`), ``"film"`` (each lubricated joint's oil flow
+            and peak pressure, :meth:`Result.flow`, :meth:`Result.peak_pressure`; a finite film
+            solves its Reynolds equation at each output) (default: all but ``"reactions"``,
+            ``"energy"`` and ``"film"``).
         h_max, h_min, max_steps:
             Step limits [s] and the step budget.
         max_seconds:
@@ -305,6 +318,11 @@ class Running:
             :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on: independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
+        sections:
+            Poincaré sections: ``period`` [s] or ``(period, phase)`` (phase [rad], default 0):
+            the stored channels at the exact times t_k = (k + phase/2π) · period in [t0, t_end]
+            (t counted from 0), from the integrator's dense output whatever ``dt_out``;
+            :meth:`Result.poincare` reads them.
 
         progress:
             Show a progress bar (simulated time, with the time left) for runs that take longer
@@ -461,6 +479,8 @@ class Running:
         self._check_shift(q0)
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
+        if settings is not None and "sections" in settings:
+            raw["section_settings"] = settings["sections"]
         res = Result(raw, self.body_names, self.clearance_joint_names)
         res.description = self.description()
         res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []

@@ -22,7 +22,7 @@ use crate::laws::geometry::{BearingGeometry, FilmState};
 use std::sync::{Arc, Mutex};
 
 /// The film content of one joint over a run.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct FilmContent {
     pub film: JfoFilm,
     /// The fill θ_f ∈ [0, 1] of every node by generation parity: `content[g % 2]` is generation g.
@@ -181,4 +181,17 @@ pub fn readings(g: &BearingGeometry, s: FilmState, memory: &super::ImpactMemory,
         pressure.push(0.0);
     }
     (r, Some(crate::laws::film_field::FilmField { theta, z, pressure }))
+}
+
+/// Copy the impact memory `from` into `to` with every film content copied too (not shared): for
+/// a second integration of the same mechanism beside a run (a Lyapunov shadow), which advances
+/// its own content.
+pub fn copy_detached(to: &mut [super::ImpactMemory], from: &[super::ImpactMemory]) {
+    to.clone_from_slice(from);
+    for m in to.iter_mut() {
+        if let Some(c) = m.film.take() {
+            let own = c.lock().unwrap_or_else(|e| e.into_inner()).clone();
+            m.film = Some(own.shared());
+        }
+    }
 }

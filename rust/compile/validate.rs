@@ -5,24 +5,7 @@ use std::collections::HashSet;
 use crate::description::*;
 use crate::error::{Error, Result};
 
-/// A number as it appears in a message: as Python writes it (`repr`), which is how the user gave
-/// it: `2.0`, `0.001`, `1e-06`, `1e+20`, `nan`, `-inf` (Rust's `Display` would print 1e-300 with
-/// 300 digits). Run settings' messages ([`crate::settings`]) write their numbers the same way.
-pub(crate) fn num(v: f64) -> String {
-    let a = v.abs();
-    if v.is_nan() {
-        "nan".to_string()
-    } else if a.is_infinite() {
-        (if v > 0.0 { "inf" } else { "-inf" }).to_string()
-    } else if a == 0.0 || (1e-4..1e16).contains(&a) {
-        format!("{v:?}") // shortest round-trip digits, with ".0" on whole numbers
-    } else {
-        let s = format!("{v:e}"); // 1e-6, 1.5e20
-        let (mantissa, exp) = s.split_once('e').unwrap_or((&s, "0"));
-        let (sign, digits) = exp.strip_prefix('-').map_or(("+", exp), |d| ("-", d));
-        format!("{mantissa}e{sign}{digits:0>2}")
-    }
-}
+pub(crate) use crate::error::num;
 
 fn finite(field: &str, v: f64) -> Result<()> {
     if v.is_finite() {
@@ -438,6 +421,7 @@ fn validate_profile(f: &str, p: &Profile, nb: usize) -> Result<()> {
             }
             validate_table(f, table)
         }
+        Profile::Harmonic(h) => crate::constraints::angle_law::check_harmonic(f, h),
     }
 }
 

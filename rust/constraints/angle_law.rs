@@ -1,7 +1,7 @@
 //! Prescribed angle laws θ(t) of driving constraints, with their first two time derivatives.
 
 use crate::error::{Error, Result};
-use crate::description::AngleLaw;
+use crate::description::{AngleLaw, Harmonic};
 
 /// A driver law ready for evaluation: θ(t), θ'(t), θ''(t).
 #[derive(Debug, Clone, PartialEq)]
@@ -11,6 +11,8 @@ pub enum CompiledAngleLaw {
     /// Natural cubic spline through (t_k, θ_k) with second derivatives `m_k`; linear (C²)
     /// continuation outside the samples.
     Spline { t: Vec<f64>, y: Vec<f64>, m: Vec<f64> },
+    /// θ = offset + amplitude · cos(ω t + phase).
+    Harmonic(Harmonic),
 }
 
 impl CompiledAngleLaw {
@@ -48,6 +50,10 @@ impl CompiledAngleLaw {
                 let m = natural_spline_moments(times, angles);
                 CompiledAngleLaw::Spline { t: times.clone(), y: angles.clone(), m }
             }
+            AngleLaw::Harmonic(h) => {
+                check_harmonic(field, h)?;
+                CompiledAngleLaw::Harmonic(*h)
+            }
         })
     }
 
@@ -67,8 +73,24 @@ impl CompiledAngleLaw {
                 (p, d1, d2)
             }
             CompiledAngleLaw::Spline { t: ts, y, m } => spline_eval(ts, y, m, t),
+            CompiledAngleLaw::Harmonic(h) => h.eval(t),
         }
     }
+}
+
+/// Every check of a [`Harmonic`] (a load's or a driver's), naming `field`'s parts: amplitude,
+/// phase and offset finite, omega positive and finite \[rad/s\].
+pub fn check_harmonic(field: &str, h: &Harmonic) -> Result<()> {
+    use crate::error::num;
+    for (part, v) in [("amplitude", h.amplitude), ("phase", h.phase), ("offset", h.offset)] {
+        if !v.is_finite() {
+            return Err(Error::invalid(format!("{field}.{part}"), num(v), "must be a finite number"));
+        }
+    }
+    if !(h.omega > 0.0 && h.omega.is_finite()) {
+        return Err(Error::invalid(format!("{field}.omega"), num(h.omega), "must be a positive, finite angular frequency [rad/s]"));
+    }
+    Ok(())
 }
 
 fn check_finite(field: &str, v: f64) -> Result<()> {
@@ -147,6 +169,22 @@ mod tests {
         assert!((p - 1.234f64.sin()).abs() < 1e-8);
         assert!((d1 - 1.234f64.cos()).abs() < 1e-5);
         assert!((d2 + 1.234f64.sin()).abs() < 1e-3);
+    }
+
+    #[test]
+    fn harmonic_law_and_its_derivatives() {
+        let h = Harmonic { amplitude: 0.4, omega: 3.0, phase: -0.5, offset: 1.0 };
+        let law = CompiledAngleLaw::compile(&AngleLaw::Harmonic(h), "driver 'd'").unwrap();
+        let t = 0.37;
+        let (p, d1, d2) = law.eval(t);
+        let arg = 3.0 * t - 0.5;
+        assert!((p - (1.0 + 0.4 * f64::cos(arg))).abs() < 1e-15);
+        assert!((d1 + 1.2 * f64::sin(arg)).abs() < 1e-15);
+        assert!((d2 + 3.6 * f64::cos(arg)).abs() < 1e-14);
+        let bad = CompiledAngleLaw::compile(&AngleLaw::Harmonic(Harmonic { omega: -1.0, ..h }), "driver 'd'").unwrap_err().to_string();
+        assert_eq!(bad, "invalid driver 'd'.omega = -1.0: must be a positive, finite angular frequency [rad/s]");
+        let bad = CompiledAngleLaw::compile(&AngleLaw::Harmonic(Harmonic { amplitude: f64::NAN, ..h }), "driver 'd'").unwrap_err().to_string();
+        assert_eq!(bad, "invalid driver 'd'.amplitude = nan: must be a finite number");
     }
 
     #[test]

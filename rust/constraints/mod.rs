@@ -126,4 +126,98 @@ impl Constraint {
             }
         }
     }
+
+    /// What this constraint exerts on its second body — body b of a joint (for an ideal joint
+    /// made from a clearance joint: the journal), a driver's driven body — from its own
+    /// multipliers `lambda` (its `rows()` entries of λ), in the global frame: `[fx, fy, torque]`,
+    /// the force \[N\] through the joint's point on that body and a couple \[N m\],
+    /// counter-clockwise positive (docs/physics.md §1, *Reactions*). Together they are the part
+    /// of the constraint force −Φqᵀλ on that body; the first body (or the ground) takes the
+    /// opposite force at the same place and the opposite couple.
+    ///
+    /// - revolute: F = (λ₀, λ₁) at s_b, no couple (Φ = r_a + A_a s_a − r_b − A_b s_b);
+    /// - prismatic: F = −λ₀ n at s_b with n = A_a u⊥ the guide's unit normal (a force normal to
+    ///   the guide) and the couple −λ₁ that keeps the relative angle;
+    /// - driver: no force, the driving torque −λ₀ on its body.
+    #[inline]
+    pub fn reaction(&self, kin: &[BodyKin], lambda: &[f64]) -> [f64; 3] {
+        match self {
+            Constraint::Revolute { .. } => [lambda[0], lambda[1], 0.0],
+            Constraint::Prismatic { a, u_perp, .. } => {
+                let n = a.map_or(BodyKin::GROUND, |i| kin[i as usize]).rot(*u_perp);
+                [-lambda[0] * n.x, -lambda[0] * n.y, -lambda[1]]
+            }
+            Constraint::Driver { .. } => [0.0, 0.0, -lambda[0]],
+        }
+    }
+
+    /// The body [`Constraint::reaction`] acts on and its point there (body frame; `None`: the
+    /// ground).
+    pub fn second_body(&self) -> (Option<u32>, V2) {
+        match self {
+            Constraint::Revolute { b, sb, .. } => (*b, *sb),
+            Constraint::Prismatic { b, sb, .. } => (Some(*b), *sb),
+            Constraint::Driver { b, .. } => (Some(*b), V2::default()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::description::AngleLaw;
+
+    /// The reaction on the second body equals the part of −Φqᵀλ on it (force, and moment about its
+    /// centroid = (A_b s_b) × F + couple), and the first body takes the opposite force at the
+    /// same global point and the opposite couple: a second method, from the Jacobian rows.
+    #[test]
+    fn reactions_are_the_constraint_force_on_the_second_body() {
+        let kin = [BodyKin::new(&[0.3, -0.2, 0.7], &[1.0, 2.0, 3.0]), BodyKin::new(&[-0.1, 0.4, -1.2], &[0.5, -1.5, -2.0])];
+        let law = CompiledAngleLaw::compile(&AngleLaw::ConstantSpeed { angle0: 0.1, omega: 2.0 }, "d").unwrap();
+        let cases = [
+            Constraint::Revolute { a: Some(0), sa: V2::new(0.2, 0.05), b: Some(1), sb: V2::new(-0.1, 0.03), offset: V2::default() },
+            Constraint::Revolute { a: None, sa: V2::new(0.2, 0.05), b: Some(1), sb: V2::new(-0.1, 0.03), offset: V2::default() },
+            Constraint::Prismatic { a: Some(0), sa: V2::new(0.1, -0.02), u_perp: V2::new(-0.6, 0.8), b: 1, sb: V2::new(0.04, 0.01), theta0: 0.3 },
+            Constraint::Prismatic { a: None, sa: V2::new(0.1, -0.02), u_perp: V2::new(0.0, 1.0), b: 1, sb: V2::new(0.0, 0.0), theta0: 0.0 },
+            Constraint::Driver { b: 1, law },
+        ];
+        let lambda = [2.5, -7.25];
+        for con in &cases {
+            let m = con.rows();
+            let (mut phi, mut phi_t, mut gamma, mut jac) = ([0.0; 2], [0.0; 2], [0.0; 2], [JacRow::default(); 2]);
+            con.eval(0.2, &kin, &mut phi[..m], &mut phi_t[..m], &mut gamma[..m], &mut jac[..m]);
+            // −Φqᵀλ, body by body
+            let mut g = [[0.0; 3]; 2];
+            for (row, l) in jac[..m].iter().zip(&lambda[..m]) {
+                for k in 0..row.count as usize {
+                    for c in 0..3 {
+                        g[row.bodies[k] as usize][c] -= row.coef[k][c] * l;
+                    }
+                }
+            }
+            let [fx, fy, tq] = con.reaction(&kin, &lambda[..m]);
+            let f = V2::new(fx, fy);
+            let (b, sb) = con.second_body();
+            let b = b.unwrap() as usize;
+            let arm = kin[b].rot(sb);
+            let want = [fx, fy, arm.cross(f) + tq];
+            for c in 0..3 {
+                assert!((g[b][c] - want[c]).abs() < 1e-12, "{con:?}: body b, {c}: {} vs {}", g[b][c], want[c]);
+            }
+            // the first body (if any) takes −F and −couple: a revolute joint at its own point
+            // (the two points coincide once assembled), a guide where the slider's point is
+            let (a, at) = match con {
+                Constraint::Revolute { a, sa, .. } => (*a, a.map(|a| kin[a as usize].rot(*sa))),
+                Constraint::Prismatic { a, .. } => (*a, a.map(|a| kin[b].point(sb).sub(kin[a as usize].r()))),
+                Constraint::Driver { .. } => (None, None),
+            };
+            if let (Some(a), Some(at)) = (a, at) {
+                let a = a as usize;
+                let want = [-fx, -fy, at.cross(f.scale(-1.0)) - tq];
+                for c in 0..3 {
+                    assert!((g[a][c] - want[c]).abs() < 1e-12, "{con:?}: body a, {c}: {} vs {}", g[a][c], want[c]);
+                }
+            }
+        }
+    }
 }

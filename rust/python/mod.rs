@@ -171,9 +171,9 @@ fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, P
     Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
 }
 
-fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    let rec = &out.recording;
+/// The channels of a recording into `d` (`t`, `q`, `qd`, `qdd`, `lambda`, `joints`,
+/// `temperature`, `violation`, `energy`: those it holds).
+fn recording_into<'py>(py: Python<'py>, d: &Bound<'py, PyDict>, rec: &crate::record::Recording) -> PyResult<()> {
     let n = rec.coordinates;
     let ch = rec.channels.unwrap_or_default();
     d.set_item("t", PyArray1::from_slice(py, &rec.t))?;
@@ -186,6 +186,8 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
     }
     if ch.reactions {
         d.set_item("lambda", array2(py, &rec.lambda, rec.constraint_rows)?)?;
+        let rows = rec.t.len();
+        d.set_item("reactions", PyArray1::from_slice(py, &rec.reactions).reshape([rows, rec.constraints, 3])?)?;
     }
     if ch.joints {
         let nj = rec.clearance_joints;
@@ -203,7 +205,30 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
         d.set_item("energy", array2(py, &rec.energy, crate::energy::ENERGY_COLUMNS.len())?)?;
     }
     if ch.film {
-        film::recorded(py, rec, &d)?;
+        film::recorded(py, rec, d)?;
+    }
+    Ok(())
+}
+
+fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    recording_into(py, &d, &out.recording)?;
+    if let Some(rec) = &out.sections {
+        let sd = PyDict::new(py);
+        recording_into(py, &sd, rec)?;
+        d.set_item("sections", sd)?;
+    }
+    if let Some(book) = &out.lyapunov {
+        let ld = PyDict::new(py);
+        ld.set_item("t", PyArray1::from_slice(py, &book.t))?;
+        ld.set_item("log_growth", PyArray1::from_slice(py, &book.log_growth))?;
+        ld.set_item("steps", book.steps)?;
+        ld.set_item("rhs_evaluations", book.rhs_evals)?;
+        match &book.error {
+            None => ld.set_item("error", py.None())?,
+            Some(e) => ld.set_item("error", to_pyerr(py, e).value(py))?,
+        }
+        d.set_item("lyapunov", ld)?;
     }
     d.set_item("q0", PyArray1::from_slice(py, &out.q0))?;
     d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;

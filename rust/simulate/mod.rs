@@ -2,12 +2,16 @@
 //! [`OdeSystem`] ([`MechanismSystem`]: right-hand side, outputs, the step bookkeeping), and
 //! what a failed run keeps. The system's other roles live beside it: `observe.rs` (monitors,
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
-//! `newton.rs` (the implicit methods' Jacobian), `diagnosis.rs` (where a failed run stood).
+//! `newton.rs` (the implicit methods' Jacobian), `diagnosis.rs` (where a failed run stood),
+//! `sections.rs` (Poincaré sections at exact times), `lyapunov.rs` (a shadow run for the largest
+//! Lyapunov exponent).
 
 mod cavitation;
 mod diagnosis;
+pub mod lyapunov;
 mod newton;
 mod observe;
+pub mod sections;
 mod switching;
 
 use std::time::Instant;
@@ -24,6 +28,8 @@ use crate::model::Model;
 use crate::monitor::{Monitor, MonitorResult};
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
+use lyapunov::{LyapunovBook, Shadow};
+use sections::Sections;
 
 pub use crate::settings::RunSettings;
 
@@ -54,6 +60,10 @@ pub struct RunOutput {
     pub monitors: Vec<MonitorResult>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
+    /// The channels at the section times ([`RunSettings::sections`]), when asked for.
+    pub sections: Option<Recording>,
+    /// What the Lyapunov shadow found ([`RunSettings::lyapunov`]), when asked for.
+    pub lyapunov: Option<LyapunovBook>,
 }
 
 /// The model as an [`OdeSystem`]. Its fields by the file that works them: this one (the
@@ -103,6 +113,10 @@ pub struct MechanismSystem<'a> {
     /// switching point ([`crate::clearance::grazing`]): the run's `atol` (0 outside a run).
     pub gap_resolution: f64,
 
+    // sections.rs, lyapunov.rs
+    pub sections: Option<Sections>,
+    pub shadow: Option<Box<Shadow<'a>>>,
+
     // newton.rs
     /// Columns `S e_k` of the constrained mobility (m × m, column-major; only the columns of
     /// clearance-joint bodies are filled) and which are current.
@@ -149,6 +163,8 @@ impl<'a> MechanismSystem<'a> {
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
             gap_resolution: 0.0,
+            sections: None,
+            shadow: None,
         }
     }
 
@@ -195,6 +211,12 @@ impl OdeSystem for MechanismSystem<'_> {
         // A viscosity that followed the oil temperature changed f(t1, y1): an explicit method's
         // last stage is stale (rust/clearance/thermal.rs).
         let heated = self.memory.iter().zip(&self.step_memory).any(|(a, b)| a.viscosity != b.viscosity);
+        if self.sections.is_some() {
+            self.record_sections(t1, dense)?;
+        }
+        if self.shadow.is_some() {
+            self.follow_shadow(t0, t1, dense);
+        }
         self.last_t = t1;
         self.last_y.copy_from_slice(y1);
         self.accepted += 1;
@@ -266,6 +288,8 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                sections: None,
+                lyapunov: None,
             })
         }
     };
@@ -284,6 +308,18 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     sys.wear_mark = rs.wear_mark;
     sys.wear_start(rs.t0, &y0);
     sys.heat_start(rs.t0);
+    if let Some(spec) = &rs.sections {
+        sys.sections = Some(Sections::new(spec, rs.t0, rs.t_end, rs.channels, model));
+        sys.sections_start(rs.t0, &y0)?;
+    }
+    if let Some(spec) = rs.lyapunov {
+        let mut shadow = Shadow::new(model, spec, method, rs.ode.clone());
+        shadow.sys.gap_resolution = rs.ode.atol;
+        if spec.start == rs.t0 {
+            shadow.start_at(rs.t0, &y0, &sys.memory);
+        }
+        sys.shadow = Some(Box::new(shadow));
+    }
     sys.last_t = rs.t0;
     sys.last_y.copy_from_slice(&y0);
     let (stats, error, failure_joint) = match integrate(&mut sys, method, rs.t0, &y0, rs.t_end, &t_out, &rs.ode) {
@@ -313,5 +349,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
         wear: sys.wear,
+        sections: sys.sections.map(|s| s.recording),
+        lyapunov: sys.shadow.map(|s| s.book),
     })
 }

@@ -38,6 +38,8 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
         max_wall_time: None,
         monitors: Vec::new(),
         wear_mark: None,
+        sections: None,
+        lyapunov: None,
     }
 }
 

@@ -11,6 +11,7 @@ import pytest
 
 import clearsim
 from clearsim import _core, scene
+from clearsim.scene.sweep import SWEEP_KEYS
 from clearsim.scene import alias, settings
 from clearsim.scene import builder as scene_builder
 from clearsim.scene import study as study_scene
@@ -49,7 +50,7 @@ def test_radau5s_lead_lives_in_the_readme():
 def test_the_scene_help_documents_every_table_and_key():
     """``pydoc clearsim.scene`` lists every table and key the reader accepts, [study] too."""
     doc = scene.__doc__ or ""
-    tables = {"mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study"}
+    tables = {"mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study", "sweep"}
     for table in tables:
         assert re.search(rf"\[\[?{table}\]\]?", doc), table
     for sub in ("study.input", "study.tolerance", "reliability.allowable", "clearance_joint.dry", "clearance_joint.lubricated"):
@@ -58,6 +59,6 @@ def test_the_scene_help_documents_every_table_and_key():
     keys = {*b._MECHANISM_KEYS, *b._BODY_KEYS, *b._DRIVER_KEYS, *b._CLEARANCE_KEYS, *b._PRISMATIC_CLEARANCE_KEYS,
             *(k for ks in b._JOINT_KEYS.values() for k in ks), *(k for ks in b._FORCE_KEYS.values() for k in ks),
             *settings._SIM_KEYS, *settings._OUTPUT_KEYS, *alias._RELIABILITY_KEYS, *study_scene.STUDY_KEYS,
-            *study_scene.INPUT_KEYS, *study_scene.TOLERANCE_KEYS, *study_scene.OUTPUT_KEYS}  # fmt: skip
+            *study_scene.INPUT_KEYS, *study_scene.TOLERANCE_KEYS, *study_scene.OUTPUT_KEYS, *SWEEP_KEYS}  # fmt: skip
     missing = sorted(k for k in keys if not re.search(rf"\b{k}\b", doc))
     assert not missing, f"keys a scene accepts but pydoc clearsim.scene does not name: {missing}"

@@ -84,6 +84,15 @@ EXPECTED_FAILURES: Dict[Tuple[str, str, str], Tuple[type, str, str]] = {
     ),
 }
 EXIT_ERROR = 2  # clearsim.cli.EXIT_ERROR: a clearsim error, one line on stderr
+#: The point every scene cell tracks on its analysed body ([outputs] points), body frame [m].
+TRACKED, TRACKED_POINT = "tracked", (0.01, 0.005)
+
+
+def _check_point(res: Any, body: str) -> None:
+    """A body point stays at its distance from the centroid, and (0, 0) is the centroid."""
+    offset = res.point(body, TRACKED_POINT) - res.position(body)[:, :2]
+    np.testing.assert_allclose(np.hypot(*offset.T), math.hypot(*TRACKED_POINT), rtol=1e-12)
+    np.testing.assert_array_equal(res.point(body, (0, 0), "velocity"), res.velocity(body)[:, :2])
 
 
 class CommandFailed(Exception):
@@ -221,6 +230,8 @@ def short_scene(name: str, kind: str, t0_turns: float) -> Optional[Dict[str, Any
             study["omega"] = 314.16
     study.pop("tolerance", None)
     study.update(skip_cycles=t0_turns, cycles=SPAN, methods=["monte_carlo", "fosm"], samples=2)
+    # a tracked point on the analysed body (issue 36 item 2): its columns in clearsim run's files
+    data.setdefault("outputs", {})["points"] = [{"name": TRACKED, "body": body, "point": list(TRACKED_POINT)}]
     return data
 
 
@@ -282,6 +293,13 @@ def _run_scene_path(tmp_path: Path, capsys: Any, name: str, kind: str, t0: str, 
             summary = json.loads((out / "summary.json").read_text())
             assert summary["run"]["failure"] is None and "not_written" not in summary
             assert summary["run"]["t_reached"] == pytest.approx(data["simulation"]["t_end"])
+            header = (out / "bodies.csv").read_text().splitlines()[0].split(",")
+            # its x and/or y of each quantity, as [outputs] components and quantities say
+            units = {"position": "m", "velocity": "m/s", "acceleration": "m/s^2"}
+            named = [h for h in header if h.startswith(f"{TRACKED}.")]
+            assert named and all(re.fullmatch(rf"{TRACKED}\.(\w+)\.[xy] \[(.+)\]", h) and units[h.split(".")[1]] == h.split("[")[1][:-1] for h in named), header
+            if data.get("clearance_joint") and data["outputs"].get("ideal", True):  # against the ideal twin
+                assert f"{TRACKED}.displacement_error." in (out / "errors.csv").read_text().splitlines()[0]
             if not plots and data.get("clearance_joint"):
                 assert (out / "orbits.png").stat().st_size > 10_000
         else:
@@ -293,6 +311,7 @@ def _run_scene_path(tmp_path: Path, capsys: Any, name: str, kind: str, t0: str, 
     if path == "simulate":
         res = scene.simulate()
         _check_result(res, sim.t0, sim.t_end)
+        _check_point(res, body)
         if driver is not None:  # the pose at t0 follows the driver (closed form)
             desc = scene.mechanism.description()
             driven = desc["bodies"][next(d["body"] for d in desc["drivers"] if d["name"] == driver)]["name"]
@@ -304,6 +323,8 @@ def _run_scene_path(tmp_path: Path, capsys: Any, name: str, kind: str, t0: str, 
         _check_result(ideal, sim.t0, sim.t_end)
         if not scene.mechanism.clearance_joint_names:
             assert np.array_equal(res.position(body), ideal.position(body))  # the ideal counterpart of an ideal mechanism
+        err = res.error(ideal, body, "displacement", point=TRACKED_POINT)
+        assert err.shape == (len(res.t), 2) and np.all(np.isfinite(err))
     else:  # Study.monte_carlo
         est = scene_study(scene, progress=False).monte_carlo(2)
         assert est.n_runs == 2 and not est.failures, est.failures
@@ -357,6 +378,10 @@ def test_model_path(name, kind, t0, path):
         driven = "crank" if name == "slider_crank" else "crank1"
         theta = res.position(driven)[0, 2]
         assert math.remainder(theta - omega * start, 2 * math.pi) == pytest.approx(0.0, abs=1e-6)
+        # the crank tip (a body point: the crank's centroid is at mid-length) moves at |ω| r
+        r = 0.05 if name == "slider_crank" else 0.10
+        speed = np.hypot(*res.point(driven, (r / 2, 0.0), "velocity").T)
+        np.testing.assert_allclose(speed, abs(omega) * r, rtol=1e-4)
     elif path == "simulate_with_ideal":
         res, ideal = m.simulate_with_ideal(end, t0=start, progress=False, **LOOSE)
         _check_result(res, start, end)

@@ -9,7 +9,8 @@ The package's rooms, each importing only those listed before it: :mod:`.toml_rea
 with line numbers), :mod:`.builder` (the mechanism's tables), :mod:`.settings` (``[simulation]``,
 ``[outputs]``), :mod:`.study` (``[study]`` and the :class:`~clearsim.reliability.Study` it sets
 up), :mod:`.alias` (``[reliability]``, the short form of ``[study]`` with ``methods = ["fosm"]``),
-:mod:`.loader` (:class:`Scene`, :func:`load_scene_file`).
+:mod:`.sweep` (``[sweep]``, a bifurcation diagram for ``clearsim sweep``), :mod:`.loader`
+(:class:`Scene`, :func:`load_scene_file`).
 
 Format
 ------
@@ -46,7 +47,9 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     omega = 523.6                    # rad/s, θ = angle0 + ω t (angle0 [rad], default the
     angle0 = 0.0                     #   body's angle), or rpm = 5000 instead of omega,
     # polynomial = [c0, c1, c2]      # θ = Σ c_k t^k, or
-    # times = [...], angles = [...]  # samples [s], [rad] through a natural cubic spline
+    # times = [...], angles = [...]  # samples [s], [rad] through a natural cubic spline, or
+    # harmonic = {amplitude = 0.3, omega = 20.0, phase = 0.0, offset = 0.0}
+    #                                # θ = offset + amplitude cos(omega t + phase) [rad, rad/s]
     name = "crank-drive"             # optional
 
     [[clearance_joint]]              # revolute joint with radial clearance (docs/physics.md §2)
@@ -102,8 +105,11 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     value = [-50.0, 0.0]             # N (fx, fy), constant, or a table in time or a driver's angle:
     # value = { driver = "crank-drive", angle = [0.0, 2.6, 2.8, 3.1], fx = [0.0, 0.0, -400.0, 0.0], period = 6.283185307179586 }
     # value = { t = [0.0, 0.01], fy = [0.0, 100.0] }
+    # value = [{ amplitude = 20.0, omega = 30.0, phase = 0.0, offset = 0.0 }, 0.0]
+    #                                # a component offset + amplitude cos(omega t + phase) [N, rad/s]
     # frame = "body"                 # components turn with the body (default "global")
-    # torque: body, value [N m] (number or table with torque = [...]), reaction (optional body)
+    # torque: body, value [N m] (number, table with torque = [...], or harmonic
+    #   { amplitude = 1.5, omega = 0.667 }), reaction (optional body)
     # motor: body, stall_torque [N m], no_load_speed [rad/s], angle0 [rad], reaction
     #   (default "ground"): turns the body by torque, instead of a [[driver]]
 
@@ -126,6 +132,12 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     joint_quantities = ["eccentricity", "force"]  # + eccentricity_rate, contact_force,
                                                   #   film_force, state, film_thickness,
                                                   #   friction_torque, power_loss
+    points = [{name = "tool", body = "rod", point = [0.02, 0.015]}]   # body points (body frame,
+                                     #   m; or [[outputs.points]] tables): their global x, y of
+                                     #   each quantity in bodies.csv, errors in errors.csv,
+                                     #   paths in points.png (default: none)
+    reactions = true                 # ideal joints' forces and drivers' torques in reactions.csv,
+                                     #   peaks in the summary (default true)
     ideal = true                     # also run the ideal mechanism; write its response and
                                      #   the errors (default: true if there are clearance joints)
     csv = true                       # default true
@@ -178,6 +190,16 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     input = "rod-slider.clearance"   #   meets a reliability
     reliability = 0.9999
     # bracket = [0.3e-3, 0.6e-3]     # where to look (default ½× to 2× its mean)
+
+    [sweep]                          # optional: `clearsim sweep scene.toml`, a bifurcation diagram
+                                     #   (docs/physics.md §13; python -m pydoc clearsim.scene.sweep)
+    parameter = "crank-drive.omega"  # element.field of the mechanism, SI units
+    values = { start = 100.0, stop = 600.0, count = 200 }   # or a list of values
+    output = { body = "slider", quantity = "acceleration", component = "x" }
+                                     # or { joint = "rod-slider", quantity = "eccentricity" }
+    transient_cycles = 20            # forcing periods before the Poincaré sections are taken
+    cycles = 100                     # periods analysed; lyapunov = "auto" | true | false,
+                                     #   period [s], phase [rad], tol, label: see clearsim.scene.sweep
 
 Elements may come in any order: names that refer to other elements (a joint's bodies, a load
 table's driver) are resolved when the whole file is read. A value that is valid but looks like

@@ -9,6 +9,7 @@ import re
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 from ..errors import InputError
+from ..forces import Harmonic
 from ..joints import Archard, Dry, Lubricated, Thermal, Vogel
 from ..mechanism import Mechanism
 from .toml_reader import REQUIRED, Source, Table, dotted_key
@@ -23,7 +24,9 @@ _FORCE_KEYS = {
 _MECHANISM_KEYS = ("name", "description", "gravity", "baumgarte")
 _BODY_KEYS = ("name", "mass", "inertia", "position", "angle", "ends", "velocity")
 _JOINT_KEYS = {"revolute": ("type", "name", "bodies", "points"), "prismatic": ("type", "name", "bodies", "points", "axis")}
-_DRIVER_KEYS = ("name", "body", "omega", "rpm", "angle0", "polynomial", "times", "angles")
+_DRIVER_KEYS = ("name", "body", "omega", "rpm", "angle0", "polynomial", "times", "angles", "harmonic")
+#: The keys of a harmonic load or driver law (clearsim.Harmonic): offset + amplitude cos(omega t + phase).
+_HARMONIC_KEYS = ("amplitude", "omega", "phase", "offset")
 _PRISMATIC_CLEARANCE_KEYS = (
     "type", "name", "guide_body", "guide_point", "slider_body", "axis", "clearance", "slider_length", "corner_radius", "model", "dry",
 )  # fmt: skip
@@ -145,9 +148,26 @@ class _Builder:
             self._add("force", m, self.force_element, t)
         return m
 
+    def _harmonic(self, table: Table) -> Harmonic:
+        """``{amplitude = ..., omega = ..., phase = ..., offset = ...}`` (phase, offset default 0)."""
+        return self.call(
+            table, Harmonic, table.number("amplitude"), table.number("omega"), table.number("phase", 0.0), table.number("offset", 0.0)
+        )
+
     def _load(self, t: Table, key: str, columns: Sequence[str]) -> Any:
-        """A load: a number, a pair, or an inline table (see :mod:`clearsim.forces`)."""
+        """A load: a number, a pair, an inline table (see :mod:`clearsim.forces`), or a harmonic
+        ``{amplitude = ..., omega = ...}`` (a force: a pair whose components are numbers or such
+        tables)."""
         value = t._get(key, REQUIRED)
+        if isinstance(value, dict) and ("amplitude" in value or "omega" in value):
+            sub = t.table(key, _HARMONIC_KEYS)
+            assert sub is not None
+            return self._harmonic(sub)
+        if isinstance(value, list) and len(value) == 2 and any(isinstance(v, dict) for v in value) and columns != ("torque",):
+            return tuple(
+                self._harmonic(Table(t.src, t.where + (key, k), v, _HARMONIC_KEYS)) if isinstance(v, dict) else t._as_number(key, v)
+                for k, v in enumerate(value)
+            )
         if isinstance(value, dict):
             sub = t.table(key, ("t", "driver", "angle", "period", *columns))
             assert sub is not None
@@ -242,9 +262,11 @@ class _Builder:
             omega: Optional[float] = t.number("rpm") * 2 * math.pi / 60.0
         else:
             omega = t.number("omega", None)
+        harmonic = t.table("harmonic", _HARMONIC_KEYS)
         kwargs = dict(
             omega=omega, angle0=t.number("angle0", None), polynomial=t.numbers("polynomial", None),
             times=t.numbers("times", None), angles=t.numbers("angles", None), name=name,
+            law=None if harmonic is None else self._harmonic(harmonic),
         )  # fmt: skip
         self.call(t, m.driver, body, **kwargs)
 

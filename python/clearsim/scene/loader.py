@@ -20,6 +20,7 @@ from ..result import Result
 from .alias import ReliabilitySettings, read_reliability, scene_fosm
 from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
+from .sweep import SWEEP_KEYS, SweepSettings, parse_sweep
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
 from .toml_reader import Table, read_toml
 
@@ -31,7 +32,9 @@ class SceneRun:
     """The runs of a scene: the clearance run, the ideal run (if made) and the errors.
 
     ``errors[(body, quantity)]`` (quantity ``displacement``, ``velocity``, ``acceleration``) is
-    the (N, 3) error clearance − ideal [SI] of :meth:`Result.error` (common part of both runs); ``reliability[quantity]`` the :class:`clearsim.reliability.FosmResult`.
+    the (N, 3) error clearance − ideal [SI] of :meth:`Result.error` (common part of both runs),
+    ``errors[(point, quantity)]`` the (N, 2) error of a named point of ``[outputs] points``;
+    ``reliability[quantity]`` the :class:`clearsim.reliability.FosmResult`.
     ``failure`` is the :class:`SimulationError` that stopped the clearance run early, if any
     (``result`` then holds the partial result); ``reliability_failure`` says why a scene's
     ``[reliability]`` gave no numbers (the run failed, or its nominal FOSM run did).
@@ -60,6 +63,8 @@ class Scene:
     #: The ``[study]`` table (random inputs, one output and its limit; ``clearsim reliability``):
     #: a :class:`clearsim.scene.study.StudySettings`.
     study: Optional[StudySettings] = None
+    #: The ``[sweep]`` table (a bifurcation diagram; ``clearsim sweep``): :class:`clearsim.scene.sweep.SweepSettings`.
+    sweep: Optional[SweepSettings] = None
     name: str = ""
     description: str = ""
     path: Optional[Path] = None
@@ -124,6 +129,8 @@ class Scene:
                 if label == "ideal" or err.result is None:
                     raise
                 results[label], failure = err.result, err
+        for res in results.values():
+            res.tracked_points = list(self.outputs.points)
         run = SceneRun(self, results[jobs[-1][0]], results.get("ideal"), failure=failure)
         if run.ideal is not None and len(run.result.t):
             bodies = set(self.outputs.bodies) | ({self.reliability.body} if self.reliability else set())
@@ -131,6 +138,9 @@ class Scene:
                 for quantity, error in ERROR_QUANTITIES.items():
                     if _CHANNEL_OF[quantity] in self.simulation.outputs:
                         run.errors[(body, error)] = run.result.error(run.ideal, body, error)
+            for p in self.outputs.points:
+                for quantity in self.outputs.quantities:
+                    run.errors[(p.name, ERROR_QUANTITIES[quantity])] = run.result.error(run.ideal, p.body, ERROR_QUANTITIES[quantity], point=p.point)
         if self.reliability is not None:
             self._fosm(run, progress)
         return run
@@ -162,14 +172,18 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 
 # ====================================================================== reading a scene
 _TOP_KEYS = (
-    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study",
+    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study", "sweep",
 )  # fmt: skip
 
 
 def _needed_channels(outputs: OutputSettings, reliability: Optional[ReliabilitySettings]) -> List[str]:
     needed = ["violation"]
-    if outputs.bodies:
+    if outputs.bodies or outputs.points:
         needed += [_CHANNEL_OF[q] for q in outputs.quantities]
+    if outputs.points:
+        needed.append("states")  # a point's velocity and acceleration read the body's pose and rate
+    if outputs.reactions:
+        needed.append("reactions")
     if outputs.joints:
         needed.append("joints")
     if reliability is not None:
@@ -221,7 +235,14 @@ def load_scene_file(path: PathLike) -> Scene:
     study = None
     if "study" in builder.top:
         study = parse_study(builder.top.table("study", STUDY_KEYS), mech, _drive_speed(mech, builder.drivers))
-    return Scene(mech, sim, outputs, reliability, study=study, name=name, description=description, path=path, _ideal=mech.idealized())
+    sweep = None
+    if "sweep" in builder.top:
+        table = builder.top.table("sweep", SWEEP_KEYS)
+        assert table is not None
+        sweep = parse_sweep(table, mech)
+    return Scene(
+        mech, sim, outputs, reliability, study=study, sweep=sweep, name=name, description=description, path=path, _ideal=mech.idealized()
+    )
 
 
 def load_scene(path: PathLike) -> Mechanism:

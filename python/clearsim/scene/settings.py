@@ -5,15 +5,17 @@ SI units: s, m, rad."""
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from .. import _core
 from ..errors import InputError
 from ..mechanism import Mechanism
+from ..points import TrackedPoint, check_point
 from ..schema import ATOL, COMPONENTS, JOINT_COLUMN_UNITS, OUTPUTS, RTOL
 from .builder import _Builder
-from .toml_reader import Table
+from .toml_reader import Table, dotted_key
 
 #: The body channels ``[outputs].quantities`` names and the unit of each component x, y, theta
 #: (ASCII, as the CSV headers write them). Not :data:`clearsim.schema.BODY_QUANTITIES`, the
@@ -86,9 +88,14 @@ class SimulationSettings:
 
 @dataclass
 class OutputSettings:
-    """The ``[outputs]`` table: what ``clearsim run`` writes (CSV) and plots (PNG)."""
+    """The ``[outputs]`` table: what ``clearsim run`` writes (CSV) and plots (PNG). ``points``:
+    named body points whose motion (global x, y of each of ``quantities``) is written beside
+    the bodies' and whose errors beside theirs; ``reactions``: store the ideal joints' forces and
+    drivers' torques (``reactions.csv``, peaks in the summary)."""
 
     bodies: List[str] = field(default_factory=list)
+    points: List[TrackedPoint] = field(default_factory=list)
+    reactions: bool = True
     quantities: List[str] = field(default_factory=lambda: list(BODY_CHANNELS))
     components: List[str] = field(default_factory=lambda: list(COMPONENTS))
     joints: List[str] = field(default_factory=list)
@@ -101,7 +108,8 @@ class OutputSettings:
 _SIM_KEYS = (
     "t_end", "cycles", "period", "t0", "integrator", "rtol", "atol", "step", "dt_out", "h_max", "h_min", "max_steps", "outputs",
 )  # fmt: skip
-_OUTPUT_KEYS = ("bodies", "quantities", "components", "joints", "joint_quantities", "ideal", "csv", "plots")
+_OUTPUT_KEYS = ("bodies", "points", "quantities", "components", "joints", "joint_quantities", "reactions", "ideal", "csv", "plots")
+_POINT_KEYS = ("name", "body", "point")
 _RELIABILITY_KEYS = ("body", "component", "bin_width", "omega", "t_start", "allowable")
 def _drive_speed(m: Mechanism, order: Sequence[str] = ()) -> Optional[float]:
     """ω [rad/s] of the first constant-speed driver (in the file's ``order`` of names, else by
@@ -154,6 +162,8 @@ def _outputs(b: _Builder, m: Mechanism) -> OutputSettings:
     joints = m.clearance_joint_names
     out = OutputSettings(
         bodies=t.strings("bodies", [], choices=m.body_names),
+        points=_points(t, m),
+        reactions=t.boolean("reactions", True),
         quantities=t.strings("quantities", list(BODY_CHANNELS), choices=tuple(BODY_CHANNELS)),
         components=t.strings("components", list(COMPONENTS), choices=COMPONENTS),
         joints=t.strings("joints", list(joints), choices=joints),
@@ -164,3 +174,51 @@ def _outputs(b: _Builder, m: Mechanism) -> OutputSettings:
     )
     return out
 
+
+
+def _points(t: Table, m: Mechanism) -> List[TrackedPoint]:
+    """``[outputs] points``: ``points = [{name = "tool", body = "coupler", point = [0.1, 0.02]}]``
+    (or the same as ``[[outputs.points]]`` tables), each point [m] in its body's frame; names
+    unique and not a body's or joint's (they head columns beside those)."""
+    taken = set(m.body_names) | set(m.clearance_joint_names) | {j["name"] for j in m.description()["joints"]} | {d["name"] for d in m.description()["drivers"]}
+    out: List[TrackedPoint] = []
+    for k, entry in enumerate(t.array_of_tables("points", _POINT_KEYS)):
+        try:
+            name = entry.string("name")
+            if not name or name in taken or any(p.name == name for p in out):
+                why = "must not be empty" if not name else "is already the name of a body, joint or point"
+                raise entry.error("name", f"invalid {dotted_key(entry.where, 'name')} = {name!r}: {why}", name)
+            body = entry.string("body", choices=m.body_names)
+            xy = entry.point("point")
+            try:
+                xy = check_point(xy, dotted_key(entry.where, "point"))
+            except InputError as err:
+                raise entry.error("point", err.reason, xy) from None
+        except InputError as err:
+            raise _at_inline_entry(t, k, err) from None
+        out.append(TrackedPoint(name, body, xy))
+    return out
+
+
+def _at_inline_entry(t: Table, k: int, err: InputError) -> InputError:
+    """``err`` located at entry ``k`` of an inline ``points = [{...}, {...}]`` array (the reader
+    finds a key's first line in the table: entry 0's); as it is for ``[[outputs.points]]``."""
+    lines = t.src.lines
+    start = t.src.line(t.where, "points")
+    if start is None or not re.match(r"\s*points\s*=\s*\[", lines[start - 1]) or getattr(err, "line", None) is None:
+        return err
+    depth, seen = 0, -1
+    for n in range(start - 1, len(lines)):
+        for ch in lines[n].split("#", 1)[0]:
+            if ch == "{":
+                depth += 1
+                seen += depth == 1
+                if depth == 1 and seen == k:
+                    prefix = f"{t.src.path}:{getattr(err, 'line', None)}: "
+                    reason = str(err)[len(prefix) :] if str(err).startswith(prefix) else str(err)
+                    return InputError(f"{t.src.path}:{n + 1}: {reason}", field=err.field, value=err.value, file=str(t.src.path), line=n + 1)
+            elif ch == "}":
+                depth -= 1
+            elif ch == "]" and depth == 0:
+                return err
+    return err
