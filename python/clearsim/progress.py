@@ -34,9 +34,9 @@ def progress_enabled() -> bool:
     return os.environ.get("CLEARSIM_PROGRESS", "1").strip().lower() not in ("0", "false", "no", "off")
 
 
-def bar(total: float, desc: str, unit: str = "run", *, enabled: bool = True, delay: Optional[float] = None, leave: bool = False, unit_scale: bool = False) -> Any:
+def bar(total: Optional[float], desc: str, unit: str = "run", *, enabled: bool = True, delay: Optional[float] = None, leave: bool = False, unit_scale: bool = False) -> Any:
     """A progress bar over ``total`` units (runs, or simulated seconds with ``unit="s"``) with
-    an estimate of the time left, shown after ``delay`` seconds (``None``: :data:`DELAY`); a
+    an estimate of the time left (``None``: a count with its rate, no end known), shown after ``delay`` seconds (``None``: :data:`DELAY`); a
     disabled bar when ``enabled`` is false or bars are switched off. Use it as a context
     manager; ``update(n)`` advances it."""
     from tqdm.auto import tqdm

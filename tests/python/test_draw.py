@@ -4,6 +4,8 @@ drawing's geometry (bodies where the assembly puts them, journals displaced by m
 import math
 import pickle
 
+import matplotlib
+
 import numpy as np
 import pytest
 from PIL import Image
@@ -142,3 +144,54 @@ def test_a_drawing_moved_to_a_pose_matches_one_drawn_there(scene):
     for a, b in zip(geometry(moved), geometry(fresh)):
         assert np.allclose(a, b, rtol=0, atol=1e-12)
     assert not all(np.allclose(a, b) for a, b in zip(geometry(draw.Drawing(Figure().add_subplot(), res.description, q0, 5.0, size)), geometry(fresh)))
+
+
+def _label_boxes(fig):
+    """The visible labels of a pose's drawing and their boxes [pixels] as the renderer draws them."""
+    from clearsim.label_layout import renderer_of
+
+    renderer = renderer_of(fig)
+    texts = [t for t in fig.axes[0].texts if t.get_visible() and t.get_text()]
+    return texts, [t.get_window_extent(renderer) for t in texts]
+
+
+@pytest.mark.parametrize("scene", ["nine_bar.toml", "press_workpiece.toml", "engine.toml"])
+def test_labels_of_a_shipped_scene_do_not_overlap(scene):
+    """Joint, body, driver and load labels are moved apart where they would overlap (the nine-bar's
+    crank4, drive4 and 'A (c = 0.5 mm, ×10)' were written over each other) and off the magnified
+    bearings, each staying within a few lines of what it names; in the saved figure too."""
+    m = load_scene(SCENES / scene)
+    for fig in (m.plot(), m.plot(t=0.01)):
+        fig.savefig(__import__("io").BytesIO(), format="png")  # the layout the file gets
+        texts, boxes = _label_boxes(fig)
+        assert len(texts) >= 5
+        clash = [(texts[i].get_text(), texts[j].get_text()) for i in range(len(boxes)) for j in range(i + 1, len(boxes)) if boxes[i].overlaps(boxes[j])]
+        assert not clash, clash
+        for t in texts:  # offsets in points from the anchor: a label stays by what it names
+            assert np.hypot(*t.xyann) < 60, (t.get_text(), t.xyann)
+
+
+def test_a_zero_load_draws_no_arrow():
+    """A load that is zero at the drawn time draws neither arrow nor label; a table load draws
+    its value then (its direction), and again nothing where the table is back at zero."""
+    from matplotlib.patches import FancyArrowPatch
+
+    m = clearsim.models.slider_crank("dry", clearance=0.5e-3)
+    m.force("crank", (0.0, 0.0), (0.0, 0.0), name="nothing")
+    m.force("slider", (0.0, 0.0), {"t": [0.0, 0.01, 0.02], "fx": [0.0, -100.0, 0.0], "fy": [0.0, 50.0, 0.0]}, name="press")
+
+    def loads(t):
+        ax = m.plot(t=t).axes[0]
+        arrows = [a for a in ax.patches if isinstance(a, FancyArrowPatch) and a.get_visible() and a.get_edgecolor()[:3] == matplotlib.colors.to_rgb(draw.FORCE_COLOUR)]
+        names = {x.get_text() for x in ax.texts if x.get_visible()}
+        return arrows, names
+
+    arrows, names = loads(0.0)
+    assert not arrows and "press" not in names and "nothing" not in names
+    arrows, names = loads(0.005)  # half way up the table: (−50, 25) N
+    assert len(arrows) == 1 and "press" in names and "nothing" not in names
+    tail, head = (np.asarray(p) for p in arrows[0]._posA_posB)
+    d = head - tail
+    assert np.allclose(d / np.hypot(*d), np.array([-100.0, 50.0]) / np.hypot(100.0, 50.0), atol=1e-9)
+    arrows, names = loads(0.02)
+    assert not arrows and "press" not in names

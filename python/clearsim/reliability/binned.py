@@ -164,6 +164,8 @@ def monte_carlo(
     rtol: float = RTOL,
     atol: float = ATOL,
     axis: Optional[str] = None,
+    reference: str = "own_ideal",
+    threads: Optional[int] = None,
 ) -> MonteCarloResult:
     """Monte Carlo reliability of one output of a mechanism with random inputs.
 
@@ -185,7 +187,11 @@ def monte_carlo(
         from t = 0, as :meth:`Study.fosm <clearsim.reliability.Study.fosm>`'s.
     body, component:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
-        error against the ideal mechanism. (``axis=`` is the old name of ``component=``.)
+        error against the reference. (``axis=`` is the old name of ``component=``.)
+    reference:
+        What the errors are measured against: ``"own_ideal"`` (default: each sample's own
+        mechanism with ideal joints, what the clearances add) or ``"nominal"`` (the nominal
+        design's ideal motion, every tolerance included), as :class:`~clearsim.reliability.Study`.
     allowable:
         Required: ``{quantity: (lower, upper)}`` allowable |error| range of each analysed
         quantity (``"displacement"``, ``"velocity"``, ``"acceleration"``) in that quantity's unit:
@@ -204,7 +210,11 @@ def monte_carlo(
     executor:
         ``None`` runs the batch in the Rust core on all local cores. Otherwise any object with a
         ``concurrent.futures``-style ``map`` (``ProcessPoolExecutor``, Dask's
-        ``client.get_executor()``): chunks of samples are sent to :func:`run_descriptions`.
+        ``client.get_executor()``): chunks of samples are sent to :func:`run_descriptions`
+        (descriptions and settings only: each worker runs the references itself).
+    threads:
+        The core's threads per batch: default all local cores in this process, one per task
+        under an ``executor``; 0: all the machine's cores.
     integrator, rtol, atol:
         As in :meth:`Mechanism.simulate`; ``"auto"`` (default) runs lubricated samples with
         RADAU5 and their ideal counterparts and dry samples with RK45.
@@ -257,7 +267,7 @@ def monte_carlo(
     study = Study(
         build, distributions, [Output(body=body, component=component, quantity=q) for q in quantities], [Limit.above(limits[q][1]) for q in quantities],
         omega=omega, cycles=cycles, skip_cycles=skip_cycles, bin_width=bin_width, integrator=integrator, rtol=rtol, atol=atol,
-        executor=executor, chunk_size=chunk_size, progress=progress, **budget,
+        reference=reference, executor=executor, threads=threads, chunk_size=chunk_size, progress=progress, **budget,
     )  # fmt: skip
     omega = study.omega if omega is None else omega  # None: the nominal constant-speed driver's
     omegas = np.asarray(inputs[omega], dtype=float) if isinstance(omega, str) else np.full(n, float(omega))
@@ -270,7 +280,7 @@ def monte_carlo(
     )  # fmt: skip
     assert ev.monitors is not None
     failed_at = dict(ev.failures)
-    failures = [(k, reason[: -len("(ideal mechanism)")] + "(ideal twin of the sample)" if reason.endswith("(ideal mechanism)") else f"{reason} (sample)") for k, reason in ev.failures]
+    failures = [(k, _failure_reason(reason)) for k, reason in ev.failures]
     ok = np.zeros(n, dtype=bool)
     errs: Dict[str, List[np.ndarray]] = {q: [] for q in quantities}
     angles: List[np.ndarray] = []
@@ -332,6 +342,15 @@ def monte_carlo(
         first_passage_times=first_times,
         wall_time=time.perf_counter() - start,
     )
+
+
+def _failure_reason(reason: str) -> str:
+    """A failed sample's reason, saying which run failed: the sample or its reference."""
+    if reason.endswith("(nominal ideal mechanism)"):
+        return reason
+    if reason.endswith("(ideal mechanism)"):
+        return reason[: -len("(ideal mechanism)")] + "(ideal twin of the sample)"
+    return f"{reason} (sample)"
 
 
 def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], start_turns: float, bin_width: float, failed: int, confidence: float) -> None:

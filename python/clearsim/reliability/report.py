@@ -8,13 +8,13 @@ import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 from statistics import NormalDist
-from typing import Any, Callable, Dict, List, Optional, Sequence
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 from ..csvfile import column_name, file_unit, report_header, write_rows
-from ..errors import ClearsimError, InputError
-from ..schema import INPUT_UNITS
+from ..errors import ClearsimError, InputError, check_choice
+from ..schema import INPUT_UNITS, REFERENCES
 
 #: Why FOSM leaves an output of a series system out (said on stdout and in report.md).
 FOSM_SKIPS = "FOSM compares an error with an allowable range [0, limit]; an output with a lower limit (a film thickness) has none, so it is not analysed"
@@ -152,15 +152,28 @@ METHOD_RUNNERS: Dict[str, Callable[[Run], None]] = {
 }  # fmt: skip
 
 
-def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = None, samples: Optional[int] = None, progress: bool = True, plots: bool = True, echo: Any = print) -> List[Path]:
+#: What each reference answers (report lines; :data:`clearsim.schema.REFERENCES`).
+REFERENCE_TEXT = {
+    "own_ideal": "each sample's own ideal twin (what the clearances add)",
+    "nominal": "the nominal design's ideal motion (how far from the nominal motion: every tolerance counts)",
+}
+
+
+def run_study(
+    scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = None, samples: Optional[int] = None, progress: bool = True, plots: bool = True,
+    echo: Any = print, reference: Optional[str] = None,
+) -> List[Path]:  # fmt: skip
     """Run the study's methods, write ``reliability.csv`` (one row per method, and per failure
     mode on a series system), ``sobol.csv``, ``samples.csv`` (Monte Carlo: inputs, each output's
     peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
     ``out_dir``; returns the files. A method that stops with a clearsim error (FORM without a
     design point; a life, ``[study.life]``, over ``max_blocks``) is named in report.md, with the
-    methods it left unrun, after the results found before it are written, then raised."""
+    methods it left unrun, after the results found before it are written, then raised.
+    ``reference`` (``"own_ideal"`` or ``"nominal"``) replaces the scene's ``[study] reference``."""
     settings = scene.study_settings()
     study = scene.study_model(progress=progress)
+    if reference is not None:
+        study.reference = check_choice("reference", reference, REFERENCES)
     chosen = list(methods or settings.methods)
     if not settings.inputs and set(chosen) != {"fosm"}:
         raise InputError(f"invalid methods = {chosen!r}: {scene.path or 'the scene'} has only [reliability] (the FOSM of the nominal mechanism, no random inputs): "
@@ -171,6 +184,8 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     r = Run(study, settings, int(samples or settings.samples), echo)
     out_dir.mkdir(parents=True, exist_ok=True)
     echo(f"{scene.name}: {study}")
+    if any(o.body is not None for o in study.outputs):
+        echo(f"{'reference':20s} errors against {REFERENCE_TEXT[study.reference]}")
     stop: Optional[ClearsimError] = None
     for name, runner in METHOD_RUNNERS.items():
         if name in chosen and not (name == "form" and name in r.found):
@@ -241,8 +256,9 @@ def _write(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> 
 
 
 def input_column(path: str) -> str:
-    """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`clearsim.schema.INPUT_UNITS`)."""
-    return column_name(path, INPUT_UNITS.get(path.rpartition(".")[2]))
+    """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`clearsim.schema.INPUT_UNITS`);
+    a ``[parameters]`` name by itself."""
+    return column_name(path, INPUT_UNITS.get(path.rpartition(".")[2]) if "." in path else None)  # a [parameters] name has no unit to look up
 
 
 def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
@@ -260,19 +276,8 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
         fig = plots.new_figure(4.2 * len(panels), 3.6)
         axes = list(fig.subplots(1, len(panels), squeeze=False)[0])
         unit = study.output.unit
-        ax = axes.pop(0)
-        # p_f by method with its 95 % interval (FORM: a point, no interval).
-        for y, (k, r) in enumerate(estimates):
-            lo, hi = getattr(r, "interval", (r.pf, r.pf))
-            if r.pf > 0:
-                ax.errorbar([r.pf], [y], xerr=[[r.pf - lo], [hi - r.pf]] if hi > lo else None, fmt="o", capsize=3, color=f"C{y}")
-            ax.annotate(f"{r.pf:.3g}  ({r.n_runs} runs)", (r.pf if r.pf > 0 else 1e-300, y), textcoords="offset points", xytext=(0, 7), ha="center", fontsize=7)
-        ax.set_yticks(range(len(estimates)), [k.replace("_", " ") for k, _ in estimates])
-        ax.set_ylim(-0.6, len(estimates) - 0.3)
-        if any(r.pf > 0 for _, r in estimates):  # else a log axis has nothing to show
-            ax.set_xscale("log")
-        ax.set_xlabel("probability of exceedance p_f")
-        ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}" if len(study.outputs) == 1 else f"p_f of the system ({len(study.outputs)} modes)")
+        if panels[0] == "pf":  # p_f by method with its 95 % interval (FORM: a point, no interval); none for Sobol alone
+            _pf_panel(axes.pop(0), estimates, study, unit)
         if "monte_carlo" in found and not np.isfinite(found["monte_carlo"].peaks).any():
             _no_sample(axes.pop(0), found["monte_carlo"])  # every run failed: nothing to draw but why
         elif "monte_carlo" in found and len(study.outputs) == 1:
@@ -318,6 +323,21 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
         return plots.save(fig, path)
 
 
+def _pf_panel(ax: Any, estimates: Sequence[Tuple[str, Any]], study: Any, unit: str) -> None:
+    """p_f by method with its 95 % interval (FORM: a point, no interval)."""
+    for y, (k, r) in enumerate(estimates):
+        lo, hi = getattr(r, "interval", (r.pf, r.pf))
+        if r.pf > 0:
+            ax.errorbar([r.pf], [y], xerr=[[r.pf - lo], [hi - r.pf]] if hi > lo else None, fmt="o", capsize=3, color=f"C{y}")
+        ax.annotate(f"{r.pf:.3g}  ({r.n_runs} runs)", (r.pf if r.pf > 0 else 1e-300, y), textcoords="offset points", xytext=(0, 7), ha="center", fontsize=7)
+    ax.set_yticks(range(len(estimates)), [k.replace("_", " ") for k, _ in estimates])
+    ax.set_ylim(-0.6, len(estimates) - 0.3)
+    if any(r.pf > 0 for _, r in estimates):  # else a log axis has nothing to show
+        ax.set_xscale("log")
+    ax.set_xlabel("probability of exceedance p_f")
+    ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}" if len(study.outputs) == 1 else f"p_f of the system ({len(study.outputs)} modes)")
+
+
 def _no_sample(ax: Any, mc: Any) -> None:
     """The Monte Carlo panel when no sample succeeded: why, by reason and count."""
     reasons = "\n".join(textwrap.fill(f"{n} × {why}", 58) for why, n in mc.failure_reasons().items())
@@ -330,7 +350,10 @@ def _no_sample(ax: Any, mc: Any) -> None:
 def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str, Any], path: Path, files: List[Path]) -> Path:
     outs = "; ".join(f"{o.label} {lim.text(o.unit)} (`{o.name}`)" for o, lim in zip(study.outputs, study.limits))
     kind = "Output" if len(study.outputs) == 1 else "Outputs (a series system: it fails when any output passes its limit)"
-    lines = [f"# Reliability: {scene.name}", "", f"{kind}: {outs}; {study.cycles:g} cycle(s) after {study.skip_cycles:g}.", "", "Random inputs:", ""]
+    lines = [f"# Reliability: {scene.name}", "", f"{kind}: {outs}; {study.cycles:g} cycle(s) after {study.skip_cycles:g}.", ""]
+    if any(o.body is not None for o in study.outputs):
+        lines += [f"Errors measured against {REFERENCE_TEXT[study.reference]} (`reference = \"{study.reference}\"`).", ""]
+    lines += ["Random inputs:", ""]
     settings = scene.study_settings()
     for name, d in study.inputs.items():
         if name in settings.inputs:

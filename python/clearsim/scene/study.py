@@ -7,7 +7,9 @@ system), and the methods to run.
 
     [study]                            # clearsim reliability scene.toml
     body = "slider9"                   # the output: a body coordinate's error against the
-    component = "y"                    #   ideal mechanism (x | y | theta) ...
+    component = "y"                    #   reference motion (x | y | theta) ...
+    # point = [0.05, 0.0]              # ... or a point's on the body (body frame [m];
+                                       #   component x | y | magnitude)
     # joint = "B"                      # ... or a clearance joint's quantity
     quantity = "displacement"          # displacement | velocity | acceleration;
                                        #   joint: eccentricity | force | contact_force | film_force
@@ -15,6 +17,9 @@ system), and the methods to run.
     cycles = 1.0                       # analysed crank turns after skip_cycles turns
     skip_cycles = 0.0
     # omega = -15.708                  # rad/s (default: the first constant-speed driver)
+    # reference = "nominal"            # errors against: own_ideal (default: each sample's ideal
+                                       #   twin, what the clearances add) | nominal (the nominal
+                                       #   design's ideal motion: every tolerance counts)
     methods = ["form", "importance_sampling", "sobol"]
                                        # of monte_carlo, form, importance_sampling, subset, sobol,
                                        #   fosm, ak_mcs, ak_is (active-learning Kriging)
@@ -39,7 +44,9 @@ system), and the methods to run.
     # side = "below"                   # fails when it falls below the limit (default "above")
 
     [[study.input]]                    # one per random input
-    path = "B.clearance"               # element.field of the mechanism, SI units
+    path = "B.clearance"               # element.field of the mechanism, SI units, or
+    # parameter = "rod"                #   a name of [parameters] (clearsim.scene.parameters): each
+                                       #   sample rebuilds the mechanism with it (a link length)
     distribution = "normal"            # normal | lognormal (mean, std) | uniform (low, high)
     mean = 0.5e-3                      #   | truncated_normal (mean, std, low, high)
     std = 0.05e-3
@@ -60,23 +67,24 @@ system), and the methods to run.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
 
+from ..errors import InputError
 from ..reliability.distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
 from ..reliability.fosm import BIN_WIDTH
 from ..reliability.life import MAX_BLOCKS
 from ..reliability.outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Modes, Output
 from ..reliability.sobol import SOBOL_METHODS
 from ..reliability.study import Study
-from ..schema import COMPONENTS
+from ..schema import COMPONENTS, POINT_MONITOR_COMPONENTS, REFERENCES
 
 # Extension point: a method is a name here (and in report.METHOD_RUNNERS); a method with
 # settings of its own reads them from a sub-table [study.<name>] listed in STUDY_KEYS.
 METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fosm", "ak_mcs", "ak_is")
-OUTPUT_KEYS = ("body", "component", "joint", "quantity", "limit", "side")
+OUTPUT_KEYS = ("body", "component", "point", "joint", "quantity", "limit", "side")
 #: The keys of [study] (the loader checks them before parse_study reads the table).
-STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step", "max_runs", "life")
-INPUT_KEYS = ("path", "distribution", "mean", "std", "low", "high")
+STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step", "max_runs", "life", "reference")
+INPUT_KEYS = ("path", "parameter", "distribution", "mean", "std", "low", "high")
 TOLERANCE_KEYS = ("input", "reliability", "bracket")
 LIFE_KEYS = ("cycles", "samples", "reliability", "max_growth", "max_jump", "settle", "max_blocks")
 DISTRIBUTIONS = ("normal", "lognormal", "uniform", "truncated_normal")
@@ -120,13 +128,15 @@ class StudySettings(Modes):
     allowable: Optional[List[Tuple[float, float]]] = None
     #: Runs start here [s] (``[simulation].t0``; [reliability] only); crank angles count from t = 0 all the same (docs/physics.md §6).
     t0: float = 0.0
+    #: What body and point errors are measured against (:data:`clearsim.schema.REFERENCES`).
+    reference: str = "own_ideal"
 
 
 def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
     """One output and its limit from the keys of ``t`` (``[study]`` or a ``[[study.output]]``)."""
     joint = t.string("joint", None, choices=mech.clearance_joint_names) if "joint" in t else None
     if joint is not None:
-        if "body" in t or "component" in t:
+        if "body" in t or "component" in t or "point" in t:
             raise t.error("joint", f"invalid {where}: give either joint or body (with component), not both")
         quantity = t.string("quantity", choices=JOINT_QUANTITIES)
         output = Output(joint=joint, quantity=quantity)
@@ -134,7 +144,9 @@ def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
         if "body" not in t:
             raise t.error(None, f"missing key 'body' (with component) or 'joint' in {where}: the analysed output")
         body = t.string("body", choices=mech.body_names)
-        output = Output(body=body, component=t.string("component", choices=COMPONENTS), quantity=t.string("quantity", choices=BODY_QUANTITIES))
+        point = tuple(t.numbers("point", length=2)) if "point" in t else None
+        component = t.string("component", choices=POINT_MONITOR_COMPONENTS if point is not None else COMPONENTS)
+        output = Output(body=body, component=component, quantity=t.string("quantity", choices=BODY_QUANTITIES), point=point)
     side = t.string("side", "below" if output.quantity == "film_thickness" else "above", choices=SIDES)
     if "limit" not in t:
         what = "largest acceptable" if side == "above" else "smallest acceptable"
@@ -147,6 +159,30 @@ def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
     if output.quantity == "film_thickness" and side != "below":
         raise t.error("side", f"invalid {where}.side = 'above': a film thickness fails by getting thin (side = \"below\")", side)
     return output, Limit(limit, side)
+
+
+def _input_name(it: Any, mech: Any) -> Tuple[str, str]:
+    """A ``[[study.input]]``'s name and the key that gives it: ``path`` (``element.field`` of the
+    mechanism) or ``parameter`` (a name of ``[parameters]``: each sample rebuilds the scene with
+    it; a name has no dot, so the two never meet)."""
+    if "parameter" in it:
+        if "path" in it:
+            raise it.error("parameter", "invalid [[study.input]]: give path (element.field) or parameter (a [parameters] name), not both")
+        name = it.string("parameter")
+        known = it.src.parameters
+        if name not in known:
+            raise it.error("parameter", f"invalid study.input parameter {name!r}: no such parameter (known: {', '.join(known) or 'none: no [parameters] table'})", name)
+        return name, "parameter"
+    if "path" not in it:
+        raise it.error(None, "missing key 'path' (element.field of the mechanism) or 'parameter' (a name of [parameters]) in [[study.input]]")
+    path = it.string("path")
+    if "." not in path and path in it.src.parameters:
+        raise it.error("path", f"invalid study.input path {path!r}: a parameter is randomised by parameter = {path!r}", path)
+    try:
+        mech.with_values({path: 0.0})
+    except Exception as err:  # an InputError naming the path
+        raise it.error("path", str(err), path) from None
+    return path, "path"
 
 
 def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySettings:
@@ -164,11 +200,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
         raise t.error("omega", "missing key 'omega' in [study]: the drive speed [rad/s] (no constant-speed driver to take it from)", omega)
     inputs: Dict[str, Distribution] = {}
     for it in t.array_of_tables("input", INPUT_KEYS):
-        path = it.string("path")
-        try:
-            mech.with_values({path: 0.0})
-        except Exception as err:  # an InputError naming the path
-            raise it.error("path", str(err), path) from None
+        path, key = _input_name(it, mech)
         kind = it.string("distribution", choices=DISTRIBUTIONS)
         try:
             if kind == "normal":
@@ -184,7 +216,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
                 raise
             raise it.error(getattr(err, "field", None) and str(getattr(err, "field")).split(".")[-1], str(err)) from None
         if path in inputs:
-            raise it.error("path", f"invalid study.input path {path!r}: given twice", path)
+            raise it.error(key, f"invalid study.input {key} {path!r}: given twice", path)
         inputs[path] = d
     if not inputs:
         raise t.error(None, "missing [[study.input]]: give at least one random input (path, distribution, parameters)")
@@ -230,15 +262,15 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
     return StudySettings(
         outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
         methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", BIN_WIDTH), tolerance=tol,
-        max_runs=max_runs, life=life,
+        max_runs=max_runs, life=life, reference=t.string("reference", "own_ideal", choices=REFERENCES),
     )  # fmt: skip
 
 
 def scene_study(scene: Any, progress: bool = True) -> Study:
     """The :class:`Study` of a scene's ``[study]`` table: its mechanism with the random inputs
-    set by path (:meth:`clearsim.Mechanism.with_values`), run with the scene's integrator
-    settings."""
-    return study_of(scene.study, scene.mechanism, scene.simulation, progress)
+    set by path (:meth:`clearsim.Mechanism.with_values`) or, for ``[parameters]``, rebuilt with
+    them, run with the scene's integrator settings."""
+    return study_of(scene.study, scene.mechanism, scene.simulation, progress, rebuild=getattr(scene, "_rebuild", None))
 
 
 #: The name of the one fixed input of a study without inputs ([reliability]'s nominal run):
@@ -246,13 +278,19 @@ def scene_study(scene: Any, progress: bool = True) -> Study:
 NOMINAL = "nominal"
 
 
-def study_of(s: StudySettings, mech: Any, sim: Any, progress: bool = True) -> Study:
+def study_of(s: StudySettings, mech: Any, sim: Any, progress: bool = True, rebuild: Optional[Callable[[Mapping[str, float]], Any]] = None) -> Study:
     """The :class:`Study` of the settings ``s`` on ``mech``, run with the integrator settings of
     ``sim`` (a :class:`~clearsim.scene.SimulationSettings`: integrator, tolerances, step, step
-    bounds, step budget) from ``s.t0``."""
+    bounds, step budget) from ``s.t0``. ``rebuild({parameter: value})`` makes the mechanism with
+    ``[parameters]`` changed (inputs named without a dot; paths have one)."""
+    parameters = [k for k in s.inputs if "." not in k]
+    if parameters and rebuild is None:
+        raise InputError(f"invalid inputs {parameters!r}: [parameters] inputs need the scene to rebuild the mechanism (Scene.study_model)", field="inputs", value=parameters)
 
     def build(**values: float) -> Any:
-        return mech.with_values({k: v for k, v in values.items() if k in s.inputs})
+        changed = {k: v for k, v in values.items() if k in parameters}
+        base = rebuild(changed) if (changed and rebuild is not None) else mech
+        return base.with_values({k: v for k, v in values.items() if k in s.inputs and k not in parameters})
 
     opts: Dict[str, Any] = dict(integrator=sim.integrator, rtol=sim.rtol, atol=sim.atol)
     if sim.max_steps is not None:
@@ -260,7 +298,7 @@ def study_of(s: StudySettings, mech: Any, sim: Any, progress: bool = True) -> St
     outputs: Any = s.outputs if len(s.outputs) > 1 else s.outputs[0]
     limits: Any = s.limits if len(s.limits) > 1 else s.limits[0]
     inputs: Dict[str, Any] = dict(s.inputs) or {NOMINAL: 0.0}
-    study = Study(build, inputs, outputs, limits, omega=s.omega, cycles=s.cycles, skip_cycles=s.skip_cycles, bin_width=s.bin_width, progress=progress, **opts)
+    study = Study(build, inputs, outputs, limits, omega=s.omega, cycles=s.cycles, skip_cycles=s.skip_cycles, bin_width=s.bin_width, reference=s.reference, progress=progress, **opts)
     # Run options Study's signature does not take: rk4's fixed step, the step bounds, the start time.
     study.run_options.update({k: v for k, v in (("step", sim.step), ("h_max", sim.h_max), ("h_min", sim.h_min)) if v is not None})
     if s.t0 != 0.0:
