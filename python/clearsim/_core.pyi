@@ -123,7 +123,9 @@ class CompiledModel:
         """What integrator="auto" picks for this model: "radau" when a clearance joint is
         lubricated, else "rk45" (rust/settings.rs, default_method)."""
     @property
-    def state_dim(self) -> int: ...
+    def state_dim(self) -> int:
+        """Length of y = (q, q̇, T…): 6 per body, then one oil temperature per clearance joint
+        with a heat model, in joint order (rust/clearance/thermal.rs)."""
     @property
     def constraint_rows(self) -> int: ...
     @property

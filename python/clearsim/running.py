@@ -143,11 +143,13 @@ class Running:
 
     @property
     def state_dim(self) -> int:
-        """Length of the state y = (q, q̇): 6 per body."""
-        return 6 * len(self._bodies)
+        """Length of the state y = (q, q̇, T…): 6 per body (q, then q̇), then the oil
+        temperature [K] of each clearance joint with a heat model (``Lubricated(thermal=...)``),
+        in the order of :attr:`clearance_joint_names` (docs/physics.md §4, *Heat*)."""
+        return int(self.compile().state_dim)
 
     def state_index(self, body: str, component: str, velocity: bool = False) -> int:
-        """Index in the state y = (q, q̇) of ``body``'s pose ``component`` (``"x"``, ``"y"`` [m]
+        """Index in the state y = (q, q̇, T…) of ``body``'s pose ``component`` (``"x"``, ``"y"`` [m]
         or ``"theta"`` [rad]; with ``velocity=True`` its rate, m/s or rad/s). In
         ``m.rhs(t, y)`` the same index gives its rate (position) or acceleration (velocity)."""
         b = self._body("body", body, allow_ground=False)
@@ -171,22 +173,28 @@ class Running:
         return fig
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
-        """Consistent state y0 = (q0, q̇0) at ``t0`` [s]: the pose given (the pose at t = 0, the
-        drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
-        branch (docs/physics.md §1); :class:`clearsim.AssemblyError` names a dead centre on the
-        way."""
+        """Consistent state y0 = (q0, q̇0, T0…) at ``t0`` [s]: the pose given (the pose at t = 0,
+        the drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
+        branch (docs/physics.md §1), and the oil temperatures at their ``initial`` values
+        (:attr:`state_dim`); :class:`clearsim.AssemblyError` names a dead centre on the way."""
         return self.compile().initial_state(float(t0))
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """ẏ = f(t, y), for driving clearsim's model with an external integrator such as
         ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in
-        name order (:attr:`body_names`; not the order added), then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
+        name order (:attr:`body_names`; not the order added), then q̇ likewise (:meth:`state_index`),
+        then the oil temperature T [K] of each clearance joint with a heat model, in the order of
+        :attr:`clearance_joint_names` (its rate dT/dt [K/s] from the joint's heat balance;
+        :attr:`state_dim`).
+        No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
         return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
 
     def jacobian(self, t: float, y: np.ndarray) -> np.ndarray:
         """The stiff part of ∂f/∂y at (t, y) as a dense (n, n) array, ``[[0, I], [W_q, W_v]]``:
         the clearance joints' force derivatives mapped through the constrained mobility (the
-        Newton matrix clearsim's ``"radau"`` uses). The non-stiff remainder (pose dependence of
+        Newton matrix clearsim's ``"radau"`` uses); with heat models, bordered by the oil
+        temperatures' rows and columns ``[[0, I, 0], [W_q, W_v, A_T], [G_q, G_v, G_T]]`` (the
+        film's change with T through μ(T), the heat balance's change with the motion and T). The non-stiff remainder (pose dependence of
         the constraints, Baumgarte terms) is left out, which implicit methods tolerate:
         ``solve_ivp(m.rhs, ..., method="Radau", jac=m.jacobian)``. Units: 1/s² and 1/s."""
         return self.compile().jacobian(float(t), np.ascontiguousarray(y, dtype=float))

@@ -2,12 +2,13 @@
 //! [`OdeSystem`] ([`MechanismSystem`]: right-hand side, outputs, the step bookkeeping), and
 //! what a failed run keeps. The system's other roles live beside it: `observe.rs` (monitors,
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
-//! `newton.rs` (the implicit methods' Jacobian), `diagnosis.rs` (where a failed run stood),
-//! `sections.rs` (Poincaré sections at exact times), `lyapunov.rs` (a shadow run for the largest
-//! Lyapunov exponent).
+//! `newton.rs` (the implicit methods' Jacobian), `heat.rs` (its rows and columns of the oil
+//! temperatures), `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at
+//! exact times), `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
 
 mod cavitation;
 mod diagnosis;
+mod heat;
 pub mod lyapunov;
 mod newton;
 mod observe;
@@ -17,7 +18,6 @@ mod switching;
 use std::time::Instant;
 
 use crate::assembly::assemble;
-use crate::clearance::thermal::HeatBook;
 use crate::clearance::wear::WearBook;
 use crate::clearance::{ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
@@ -102,8 +102,6 @@ pub struct MechanismSystem<'a> {
     pub wear: Vec<Option<WearBook>>,
     /// [`RunSettings::wear_mark`].
     pub wear_mark: Option<f64>,
-    /// The oil temperature of each lubricated joint that models it (rust/clearance/thermal.rs).
-    pub heat: Vec<Option<HeatBook>>,
 
     // switching.rs
     /// Each clearance joint's kinematics at the last and the next sample of a step
@@ -131,6 +129,8 @@ pub struct MechanismSystem<'a> {
     /// The generalised force of one stiff item at the pose and at a probed pose.
     g_base: Vec<f64>,
     g_probe: Vec<f64>,
+    /// The state whose mobility columns `mobility` holds (heat.rs reuses them for the border).
+    mobility_at: Vec<f64>,
 }
 
 impl<'a> MechanismSystem<'a> {
@@ -150,7 +150,6 @@ impl<'a> MechanismSystem<'a> {
             energy: channels.energy.then(|| EnergyBook::new(model)),
             wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
             wear_mark: None,
-            heat: model.clearance.iter().map(|c| c.film.and_then(|f| f.heat).map(HeatBook::new)).collect(),
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
@@ -167,6 +166,7 @@ impl<'a> MechanismSystem<'a> {
             mobility_done: vec![false; 3 * model.n_bodies()],
             g_base: vec![0.0; 3 * model.n_bodies()],
             g_probe: vec![0.0; 3 * model.n_bodies()],
+            mobility_at: Vec::new(),
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
             gap_resolution: 0.0,
@@ -194,10 +194,8 @@ impl OdeSystem for MechanismSystem<'_> {
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<()> {
-        let n = 3 * self.model.n_bodies();
         self.ws.evaluate(self.model, &self.memory, t, y)?;
-        dy[..n].copy_from_slice(&y[n..2 * n]);
-        dy[n..2 * n].copy_from_slice(&self.ws.qdd);
+        self.ws.derivative(y, dy);
         Ok(())
     }
 
@@ -213,11 +211,9 @@ impl OdeSystem for MechanismSystem<'_> {
         self.step_memory.clone_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
-        // The film content of mass-conserving joints moves on (rust/simulate/cavitation.rs).
+        // The film content of mass-conserving joints moves on (rust/simulate/cavitation.rs):
+        // f(t1, y1) changed with it, an explicit method's last stage is stale.
         let moved = self.memory.iter().any(|m| m.film.is_some()) && self.cavitation_step(t0, t1, dense);
-        // A viscosity that followed the oil temperature changed f(t1, y1): an explicit method's
-        // last stage is stale (rust/clearance/thermal.rs).
-        let heated = self.memory.iter().zip(&self.step_memory).any(|(a, b)| a.viscosity != b.viscosity);
         if self.sections.is_some() {
             self.record_sections(t1, dense)?;
         }
@@ -241,12 +237,27 @@ impl OdeSystem for MechanismSystem<'_> {
                 }
             }
         }
-        Ok(changed || heated || moved)
+        Ok(changed || moved)
     }
 
     /// See newton.rs.
     fn acceleration_jacobian(&mut self, t: f64, y: &[f64], a_q: &mut [f64], a_v: &mut [f64]) -> Result<bool> {
-        self.stiff_jacobian(t, y, a_q, a_v)
+        let done = self.stiff_jacobian(t, y, a_q, a_v)?;
+        if !self.ws.heat_rate.is_empty() {
+            // The border (heat.rs) asked next at this state reuses the mobility columns.
+            self.mobility_at.clear();
+            self.mobility_at.extend_from_slice(y);
+        }
+        Ok(done)
+    }
+
+    fn first_order_states(&self) -> usize {
+        self.ws.heat_rate.len()
+    }
+
+    /// See heat.rs.
+    fn border_jacobian(&mut self, t: f64, y: &[f64], a_z: &mut [f64], z_y: &mut [f64]) -> Result<()> {
+        self.heat_jacobian(t, y, a_z, z_y)
     }
 
     fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
@@ -259,8 +270,8 @@ impl OdeSystem for MechanismSystem<'_> {
             self.ws.evaluate(self.model, &self.step_memory, t, y)?;
         }
         self.recording.push(t, y, &self.ws, &self.step_memory);
-        if self.heat.iter().any(Option::is_some) {
-            let temps = self.heat.iter().map(|b| b.as_ref().map_or(f64::NAN, |b| b.temperature_at(t)));
+        if !self.ws.heat_rate.is_empty() {
+            let temps = self.model.clearance.iter().map(|c| c.heat().map_or(f64::NAN, |h| y[h.state]));
             self.recording.temperature.extend(temps);
         }
         if let Some(book) = &self.energy {
@@ -313,8 +324,7 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
             })
         }
     };
-    let mut y0 = q0.clone();
-    y0.extend_from_slice(&qd0);
+    let y0 = model.initial_state(&q0, &qd0);
     let t_out: Vec<f64> = rs.t_out.iter().copied().filter(|t| *t >= rs.t0 && *t <= rs.t_end).collect();
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
@@ -327,7 +337,6 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
     sys.energy_start(rs.t0, &y0)?;
     sys.wear_mark = rs.wear_mark;
     sys.wear_start(rs.t0, &y0);
-    sys.heat_start(rs.t0);
     if let Some(spec) = &rs.sections {
         sys.sections = Some(Sections::new(spec, rs.t0, rs.t_end, rs.channels, model));
         sys.sections_start(rs.t0, &y0)?;
