@@ -117,7 +117,11 @@ class FilmReadings:
                 raise InputError("invalid output = 'film': a mass-conserving film's pressure needs the content the run recorded (pass outputs=[..., 'film'])", field="outputs", value="film")
             jfo = [c["name"] for c in self.description["clearance_joints"] if c["model"].get("cavitation") == "jfo"]  # type: ignore[index]
             content = np.ascontiguousarray(stored[k, jfo.index(joint)])
-        field = self._compiled().film_field(j, np.concatenate([q[k], qd[k]]), temperature, content)
+        # The state there: y = (q, q̇, T…), the oil temperatures of the joints with a heat model in
+        # joint order (rust/clearance/thermal.rs).
+        heated = [i for i, c in enumerate((self.description or {}).get("clearance_joints", [])) if c["model"].get("thermal")]
+        y = np.concatenate([q[k], qd[k], [float(temps[k, i]) for i in heated] if temps is not None else []])
+        field = self._compiled().film_field(j, y, temperature, content)
         assert field is not None
         e = self._raw["joints"][k, j, :2] if "joints" in self._raw else q[k, :2] * 0.0
         p = np.asarray(field["pressure"])

@@ -17,7 +17,6 @@ from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
 from .dynamics.readings import section_spec
-from .joint_readings import film_monitors
 from .points import PointsLike, tracked_points
 from .result import Result, extreme_monitors
 from .schema import ATOL, COMPONENTS, DEFAULT_OUTPUTS, H_MIN, INTEGRATORS, MAX_STEPS, OUTPUTS, RTOL
@@ -42,6 +41,7 @@ class RunOptions(TypedDict, total=False):
     max_seconds: Optional[float]  # [s] of wall time
     extremes: Union[bool, Sequence[Any]]  # bodies, clearance joints and (body, (x, y)) points (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
+    bearings: bool  # track the bearing summary (Result.bearing_summary)
     sections: Union[None, float, Tuple[float, float]]  # Poincaré sections: period [s] or (period [s], phase [rad])
 
 #: Most outputs a dt_out grid may ask for (each holds every stored channel; the core's
@@ -123,6 +123,10 @@ class Running:
     """What a :class:`clearsim.Mechanism` does with its description: compile, run, check."""
 
     _compiled: Any
+    #: The description the compiled model was built from (given to its results, which share it:
+    #: a run copies no description) and the compiled model whose pose given was checked last.
+    _compiled_description: Optional[Dict[str, Any]] = None
+    _pose_checked_for: Any = None
     if TYPE_CHECKING:  # provided by Mechanism (mechanism.py, the class that mixes this in)
         _bodies: List[Dict[str, Any]]
         _clearance: List[Dict[str, Any]]
@@ -138,7 +142,9 @@ class Running:
     def compile(self) -> "_core.CompiledModel":
         """The compiled Rust model (cached until the mechanism changes)."""
         if self._compiled is None:
-            self._compiled = _core.compile(self.description())
+            desc = self.description()
+            self._compiled = _core.compile(desc)
+            self._compiled_description = desc
         return self._compiled
 
     @property
@@ -225,6 +231,7 @@ class Running:
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[Any]] = False,
         extremes_from: Optional[float] = None,
+        bearings: bool = False,
         sections: Union[None, float, Tuple[float, float]] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`).
@@ -278,11 +285,12 @@ class Running:
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end)
         elif extremes_from is not None and not t_end > start:
             raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
+        if bearings:
+            settings["bearings"] = True
+            if start > t0:
+                settings["bearings_from"] = start
         if sections is not None:
             settings["sections"] = section_spec(sections)
-        films = film_monitors(self.description(), self.clearance_joint_names, start, t_end)
-        if films:
-            settings["monitors"] = settings.get("monitors", []) + films
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
@@ -330,6 +338,13 @@ class Running:
             :meth:`Result.bearing_summary` too, which says it): independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
+        bearings:
+            Track the bearing summary of every lubricated joint (:meth:`Result.bearing_summary`:
+            minimum film thickness located between the steps, peak and mean power loss at every
+            step's end; independent of ``dt_out``), over the run or from ``extremes_from`` on
+            (the summary's ``window_start``, ``window_end``). Off by default: it costs one force evaluation
+            per joint and step where the method has none to reuse (RK45 and RADAU5 have one: 0.6–1.8 %
+            more instructions per step; docs/performance.md, "What a run pays for").
         sections:
             Poincaré sections: ``period`` [s] or ``(period, phase)`` (phase [rad], default 0):
             the stored channels at the exact times t_k = (k + phase/2π) · period in [t0, t_end]
@@ -466,19 +481,27 @@ class Running:
 
     def _checked_assembly(self, t0: float = 0.0) -> None:
         """:meth:`check_assembly` before a run from ``t0``: the pose given is checked at t = 0,
-        whatever ``t0``; an assembly that fails altogether is left to the run, whose error carries
-        the diagnosis and an empty partial result."""
+        whatever ``t0``, once per compiled model (the check depends on the mechanism alone: the
+        runs after the first repeat neither its assembly nor its warnings); an assembly that fails
+        altogether is left to the run, whose error carries the diagnosis and an empty partial
+        result."""
+        compiled = self.compile()
+        if self._pose_checked_for is compiled:
+            return
         try:
-            q0 = np.asarray(self.compile().initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
+            q0 = np.asarray(compiled.initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
         except ClearsimError:
             return
         self._check_shift(q0)
+        self._pose_checked_for = compiled
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         if settings is not None and "sections" in settings:
             raw["section_settings"] = settings["sections"]
         res = Result(raw, self.body_names, self.clearance_joint_names)
-        res.description = self.description()
+        # The compiled model's description when there is one (shared, not copied per run).
+        compiled_desc = self._compiled_description if self._compiled is not None else None
+        res.description = compiled_desc if compiled_desc is not None else self.description()
         res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []
         err = raw.get("error")
         if err is not None:

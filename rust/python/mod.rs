@@ -288,12 +288,35 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
         }
         d.set_item("wear", wear)?;
     }
+    if !out.bearings.is_empty() {
+        // Per clearance joint: the bearing summary (RunSettings::bearings), None for a dry joint.
+        let bearings = PyList::empty(py);
+        for b in &out.bearings {
+            match b {
+                None => bearings.append(py.None())?,
+                Some(b) => {
+                    let bd = PyDict::new(py);
+                    bd.set_item("window_start", b.window_start)?;
+                    bd.set_item("window_end", b.window_end)?;
+                    bd.set_item("min_film_thickness", b.min_film_thickness)?;
+                    bd.set_item("t_min_film", b.t_min_film)?;
+                    bd.set_item("peak_power_loss", b.peak_power_loss)?;
+                    bd.set_item("t_peak_power_loss", b.t_peak_power_loss)?;
+                    bd.set_item("mean_power_loss", b.mean_power_loss())?;
+                    bd.set_item("energy_loss", b.energy_loss)?;
+                    bearings.append(bd)?;
+                }
+            }
+        }
+        d.set_item("bearings", bearings)?;
+    }
     let s = PyDict::new(py);
     s.set_item("steps", out.stats.steps_accepted)?;
     s.set_item("rejected_steps", out.stats.steps_rejected)?;
     s.set_item("steps_to_switch", out.stats.steps_to_switch)?;
     s.set_item("rhs_evaluations", out.stats.rhs_evals)?;
     s.set_item("jacobians", out.stats.jacobians)?;
+    s.set_item("force_evaluations", out.force_evaluations)?;
     s.set_item("min_step", out.stats.h_min_used)?;
     s.set_item("max_step", out.stats.h_max_used)?;
     s.set_item("t_reached", out.stats.t_reached)?;

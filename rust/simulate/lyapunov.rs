@@ -269,11 +269,13 @@ mod tests {
                 channels: Channels::default(),
                 max_wall_time: None,
                 monitors: vec![],
+                reference: None,
                 wear_mark: None,
+                bearings: false,
+                bearings_from: None,
                 sections: None,
                 lyapunov: Some(spec),
-                reference: None,
-            };
+                            };
             let out = super::super::simulate(&model, &rs, None).unwrap();
             let book = out.lyapunov.unwrap();
             assert!(book.error.is_none(), "{:?}", book.error);

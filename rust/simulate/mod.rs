@@ -6,6 +6,7 @@
 //! temperatures), `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at
 //! exact times), `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
 
+mod bearings;
 mod cavitation;
 mod diagnosis;
 mod heat;
@@ -32,6 +33,7 @@ use crate::system::Workspace;
 use lyapunov::{LyapunovBook, Shadow};
 use sections::Sections;
 
+pub use bearings::BearingSummary;
 pub use crate::settings::RunSettings;
 
 /// Polled between steps (about every 64 accepted steps) with the time reached \[s\]; returning
@@ -61,6 +63,13 @@ pub struct RunOutput {
     pub monitors: Vec<MonitorResult>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
+    /// Evaluations of the clearance joints' force laws over the run, by every caller (a count
+    /// of work for the performance fingerprint; [`crate::clearance::force_evaluations`]).
+    pub force_evaluations: u64,
+    /// The bearing summary per clearance joint when the run asked for it
+    /// ([`RunSettings::bearings`]; `None` for a dry joint, or when the run stopped before the
+    /// window's start [`RunSettings::bearings_from`]), else empty.
+    pub bearings: Vec<Option<BearingSummary>>,
     /// The references the monitors were measured against, at the output times (only with
     /// [`crate::monitor::ReferenceGrid::record`]: for error traces).
     pub references: Vec<ReferenceStates>,
@@ -75,6 +84,11 @@ pub struct RunOutput {
 pub struct MechanismSystem<'a> {
     pub model: &'a Model,
     pub ws: Workspace,
+    /// The outputs' own workspace, so that evaluating them leaves `ws` holding what the steps
+    /// evaluated last: an implicit method's f(t1, y1), kept by the observers that evaluate it
+    /// first (`Workspace::evaluate_and_keep`), is then not computed twice. Built at the first
+    /// output that needs it.
+    output_ws: Option<Workspace>,
     pub memory: Vec<ImpactMemory>,
     /// The memory as it was during the step last accepted (what its outputs are evaluated with).
     pub(super) step_memory: Vec<ImpactMemory>,
@@ -103,11 +117,20 @@ pub struct MechanismSystem<'a> {
     /// [`RunSettings::wear_mark`].
     pub wear_mark: Option<f64>,
 
+    // bearings.rs
+    /// The bearing summary of each lubricated joint, when the run asks for it (else empty).
+    bearings: Vec<Option<bearings::BearingBook>>,
+    /// The start \[s\] of the bearing summary's window while its books wait for it (`None`
+    /// once they started: [`RunSettings::bearings_from`]).
+    bearings_from: Option<f64>,
+
     // switching.rs
     /// Each clearance joint's kinematics at the last and the next sample of a step
     /// ([`OdeSystem::switching_point`]).
     switch_prev: Vec<(f64, JointKinematics)>,
     switch_next: Vec<JointKinematics>,
+    /// Each clearance joint's kinematics at the step's end.
+    switch_end: Vec<JointKinematics>,
     /// The state components the clearance joints' kinematics read (q and q̇ of their bodies):
     /// all that the switch search takes from the dense output.
     switch_components: Vec<usize>,
@@ -138,6 +161,7 @@ impl<'a> MechanismSystem<'a> {
         MechanismSystem {
             model,
             ws: Workspace::new(model),
+            output_ws: None,
             memory: vec![ImpactMemory::default(); model.clearance.len()],
             step_memory: vec![ImpactMemory::default(); model.clearance.len()],
             recording: Recording::new(channels, capacity, model),
@@ -150,10 +174,13 @@ impl<'a> MechanismSystem<'a> {
             energy: channels.energy.then(|| EnergyBook::new(model)),
             wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
             wear_mark: None,
+            bearings: Vec::new(),
+            bearings_from: None,
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
             switch_next: vec![JointKinematics::default(); model.clearance.len()],
+            switch_end: vec![JointKinematics::default(); model.clearance.len()],
             switch_components: {
                 let n = 3 * model.n_bodies();
                 let mut bodies: Vec<usize> = model.clearance.iter().flat_map(|c| [c.bearing, c.journal]).flatten().map(|b| b as usize).collect();
@@ -265,17 +292,18 @@ impl OdeSystem for MechanismSystem<'_> {
     }
 
     fn output(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        let ws = self.output_ws.get_or_insert_with(|| Workspace::new(self.model));
         if self.recording.needs_evaluation() {
             // Outputs lie inside the step just accepted: the memory it was integrated with.
-            self.ws.evaluate(self.model, &self.step_memory, t, y)?;
+            ws.evaluate(self.model, &self.step_memory, t, y)?;
         }
-        self.recording.push(t, y, &self.ws, &self.step_memory);
+        self.recording.push(t, y, ws, &self.step_memory);
         if !self.ws.heat_rate.is_empty() {
             let temps = self.model.clearance.iter().map(|c| c.heat().map_or(f64::NAN, |h| y[h.state]));
             self.recording.temperature.extend(temps);
         }
         if let Some(book) = &self.energy {
-            let e = EnergyBook::stored(self.model, &self.ws);
+            let e = EnergyBook::stored(self.model, ws);
             self.recording.energy.extend_from_slice(&e);
             self.recording.energy.extend_from_slice(&book.work_at(t));
         }
@@ -296,6 +324,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
 /// an `Err` before the run.
 pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &References, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
     rs.validate_for(model)?;
+    let evaluations_before = crate::clearance::force_evaluations();
     for run in [&references.own_ideal, &references.nominal].into_iter().flatten() {
         crate::monitor::reference::check_bodies(run, &model.body_names)?;
     }
@@ -318,6 +347,8 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
+                bearings: Vec::new(),
                 references: Vec::new(),
                 sections: None,
                 lyapunov: None,
@@ -337,6 +368,13 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
     sys.energy_start(rs.t0, &y0)?;
     sys.wear_mark = rs.wear_mark;
     sys.wear_start(rs.t0, &y0);
+    if rs.bearings {
+        sys.bearings = vec![None; model.clearance.len()];
+        match rs.bearings_from.filter(|w| *w > rs.t0) {
+            Some(w) => sys.bearings_from = Some(w),
+            None => sys.bearings_start(rs.t0, &y0),
+        }
+    }
     if let Some(spec) = &rs.sections {
         sys.sections = Some(Sections::new(spec, rs.t0, rs.t_end, rs.channels, model));
         sys.sections_start(rs.t0, &y0)?;
@@ -384,6 +422,8 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
         wear: sys.wear,
+        force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
+        bearings: sys.bearings.iter().map(|b| b.map(|b| b.summary)).collect(),
         sections: sys.sections.map(|s| s.recording),
         lyapunov: sys.shadow.map(|s| s.book),
     })

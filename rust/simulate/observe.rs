@@ -317,6 +317,11 @@ impl MechanismSystem<'_> {
         if !self.monitors.is_empty() {
             self.observe_step(t0, t1, y1, dense)?;
         }
+        // The bearing summary when asked (bearings.rs): after the monitors, whose KKT solve at
+        // t1 it may reuse.
+        if !self.bearings.is_empty() {
+            self.bearings_step(t1, y1, dense)?;
+        }
         Ok(())
     }
 }

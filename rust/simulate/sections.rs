@@ -96,11 +96,13 @@ mod tests {
             channels: Channels::default(),
             max_wall_time: None,
             monitors: vec![],
+            reference: None,
             wear_mark: None,
+            bearings: false,
+            bearings_from: None,
             sections: Some(SectionSpec { period: 0.7, phase: std::f64::consts::FRAC_PI_2 }),
             lyapunov: None,
-            reference: None,
-        };
+                    };
         rs.validate().unwrap();
         simulate(&model, &rs, None).unwrap()
     }

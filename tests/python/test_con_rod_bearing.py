@@ -103,7 +103,7 @@ def scene_run(tmp: Path, film: str, cycles: int = 3) -> clearsim.Result:
     path.write_text(text, encoding="utf-8")
     m = load_scene_file(path).mechanism
     period = 4 * math.pi / OMEGA
-    return m.simulate(cycles * period, dt_out=period / 720, extremes_from=(cycles - 1) * period, extremes=["big-end"], progress=False)
+    return m.simulate(cycles * period, dt_out=period / 720, extremes_from=(cycles - 1) * period, extremes=["big-end"], bearings=True, progress=False)
 
 
 def test_the_short_film_big_end_has_the_massless_orbits_minimum_film(reference: Tuple[float, float], tmp_path: Path) -> None:
