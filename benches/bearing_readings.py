@@ -6,6 +6,8 @@ docs/physics.md §4, *Mass-conserving cavitation*:
 
     python benches/bearing_readings.py                 # short, long, finite, finite + jfo
     python benches/bearing_readings.py finite jfo      # some of them
+    python benches/bearing_readings.py jfo:360         # the first 360° of crank from the Reynolds
+                                                       # film's periodic state: steps and CPU only
 """
 
 from __future__ import annotations
@@ -57,10 +59,31 @@ def run(case: str, tmp: Path) -> dict:
     }  # fmt: skip
 
 
+def probe(case: str, degrees: float, tmp: Path) -> dict:
+    """What ``degrees`` of crank cost with the film of ``case`` from the default film's state at
+    the start of its third cycle (periodic): steps, right-hand sides, Newton matrices, CPU s."""
+    ref = load_scene_file(SCENE).mechanism.simulate(2 * PERIOD, dt_out=PERIOD / 720, progress=False)
+    e0 = ref.eccentricity("big-end")[-1]
+    film, cavitation = CASES[case]
+    text = SCENE.read_text(encoding="utf-8").replace('film = "finite" ', f'film = "{film}" ')
+    if cavitation:
+        text = text.replace(f'film = "{film}" ', f'film = "{film}"\ncavitation = "{cavitation}" ')
+    text = text.replace('model = "lubricated"', f'model = "lubricated"\ninitial_eccentricity = [{float(e0[0])!r}, {float(e0[1])!r}]')
+    path = tmp / f"con_rod_{case}_probe.toml"
+    path.write_text(text, encoding="utf-8")
+    m = load_scene_file(path).mechanism
+    cpu = time.process_time()
+    res = m.simulate(2 * PERIOD + PERIOD * degrees / 720, t0=2 * PERIOD, dt_out=PERIOD / 720, progress=False)
+    cpu = time.process_time() - cpu
+    s = res.stats
+    return {"case": case, "degrees": degrees, "steps": s["steps"], "rejected": s["rejected_steps"], "rhs": s["rhs_evaluations"], "jacobians": s["jacobians"], "cpu_s": round(cpu, 2)}
+
+
 def main(cases: list) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for case in cases:
-            print(run(case, Path(tmp)), flush=True)
+            name, _, degrees = case.partition(":")
+            print(probe(name, float(degrees), Path(tmp)) if degrees else run(case, Path(tmp)), flush=True)
 
 
 if __name__ == "__main__":

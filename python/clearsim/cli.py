@@ -459,6 +459,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
         for joint, b in r.get("bearings", {}).items():
             extra_b = (f", λ = {b['lambda']:.3g}" if "lambda" in b else "") + (f", oil {b['temperature_start']:.5g} → {b['temperature_end']:.5g} K" if "temperature_end" in b else "")
+            if "min_film_crank_angle_deg" in b:
+                extra_b = f" at {b['min_film_crank_angle_deg']:.1f}°" + extra_b
+            if "peak_pressure" in b:  # the film output was asked for: its peak and flows too
+                extra_b += f", peak pressure {b['peak_pressure'] * 1e-6:.4g} MPa, side leakage {b['mean_side_leakage'] * 1e6:.4g} cm³/s (supply {b['mean_supply_flow'] * 1e6:.4g})"
             print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W (t = {b['window_start']:.6g} to {b['window_end']:.6g} s)")
         for text in cli_readings.reaction_text(r.get("reactions", {})):
             print(text)

@@ -120,10 +120,11 @@ def test_the_short_film_big_end_has_the_massless_orbits_minimum_film(reference: 
     assert 0.0 <= b["min_film_crank_angle_deg"] < 720.0
 
 
-def test_the_scene_runs_with_its_readings(tmp_path: Path) -> None:
+def test_the_scene_runs_with_its_readings(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """``clearsim run`` on the scene (finite film, one cycle here): the bearing summary has the
-    minimum film over 0–720°, the peak pressure, the flows and the oil temperature; joints.csv has
-    the flow columns in m³/s; the pressure picture is written."""
+    minimum film over 0–720°, the peak pressure, the flows and the oil temperature, and the run
+    prints them with the friction power; joints.csv has the flow columns in m³/s; the pressure
+    picture is written."""
     from clearsim.cli import main
 
     scene = tmp_path / "one_cycle.toml"
@@ -138,3 +139,6 @@ def test_the_scene_runs_with_its_readings(tmp_path: Path) -> None:
     header = (out / "joints.csv").read_text(encoding="utf-8").splitlines()[0]
     assert "big-end.side_leakage [m^3/s]" in header and "big-end.peak_pressure [Pa]" in header
     assert (out / "big-end_pressure.png").exists()
+    line = next(t for t in capsys.readouterr().out.splitlines() if t.startswith("bearing big-end:"))
+    for part in ("min film", "° ", "oil 363.15 →", "peak pressure", "MPa", "side leakage", "cm³/s", "mean power loss"):
+        assert part in line, (part, line)
