@@ -140,5 +140,5 @@ def test_the_scene_runs_with_its_readings(tmp_path: Path, capsys: pytest.Capture
     assert "big-end.side_leakage [m^3/s]" in header and "big-end.peak_pressure [Pa]" in header
     assert (out / "big-end_pressure.png").exists()
     line = next(t for t in capsys.readouterr().out.splitlines() if t.startswith("bearing big-end:"))
-    for part in ("min film", "° ", "oil 363.15 →", "peak pressure", "MPa", "side leakage", "cm³/s", "mean power loss"):
+    for part in ("min film", "µm at ", "oil 363.15 →", "peak pressure", "MPa", "side leakage", "cm³/s", "mean power loss"):
         assert part in line, (part, line)
