@@ -275,7 +275,7 @@ mod tests {
                 bearings_from: None,
                 sections: None,
                 lyapunov: Some(spec),
-                            };
+            };
             let out = super::super::simulate(&model, &rs, None).unwrap();
             let book = out.lyapunov.unwrap();
             assert!(book.error.is_none(), "{:?}", book.error);
