@@ -77,6 +77,7 @@ fn input_error(py: Python<'_>, field: &str, value: impl std::fmt::Display, reaso
 // ---------------------------------------------------------------- reading plain data
 
 mod de;
+mod film;
 
 /// Run settings from Python plain data (the dict `Mechanism.run_settings` builds), through serde
 /// ([`crate::settings::RunSettingsDesc`]) and validated. A key or value that does not fit is an
@@ -203,6 +204,9 @@ fn recording_into<'py>(py: Python<'py>, d: &Bound<'py, PyDict>, rec: &crate::rec
     }
     if ch.energy {
         d.set_item("energy", array2(py, &rec.energy, crate::energy::ENERGY_COLUMNS.len())?)?;
+    }
+    if ch.film {
+        film::recorded(py, rec, d)?;
     }
     Ok(())
 }
@@ -498,6 +502,22 @@ impl CompiledModel {
         output_to_dict(py, &out)
     }
 
+    /// The film pressure of clearance joint `joint` (its index) in the state `y` (docs/physics.md
+    /// §4, "Oil flow and pressure"; `film.rs`); `temperature` [K] the oil's then, `content` the
+    /// fill a mass-conserving joint's run recorded. `None` for a dry joint.
+    #[pyo3(signature = (joint, y, temperature=None, content=None))]
+    fn film_field<'py>(
+        &self,
+        py: Python<'py>,
+        joint: usize,
+        y: PyReadonlyArray1<'py, f64>,
+        temperature: Option<f64>,
+        content: Option<PyReadonlyArray1<'py, f64>>,
+    ) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let y = self.state_vector(py, &y)?;
+        film::film_field(py, &self.model, joint, &y, temperature, content)
+    }
+
     /// The ideal counterpart: every clearance joint made a revolute joint.
     fn idealized(&self, py: Python<'_>) -> PyResult<CompiledModel> {
         CompiledModel::build(py, self.desc.idealized())
@@ -664,6 +684,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", crate::version())?;
     m.add("JOINT_COLUMNS", JOINT_COLUMNS.to_vec())?;
     m.add("ENERGY_COLUMNS", crate::energy::ENERGY_COLUMNS.to_vec())?;
+    m.add("FILM_COLUMNS", crate::clearance::FILM_COLUMNS.to_vec())?;
     m.add_class::<CompiledModel>()?;
     m.add_function(wrap_pyfunction!(compile, m)?)?;
     m.add_function(wrap_pyfunction!(idealize, m)?)?;

@@ -8,6 +8,7 @@
 //! `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
 
 mod bearings;
+mod cavitation;
 mod diagnosis;
 mod heat;
 mod lifted;
@@ -92,7 +93,7 @@ pub struct MechanismSystem<'a> {
     output_ws: Option<Workspace>,
     pub memory: Vec<ImpactMemory>,
     /// The memory as it was during the step last accepted (what its outputs are evaluated with).
-    step_memory: Vec<ImpactMemory>,
+    pub(super) step_memory: Vec<ImpactMemory>,
     pub recording: Recording,
     stop: Option<StopCheck<'a>>,
     /// Start of the run and its wall-time budget \[s\] ([`RunSettings::max_wall_time`]).
@@ -240,9 +241,12 @@ impl OdeSystem for MechanismSystem<'_> {
     /// after it (switching.rs, docs/physics.md §3, P3), the last state, the wall-time budget
     /// and the stop check.
     fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
-        self.step_memory.copy_from_slice(&self.memory);
+        self.step_memory.clone_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
+        // The film content of mass-conserving joints moves on (rust/simulate/cavitation.rs):
+        // f(t1, y1) changed with it, an explicit method's last stage is stale.
+        let moved = self.memory.iter().any(|m| m.film.is_some()) && self.cavitation_step(t0, t1, dense);
         if self.sections.is_some() {
             self.record_sections(t1, dense)?;
         }
@@ -266,7 +270,7 @@ impl OdeSystem for MechanismSystem<'_> {
                 }
             }
         }
-        Ok(changed)
+        Ok(changed || moved)
     }
 
     /// See newton.rs.
@@ -371,6 +375,7 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.gap_resolution = rs.ode.atol;
+    sys.cavitation_start();
     sys.monitors = monitors;
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;

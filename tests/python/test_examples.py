@@ -19,6 +19,7 @@ EXAMPLES = {
     "four_bar_spring.toml": 0.1,
     "compressor.toml": 0.01,
     "roller_chain.toml": 0.0005,
+    "con_rod_bearing.toml": 0.005,
 }
 
 
