@@ -86,7 +86,7 @@ pub fn reference_settings(rs: &RunSettings, grid: &ReferenceGrid) -> RunSettings
         t0: rs.t0,
         t_end: grid.t_end,
         t_out: grid.times(),
-        channels: Channels { states: true, accelerations: true, reactions: false, joints: false, violation: false, energy: false },
+        channels: Channels { states: true, accelerations: true, reactions: false, joints: false, violation: false, energy: false, film: false },
         max_wall_time: rs.max_wall_time,
         monitors: Vec::new(),
         reference: None,

@@ -4,7 +4,7 @@
 
 use crate::laws::contact::NormalLaw;
 use crate::laws::film::FilmModel;
-use crate::laws::geometry::FilmSupply;
+use crate::laws::geometry::{FilmCavitation, FilmSupply};
 
 /// A rigid body: reference point at the centroid (docs/physics.md §1, P19).
 #[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
@@ -177,6 +177,10 @@ pub struct LubricatedDesc {
     /// on the line of the widest gap (default) or nowhere (a periodic film).
     #[cfg_attr(feature = "serde", serde(default))]
     pub supply: FilmSupply,
+    /// How the finite film ruptures: the Reynolds condition (default, its tables) or
+    /// mass-conserving (`"jfo"`, the film content carried from step to step; docs/physics.md §4).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub cavitation: FilmCavitation,
     /// Dynamic viscosity: a constant μ [Pa s] or Vogel's law of the oil temperature (with `thermal`).
     pub viscosity: ViscosityDesc,
     /// Bearing length L \[m\].
@@ -204,6 +208,11 @@ pub struct LubricatedDesc {
     /// law's friction coefficient.
     #[cfg_attr(feature = "serde", serde(default))]
     pub boundary_friction: Option<f64>,
+    /// Slip speed [m/s] over which the boundary friction ramps up from 0 to μ_b (with
+    /// `roughness`; its own regularisation, not the dry law's v0, v1); `None`:
+    /// [`crate::clearance::mixed::BOUNDARY_SLIP`].
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub boundary_slip: Option<f64>,
     /// The oil temperature's heat balance (docs/physics.md §4, *Heat*); `None`: no temperature.
     #[cfg_attr(feature = "serde", serde(default))]
     pub thermal: Option<ThermalDesc>,

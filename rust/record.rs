@@ -20,11 +20,15 @@ pub struct Channels {
     pub violation: bool,
     /// Stored energies and work done ([`crate::energy::ENERGY_COLUMNS`]).
     pub energy: bool,
+    /// Per clearance joint: the film's oil flow and peak pressure
+    /// ([`crate::clearance::FILM_COLUMNS`]; a finite film solves its Reynolds equation at each
+    /// output time, so only a run that asks pays for it).
+    pub film: bool,
 }
 
 impl Default for Channels {
     fn default() -> Self {
-        Channels { states: true, accelerations: true, reactions: false, joints: true, violation: true, energy: false }
+        Channels { states: true, accelerations: true, reactions: false, joints: true, violation: true, energy: false, film: false }
     }
 }
 
@@ -66,8 +70,16 @@ pub struct Recording {
     /// The oil temperature \[K\] of each clearance joint per output time, when any joint models
     /// it (rust/clearance/thermal.rs; NaN for the joints that do not); empty otherwise.
     pub temperature: Vec<f64>,
-    /// The clearance joints whose readings the `joints` channel stores (empty without it).
+    /// `FILM_COLUMNS.len()` per clearance joint and output time (the `film` channel).
+    pub film: Vec<f64>,
+    /// With the `film` channel: the film content of each mass-conserving joint (in joint order,
+    /// [`crate::laws::bearing_jfo::JFO_THETA`] × [`crate::laws::bearing_jfo::JFO_ZETA`] values) per
+    /// output time, so that its pressure can be solved again afterwards.
+    pub film_content: Vec<f64>,
+    /// The clearance joints whose readings the `joints` and `film` channels store (empty without them).
     readers: Vec<crate::clearance::ClearanceJoint>,
+    /// The finite films' solvers of the `film` channel (one per joint; `None` for other films).
+    film_scratch: Vec<Option<crate::laws::film_field::FiniteScratch>>,
     /// The ideal joints and drivers whose reactions the `reactions` channel stores (empty without it).
     holders: Vec<crate::constraints::Constraint>,
 }
@@ -92,14 +104,17 @@ impl Recording {
             violation: cap(channels.violation, 2),
             energy: cap(channels.energy, crate::energy::ENERGY_COLUMNS.len()),
             temperature: Vec::new(),
-            readers: if channels.joints { model.clearance.clone() } else { Vec::new() },
+            film: cap(channels.film, crate::clearance::FILM_COLUMNS.len() * model.clearance.len()),
+            film_content: Vec::new(),
+            readers: if channels.joints || channels.film { model.clearance.clone() } else { Vec::new() },
+            film_scratch: if channels.film { model.clearance.iter().map(|c| c.film_scratch()).collect() } else { Vec::new() },
             holders: if channels.reactions { model.constraints.clone() } else { Vec::new() },
         }
     }
 
     /// Whether an output needs a full right-hand-side evaluation.
     pub fn needs_evaluation(&self) -> bool {
-        self.channels.is_some_and(|c| c.accelerations || c.reactions || c.joints || c.violation || c.energy)
+        self.channels.is_some_and(|c| c.accelerations || c.reactions || c.joints || c.violation || c.energy || c.film)
     }
 
     /// Store one output row from the state and the workspace of its evaluation (with the joints'
@@ -142,6 +157,15 @@ impl Recording {
                 ]);
                 let (w_b, w_j) = crate::clearance::body_rates(joint, &y[n..2 * n]);
                 self.joints.extend_from_slice(&joint.readings(k, f, &joint.memory_at(mem, y), w_b, w_j).columns());
+            }
+        }
+        if ch.film {
+            for (j, ((k, f), mem)) in ws.joint_kin.iter().zip(&ws.joint_force).zip(memory).enumerate() {
+                let r = self.readers[j].flow_and_peak(k, f, mem, self.film_scratch[j].as_mut());
+                self.film.extend_from_slice(&[r.side_leakage, r.supply, r.peak_pressure, r.peak_angle]);
+                if let Some(content) = &mem.film {
+                    self.film_content.extend_from_slice(content.lock().unwrap_or_else(|e| e.into_inner()).content(mem.film_generation));
+                }
             }
         }
         if ch.violation {

@@ -176,6 +176,7 @@ fn joint(lubricated: bool, law: NormalLaw, film: FilmModel, c: f64, r_j: f64, ce
             eps_max: 0.99,
             mixed: None,
             heat: None,
+            mass_conserving: false,
         }),
         guide_normal: None,
         penetration_limit: c.max(0.05 * r_j),
@@ -206,7 +207,7 @@ proptest! {
         let kin = [bearing, journal];
         let k: JointKinematics = j.kinematics(&kin);
         prop_assert!(k.eps.is_finite() && k.eps_dot.is_finite() && k.wedge.is_finite() && k.slip.is_finite(), "{k:?}");
-        let mem = ImpactMemory { in_contact, impact_speed: impact.abs(), impacts: 0, wear_offset: 0.0, viscosity: 0.0 };
+        let mem = ImpactMemory { in_contact, impact_speed: impact.abs(), impacts: 0, wear_offset: 0.0, viscosity: 0.0, ..ImpactMemory::default() };
         let f = j.force(&k, &mem);
         prop_assert!(f.total.x.is_finite() && f.total.y.is_finite(), "force {f:?} at {k:?}");
         prop_assert!(f.normal >= 0.0 && (0.0..=1.0).contains(&f.w_dry));
@@ -285,7 +286,9 @@ fn slider_crank(lubricated: bool, law: NormalLaw, ce: f64, cf: f64, c: f64) -> M
             dry,
             roughness: None,
             boundary_friction: None,
+            boundary_slip: None,
             thermal: None,
+            cavitation: Default::default(),
         })
     } else {
         ClearanceModelDesc::Dry(dry)
@@ -340,7 +343,7 @@ proptest! {
         let mut y = model.q_guess.clone();
         for (v, d) in y.iter_mut().zip(&dq) { *v += d; }
         y.extend_from_slice(&qd);
-        let mem = vec![ImpactMemory { in_contact, impact_speed: impact, impacts: 0, wear_offset: 0.0, viscosity: 0.0 }; model.clearance.len()];
+        let mem = vec![ImpactMemory { in_contact, impact_speed: impact, impacts: 0, wear_offset: 0.0, viscosity: 0.0, ..ImpactMemory::default() }; model.clearance.len()];
         match ws.evaluate(&model, &mem, t, &y) {
             Ok(()) => {
                 prop_assert!(ws.qdd.iter().all(|v| v.is_finite()), "q̈ = {:?}", ws.qdd);

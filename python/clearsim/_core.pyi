@@ -22,6 +22,7 @@ class Outputs(TypedDict, total=False):
     joints: bool
     violation: bool
     energy: bool
+    film: bool
 
 class ReferenceGrid(TypedDict):
     """The grid the reference runs record on (rust/monitor/reference.rs): ``intervals`` equal
@@ -117,6 +118,9 @@ class RunSettings(TypedDict):
 __version__: str
 JOINT_COLUMNS: List[str]
 ENERGY_COLUMNS: List[str]
+#: Per clearance joint and output of the ``film`` channel: side_leakage, supply_flow [m³/s],
+#: peak_pressure [Pa], peak_pressure_angle [rad] (rust/clearance/readings.rs).
+FILM_COLUMNS: List[str]
 
 class CompiledModel:
     """A validated, compiled mechanism."""
@@ -152,6 +156,13 @@ class CompiledModel:
         mechanism's span (rust/compile/plausibility.rs), the pose given (rust/pose.rs)."""
     def check_pose(self) -> None:
         """Raise the pose check's AssemblyError (a body the assembly moved too far), if any."""
+    def film_field(
+        self, joint: int, y: npt.NDArray[np.float64], temperature: Optional[float] = None, content: Optional[npt.NDArray[np.float64]] = None
+    ) -> Optional[Dict[str, Any]]:
+        """The film pressure of clearance joint ``joint`` (index) in the state ``y``: theta [rad],
+        z [m], pressure (nθ, nz) [Pa], peak_pressure [Pa], peak_angle [rad], side_leakage and
+        supply_flow [m³/s]; ``temperature`` [K] for a viscosity that follows it; ``content`` the
+        film content a run recorded (``cavitation="jfo"``; without it a flooded film). None if dry."""
 
 def compile(description: Union[str, Mapping[str, Any]], assembly_tolerance: Optional[float] = 0.2) -> CompiledModel:
     """Resolve the names, validate and compile a description (plain data or its JSON text), read

@@ -40,6 +40,7 @@ from .csvfile import column_name, report_header, write_columns, write_rows
 from .cli_support import EXIT_ERROR, EXIT_FAILURE, OutputsFailed, _describe, _positive_float, _positive_int, _summary_on_failure
 from .export import error_columns
 from .errors import ClearsimError
+from .film_readings import film_columns
 from .joint_readings import summary_markdown
 from .schema import INTEGRATORS, REFERENCES, body_unit
 from .sweep_command import add_sweep_parser
@@ -126,7 +127,14 @@ def _joint_columns(run: SceneRun) -> Columns:
                 cols.append((column_name(f"{joint}.{name}", unit), data[:, k]))  # ε, state: [1] (csvfile.DIMENSIONLESS)
         if joint in heated:
             cols.append((column_name(f"{joint}.temperature", "K"), result.temperature(joint)))
+        cols += _film_columns(run, joint)
     return cols
+
+
+def _film_columns(run: SceneRun, joint: str) -> Columns:
+    """A lubricated joint's oil flow and peak pressure, when the run stored them (``[simulation]
+    outputs = ["film"]``: :func:`clearsim.film_readings.film_columns`)."""
+    return [(column_name(f"{joint}.{name}", unit), values) for name, unit, values in film_columns(run.result, joint)]
 
 
 def _clearances(scene: Scene) -> Dict[str, float]:
@@ -195,6 +203,12 @@ def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
         fig = plots.plot_journal_orbits(orbit, clearance, transition_band=band or None, title=title)
         return plots.save(fig, out_dir / "orbits.png")
 
+    def pressure(joint: str) -> Path:
+        # The film at its peak pressure over the run.
+        k = int(np.argmax(result.peak_pressure(joint)))
+        fig = plots.plot_film_pressure(result.pressure(joint, float(result.t[k])), title=f"{title}: film pressure of '{joint}' at its peak")
+        return plots.save(fig, out_dir / f"{joint}_pressure.png")
+
     def reliability() -> Path:
         spec = scene.reliability
         assert spec is not None
@@ -211,6 +225,10 @@ def _figures(run: SceneRun, out_dir: Path, step: _Steps) -> None:
                 step(f"{body}_{component}_error.png", lambda: error(body, component, errors))
     if out.joints and len(result.t):
         step("orbits.png", orbits)
+    for joint in out.joints:
+        # The picture solves the film from the stored state at its peak (needs "states").
+        if _film_columns(run, joint) and "q" in result._raw:
+            step(f"{joint}_pressure.png", lambda: pressure(joint))
     if run.reliability:
         step("reliability.png", reliability)
     if out.points and len(result.t):
@@ -441,6 +459,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
         for joint, b in r.get("bearings", {}).items():
             extra_b = (f", λ = {b['lambda']:.3g}" if "lambda" in b else "") + (f", oil {b['temperature_start']:.5g} → {b['temperature_end']:.5g} K" if "temperature_end" in b else "")
+            if "min_film_crank_angle_deg" in b:
+                extra_b = f" at {b['min_film_crank_angle_deg']:.1f}°" + extra_b
+            if "peak_pressure" in b:  # the film output was asked for: its peak and flows too
+                extra_b += f", peak pressure {b['peak_pressure'] * 1e-6:.4g} MPa, side leakage {b['mean_side_leakage'] * 1e6:.4g} cm³/s (supply {b['mean_supply_flow'] * 1e6:.4g})"
             print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W (t = {b['window_start']:.6g} to {b['window_end']:.6g} s)")
         for text in cli_readings.reaction_text(r.get("reactions", {})):
             print(text)

@@ -11,10 +11,11 @@ from typing import Any, Dict, List, Mapping, Optional, Protocol, Sequence, Tuple
 
 import numpy as np
 
+from . import _core
 from .csvfile import write_columns
 from .errors import InputError, check_choice
 from .points import POINT_COMPONENTS, PointsLike, tracked_points
-from .schema import BODY_QUANTITIES, BODY_QUANTITY_UNITS, COMPONENTS, JOINT_COLUMN_UNITS, JOINT_COLUMNS, ascii_unit
+from .schema import BODY_QUANTITIES, BODY_QUANTITY_UNITS, COMPONENTS, FILM_COLUMN_UNITS, JOINT_COLUMN_UNITS, JOINT_COLUMNS, ascii_unit
 
 
 class Result(Protocol):
@@ -151,6 +152,10 @@ def columns(res: "Result", points: Optional[PointsLike] = None) -> List[Tuple[st
         for j, joint in enumerate(res.joint_names):
             for c, col in enumerate(JOINT_COLUMNS):
                 out.append((f"{joint}.{col}", JOINT_COLUMN_UNITS.get(col, "1"), raw["joints"][:, j, c]))
+    if "film" in raw:
+        for j, joint in enumerate(res.joint_names):
+            for c, col in enumerate(_core.FILM_COLUMNS):
+                out.append((f"{joint}.{col}", FILM_COLUMN_UNITS[col], raw["film"][:, j, c]))
     if "violation" in raw:
         out.append(("constraint_violation", "m or rad", raw["violation"][:, 0]))
         out.append(("velocity_violation", "m/s or rad/s", raw["violation"][:, 1]))

@@ -10,17 +10,18 @@ loss, tracked at every integration step by the core (rust/simulate/bearings.rs).
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
 from .errors import InputError, check_choice
+from .film_readings import FilmReadings, film_summary
 
 #: Parts of :meth:`JointReadings.friction_torque` and the joint column each reads.
 TORQUE_PARTS = {"total": "friction_torque", "couette": "couette_torque", "poiseuille": "poiseuille_torque"}
 
 
-class JointReadings:
+class JointReadings(FilmReadings):
     """Methods of :class:`clearsim.Result` for the readings of a clearance joint (needs the
     ``"joints"`` output, stored by default). A prismatic clearance joint's name gives its two slider
     ends as columns (front, rear)."""
@@ -93,14 +94,34 @@ class JointReadings:
 
     def driver_angle(self, t: float) -> Optional[float]:
         """The first driver's body angle [deg] at ``t`` [s], interpolated between the stored
-        outputs (``None`` without a driver or stored states)."""
+        outputs, carried on at the stored speed past them (``None`` without a driver or stored
+        states)."""
         drivers = (self.description or {}).get("drivers") or []
         q = self._raw.get("q")
         if not drivers or q is None or not len(self.t) or not math.isfinite(t):
             return None
         body = drivers[0]["body"]  # by name (a Mechanism's description) or index (the core's)
         b = self.body_names.index(body) if isinstance(body, str) else int(body)
+        qd = self._raw.get("qd")
+        if qd is not None and (t > self.t[-1] or t < self.t[0]):
+            # Past the outputs (a run's end between two grid points): on with the stored speed.
+            k = -1 if t > self.t[-1] else 0
+            return float(np.degrees(q[k, 3 * b + 2] + qd[k, 3 * b + 2] * (t - self.t[k])))
         return float(np.degrees(np.interp(t, self.t, q[:, 3 * b + 2])))
+
+    def crank_cycle(self) -> Tuple[float, float]:
+        """The cycle over which the first driver's angle is reported, ``(start, period)`` [deg]:
+        the longest period of the loads given as tables over that driver's angle (a four-stroke
+        gas force repeats every two turns: (0, 720)), from the table's first angle; else one turn
+        (0, 360)."""
+        drivers = (self.description or {}).get("drivers") or []
+        if not drivers:
+            return 0.0, 360.0
+        found = load_periods(self.description, int(drivers[0]["body"]))
+        if not found:
+            return 0.0, 360.0
+        start, period = max(found, key=lambda sp: sp[1])
+        return math.degrees(start), math.degrees(period)
 
     def _lubricated(self) -> List[str]:
         """Names of the lubricated clearance joints (a dry one has no film)."""
@@ -114,7 +135,8 @@ class JointReadings:
     def bearing_summary(self) -> Dict[str, Dict[str, Any]]:
         """Per lubricated joint (a dry one has no film: it is left out even when ``extremes``
         tracks its gap, whose negative minimum is its penetration): ``min_film_thickness`` [m] with ``t_min_film`` [s] and
-        ``min_film_crank_angle_deg`` (the first driver's angle then, if any), located between the
+        ``min_film_crank_angle_deg`` (the first driver's angle then, if any, over the loads'
+        cycle :meth:`crank_cycle`: 0–720° under a four-stroke load table), located between the
         integration steps on the run's dense output; ``peak_power_loss`` [W] (with
         ``t_peak_power_loss`` [s]) and ``mean_power_loss`` [W] from the power loss at every
         integration step's end — all independent of ``dt_out``; with ``roughness`` σ also
@@ -123,6 +145,9 @@ class JointReadings:
         temperature at the run's first and last output (the state itself there: independent of
         ``dt_out``). All over one window, which ``window_start`` and ``window_end`` [s] name: the
         run, or from ``simulate(extremes_from=)`` on (the window of :meth:`Result.extremes` too).
+        With the ``film`` output as well (``outputs=[..., "film"]``) also ``peak_pressure`` [Pa]
+        (its time and angle from the widest gap), ``mean_side_leakage`` and ``mean_supply_flow``
+        [m³/s] over the outputs (:func:`clearsim.film_readings.film_summary`); without it none.
 
         Tracked only when the run asks for it, ``simulate(..., bearings=True)`` (``clearsim run``
         does): a mechanism with a lubricated joint run without it raises an :class:`InputError`
@@ -154,15 +179,38 @@ class JointReadings:
             }
             angle = self.driver_angle(entry["t_min_film"])
             if angle is not None:
-                entry["min_film_crank_angle_deg"] = angle % 360.0
+                start, period = self.crank_cycle()
+                entry["min_film_crank_angle_deg"] = start + (angle - start) % period
             sigma = models.get(name, {}).get("roughness")
             if sigma:
                 entry["lambda"] = entry["min_film_thickness"] / float(sigma)
             temps = self._raw.get("temperature")
             if models.get(name, {}).get("thermal") and temps is not None and len(temps):
                 entry["temperature_start"], entry["temperature_end"] = float(temps[0, j]), float(temps[-1, j])
+            entry.update(film_summary(self, name))
             out[name] = entry
         return out
+
+
+def load_periods(description: Optional[Dict[str, Any]], body: int) -> List[Tuple[float, float]]:
+    """``(first angle, period)`` [rad] of every periodic load table of ``description`` over the
+    angle of ``body`` (rust/description.rs, ``TableArgument::Angle``)."""
+    out: List[Tuple[float, float]] = []
+
+    def walk(v: Any) -> None:
+        if isinstance(v, dict):
+            arg, table = v.get("argument"), v.get("table")
+            if isinstance(arg, dict) and arg.get("kind") == "angle" and arg.get("body") == body and isinstance(table, dict):
+                if table.get("period") and table.get("x"):
+                    out.append((float(table["x"][0]), float(table["period"])))
+            for item in v.values():
+                walk(item)
+        elif isinstance(v, list):
+            for item in v:
+                walk(item)
+
+    walk((description or {}).get("forces") or [])
+    return out
 
 
 def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]:
@@ -175,8 +223,10 @@ def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]
 
     # λ = h_min/σ for every table (– without roughness); the oil temperature when a joint models heat.
     heat = any("temperature_end" in b for b in bearings.values())
+    film = any("peak_pressure" in b for b in bearings.values())
     head = "| lubricated joint | min film [µm] | λ = h_min/σ | at t [s] | crank angle [deg] | peak power loss [W] | mean power loss [W] |"
     head += " oil T start [K] | oil T end [K] |" if heat else ""
+    head += " peak pressure [MPa] | mean side leakage [cm³/s] | mean supply flow [cm³/s] |" if film else ""
     windows = sorted({(b["window_start"], b["window_end"]) for b in bearings.values() if "window_start" in b})
     over = "; ".join(f"t = {a:.6g} to {b:.6g} s" for a, b in windows) or "the run"
     lines = ["", f"Bearings over {over} (minimum, peak and mean tracked at every integration step):", "", head, "|---" * head.count(" | ") + "|---|"]
@@ -186,6 +236,7 @@ def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]
             f"{num(b.get('min_film_crank_angle_deg'), fmt='.1f')} | {num(b.get('peak_power_loss'))} | {num(b.get('mean_power_loss'))} |"
         )  # fmt: skip
         row += f" {num(b.get('temperature_start'), fmt='.5g')} | {num(b.get('temperature_end'), fmt='.5g')} |" if heat else ""
+        row += f" {num(b.get('peak_pressure'), 1e-6)} | {num(b.get('mean_side_leakage'), 1e6)} | {num(b.get('mean_supply_flow'), 1e6)} |" if film else ""
         lines.append(row)
     return lines
 

@@ -297,6 +297,14 @@ class Lubricated:
         The film is evaluated at min(ε, ε_max) inside the band (it is singular at ε = 1).
     dry:
         The dry law that takes over beyond e = c.
+    cavitation:
+        How the finite film ruptures and reforms (``film="finite"`` only): ``"reynolds"``
+        (default: p ≥ 0 with the Reynolds condition, from the tables) or ``"jfo"``
+        (mass-conserving, Jakobsson–Floberg–Olsson in Elrod–Adams' film-content form: the oil
+        content over the bearing is carried from step to step, the pressure solved at every
+        evaluation; needs ``supply="widest_gap"``, where the oil comes in). Costlier (a
+        complementarity problem on a 90 × 8 grid each evaluation); docs/physics.md §4,
+        *Mass-conserving cavitation*.
     supply:
         Where the finite film's pressure is ambient (``film="finite"`` only):
         ``"widest_gap"`` (default: on the axial line of the widest gap, where a bearing is fed, as
@@ -313,6 +321,11 @@ class Lubricated:
     boundary_friction:
         Friction coefficient μ_b on the asperity load (with ``roughness``; default: the ``dry``
         law's ``friction``).
+    boundary_slip:
+        Slip speed [m/s] over which the boundary friction rises from 0 at standstill to μ_b (with
+        ``roughness``; default 1e-4 m/s): its own regularisation, so that the friction coefficient
+        tends to μ_b × (asperity share) as the journal slows down (the dry law's v0, v1 ramp
+        impacts, not the asperities).
     thermal:
         :class:`Thermal`: the joint's effective oil temperature, heated by its power loss and
         cooled to the ambient (docs/physics.md §4, *Heat*; :meth:`Result.temperature`). Needed by
@@ -331,6 +344,8 @@ class Lubricated:
     roughness: Optional[float] = None
     boundary_friction: Optional[float] = None
     thermal: Optional[Thermal] = None
+    boundary_slip: Optional[float] = None
+    cavitation: str = "reynolds"
 
     def __post_init__(self) -> None:
         # The nested models must be these classes (they write themselves as plain data). The
@@ -339,7 +354,7 @@ class Lubricated:
             raise InputError(f"invalid thermal = {self.thermal!r}: must be clearsim.Thermal(...) or None", field="thermal", value=self.thermal)
         if not isinstance(self.dry, Dry):
             raise InputError(f"invalid dry = {self.dry!r}: must be clearsim.Dry(...)", field="dry", value=self.dry)
-        _numbers(self, ("length", "eps0", "m", "eps_max") + (() if isinstance(self.viscosity, Vogel) else ("viscosity",)), ("e0", "roughness", "boundary_friction"))
+        _numbers(self, ("length", "eps0", "m", "eps_max") + (() if isinstance(self.viscosity, Vogel) else ("viscosity",)), ("e0", "roughness", "boundary_friction", "boundary_slip"))
         _core.check_element("lubricated", self._as_dict())  # the values' ranges and what goes with what
 
     def _as_dict(self) -> Dict[str, Any]:
@@ -360,6 +375,10 @@ class Lubricated:
             d["roughness"] = self.roughness
         if self.boundary_friction is not None:
             d["boundary_friction"] = self.boundary_friction
+        if self.boundary_slip is not None:
+            d["boundary_slip"] = self.boundary_slip
+        if self.cavitation != "reynolds":
+            d["cavitation"] = self.cavitation
         if self.thermal is not None:
             d["thermal"] = self.thermal._as_dict()
         return d

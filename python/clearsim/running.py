@@ -285,8 +285,11 @@ class Running:
         outputs:
             Channels to store: any of ``"states"``, ``"accelerations"``, ``"reactions"``
             (the ideal joints' forces and drivers' torques: :meth:`Result.joint_force`,
-            :meth:`Result.driver_torque`), ``"joints"``, ``"violation"`` (default: all but
-            ``"reactions"``).
+            :meth:`Result.driver_torque`), ``"joints"``, ``"violation"``, ``"energy"`` (the
+            energy books, :meth:`Result.energy`), ``"film"`` (each lubricated joint's oil flow
+            and peak pressure, :meth:`Result.flow`, :meth:`Result.peak_pressure`; a finite film
+            solves its Reynolds equation at each output) (default: all but ``"reactions"``,
+            ``"energy"`` and ``"film"``).
         h_max, h_min, max_steps:
             Step limits [s] and the step budget.
         max_seconds:

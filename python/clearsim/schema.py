@@ -33,7 +33,7 @@ INTEGRATORS: Tuple[str, ...] = ("auto", "rk45", "rk4", "dop853", "radau", "rodas
 #: a C² cubic spline whose points do not end integration steps (:mod:`clearsim.forces`).
 INTERPOLATIONS: Tuple[str, ...] = ("linear", "cubic")
 #: The channels a run can store, and those it stores by default.
-OUTPUTS: Tuple[str, ...] = ("states", "accelerations", "reactions", "joints", "violation", "energy")
+OUTPUTS: Tuple[str, ...] = ("states", "accelerations", "reactions", "joints", "violation", "energy", "film")
 DEFAULT_OUTPUTS: Tuple[str, ...] = ("states", "accelerations", "joints", "violation")
 #: The integrator's defaults, where they are defined (the core's ``Settings::default``):
 #: relative and absolute tolerance [-, SI], the smallest step [s] and the step budget.
@@ -52,6 +52,9 @@ JOINT_COLUMN_UNITS: Dict[str, str] = {
     "film_thickness": "m", "friction_torque": "N m", "friction_torque_bearing": "N m", "couette_torque": "N m",
     "poiseuille_torque": "N m", "power_loss": "W", "asperity_force": "N",
 }  # fmt: skip
+#: Units of the ``film`` channel's columns per clearance joint (``_core.FILM_COLUMNS``: oil flow
+#: and peak pressure, :mod:`clearsim.film_readings`).
+FILM_COLUMN_UNITS: Dict[str, str] = {"side_leakage": "m^3/s", "supply_flow": "m^3/s", "peak_pressure": "Pa", "peak_pressure_angle": "rad"}
 
 #: The quantities of a body coordinate (its extremes, its error against the ideal mechanism)
 #: and their units: (of x and y, of theta).
@@ -89,7 +92,7 @@ INPUT_UNITS: Dict[str, str] = {
     "clearance": "m", "journal_radius": "m", "length": "m", "slider_length": "m", "corner_radius": "m",
     "roughness": "m", "e0": "m", "mass": "kg", "inertia": "kg m^2", "angle": "rad", "omega": "rad/s", "v0": "m/s", "v1": "m/s",
     "impact_speed_floor": "m/s", "youngs_modulus": "Pa", "journal_youngs_modulus": "Pa", "hardness": "Pa", "poisson_ratio": "1",
-    "journal_poisson_ratio": "1", "restitution": "1", "friction": "1", "boundary_friction": "1", "coefficient": "1", "eps0": "1",
+    "journal_poisson_ratio": "1", "restitution": "1", "friction": "1", "boundary_friction": "1", "boundary_slip": "m/s", "coefficient": "1", "eps0": "1",
     "eps_max": "1", "ambient": "K", "initial": "K", "viscosity": "Pa s", "angle0": "rad", "heat_capacity": "J/K", "heat_transfer": "W/K",
 }  # fmt: skip
 
@@ -124,6 +127,7 @@ __all__ = [
     "INTERPOLATIONS",
     "JOINT_COLUMNS",
     "JOINT_COLUMN_UNITS",
+    "FILM_COLUMN_UNITS",
     "JOINT_QUANTITIES",
     "JOINT_QUANTITY_UNITS",
     "JOINT_MONITOR_UNITS",

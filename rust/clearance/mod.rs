@@ -4,6 +4,7 @@
 //! the journal's motion inside the bearing, `memory.rs` the impact memory, `wear.rs` the wear
 //! books. The joint's two constraint equations are removed; the journal gains 2 DOF.
 
+pub mod cavitation;
 pub mod kinematics;
 pub mod memory;
 pub mod mixed;
@@ -13,7 +14,7 @@ pub mod wear;
 
 pub use kinematics::JointKinematics;
 pub use memory::ImpactMemory;
-pub use readings::{body_rates, Readings, READING_COLUMNS};
+pub use readings::{body_rates, Readings, FILM_COLUMNS, READING_COLUMNS};
 
 use crate::constraints::{BodyKin, V2};
 use crate::laws::contact::ContactLaw;
@@ -98,6 +99,9 @@ pub struct Film {
     /// The oil temperature's balance and viscosity law (`Lubricated(thermal=…)`,
     /// [`thermal`]); `None`: a constant viscosity and no temperature.
     pub heat: Option<thermal::Heat>,
+    /// Mass-conserving cavitation (`cavitation="jfo"`, finite film): the force comes from the
+    /// film content the joint's memory holds ([`cavitation`]), not from the table.
+    pub mass_conserving: bool,
 }
 
 impl Film {
@@ -218,7 +222,11 @@ impl ClearanceJoint {
         if let (Some(f), true) = (&self.film, w_film > 0.0) {
             let eps = film_eps(k.eps, f.eps_max);
             let s = FilmState { eps, eps_dot: k.eps_dot, wedge: k.wedge };
-            let (mut xi, mut eta) = film_force(f.model, &f.geometry_at(memory), s, f.table);
+            let (mut xi, mut eta) = if f.mass_conserving {
+                cavitation::film_force(&f.geometry_at(memory), s, memory)
+            } else {
+                film_force(f.model, &f.geometry_at(memory), s, f.table)
+            };
             let w = centre_weight(f.model, k.eps);
             if w > 0.0 {
                 // Near the centre the long bearing's force depends on which side n points (its
@@ -395,7 +403,7 @@ mod tests {
             clearance: c,
             contact: ContactLaw { line: None, law: NormalLaw::LankaraniNikravesh, stiffness: 1e10, exponent: 1.5, restitution: 0.9, impact_speed_floor: 1e-4 },
             friction: ModifiedCoulomb { friction_coefficient: 0.1, v0: 1e-4, v1: 1e-3 },
-            film: Some(Film { model, table: None, geometry, eps0: 2e-6, m: 0.5, e0: 0.05 * c, eps_max: 0.99, mixed: None, heat: None }),
+            film: Some(Film { model, table: None, geometry, eps0: 2e-6, m: 0.5, e0: 0.05 * c, eps_max: 0.99, mixed: None, heat: None, mass_conserving: false }),
             guide_normal: None,
             penetration_limit: c,
             wear: None,

@@ -5,6 +5,7 @@
 //! for the recorded channels ([`crate::record`]) and the monitors ([`crate::monitor`]).
 
 use super::{ClearanceJoint, ImpactMemory, JointForce, JointKinematics};
+use crate::laws::film_field::{film_field, flow_and_peak, FilmField, FiniteScratch, FlowAndPeak};
 use crate::laws::film_friction::{dry_friction_torque, film_friction};
 use crate::laws::transition::film_eps;
 use crate::laws::FilmState;
@@ -88,6 +89,71 @@ impl ClearanceJoint {
     }
 }
 
+/// The film columns a run stores per clearance joint and output time when it asks for them
+/// (`outputs=["film"]`, [`ClearanceJoint::flow_and_peak`]).
+pub const FILM_COLUMNS: [&str; 4] = ["side_leakage", "supply_flow", "peak_pressure", "peak_pressure_angle"];
+
+impl ClearanceJoint {
+    /// The share of the film in the joint's force (1 − w_dry in the transition band, 1 with
+    /// roughness, 0 for a dry joint) and the small-eccentricity scale it was applied with.
+    fn film_share(&self, k: &JointKinematics, f: &JointForce) -> f64 {
+        match &self.film {
+            None => 0.0,
+            Some(film) => {
+                let w = if film.mixed.is_some() { 1.0 } else { 1.0 - f.w_dry };
+                w * crate::laws::transition::small_eccentricity_scale(k.eps, film.eps0, film.m)
+            }
+        }
+    }
+
+    /// The film's state as its force law saw it (ε at min(ε, ε_max)).
+    fn film_state(&self, k: &JointKinematics) -> Option<FilmState> {
+        self.film.as_ref().map(|film| FilmState { eps: film_eps(k.eps, film.eps_max), eps_dot: k.eps_dot, wedge: k.wedge })
+    }
+
+    /// Oil flow and peak pressure of the film in the state `k` under the force `f` the law gave
+    /// there (docs/physics.md §4, "Oil flow and pressure"; [`crate::laws::film_field`]), weighted
+    /// like the force by the film's share of the transition blend and the small-ε scale; all 0
+    /// (angle NaN) for a dry joint or a prismatic one. `scratch`: the finite film's solver.
+    pub fn flow_and_peak(&self, k: &JointKinematics, f: &JointForce, memory: &ImpactMemory, scratch: Option<&mut FiniteScratch>) -> FlowAndPeak {
+        let (Some(film), Some(s), None) = (&self.film, self.film_state(k), self.guide_normal) else {
+            return FlowAndPeak { peak_angle: f64::NAN, ..FlowAndPeak::default() };
+        };
+        let w = self.film_share(k, f);
+        if w <= 0.0 {
+            return FlowAndPeak { peak_angle: f64::NAN, ..FlowAndPeak::default() };
+        }
+        let r = if film.mass_conserving {
+            let (j, _) = super::cavitation::readings(&film.geometry_at(memory), s, memory, false);
+            FlowAndPeak { side_leakage: j.side_leakage, supply: j.supply, peak_pressure: j.peak_pressure, peak_angle: j.peak_angle }
+        } else {
+            flow_and_peak(film.model, &film.geometry_at(memory), s, scratch)
+        };
+        FlowAndPeak { side_leakage: w * r.side_leakage, supply: w * r.supply, peak_pressure: w * r.peak_pressure, peak_angle: r.peak_angle }
+    }
+
+    /// The film's pressure field in the state `k` (weighted as [`Self::flow_and_peak`]); `None`
+    /// for a dry or prismatic joint.
+    pub fn film_field(&self, k: &JointKinematics, f: &JointForce, memory: &ImpactMemory, scratch: Option<&mut FiniteScratch>) -> Option<FilmField> {
+        let (Some(film), Some(s), None) = (&self.film, self.film_state(k), self.guide_normal) else { return None };
+        let w = self.film_share(k, f);
+        let mut field = if film.mass_conserving {
+            super::cavitation::readings(&film.geometry_at(memory), s, memory, true).1?
+        } else {
+            film_field(film.model, &film.geometry_at(memory), s, scratch)
+        };
+        field.pressure.iter_mut().for_each(|p| *p *= w);
+        Some(field)
+    }
+
+    /// The finite film's solver for [`Self::flow_and_peak`] and [`Self::film_field`] (`None` for
+    /// the other films, which need none).
+    pub fn film_scratch(&self) -> Option<FiniteScratch> {
+        let film = self.film.as_ref()?;
+        (film.model == crate::laws::FilmModel::Finite && !film.mass_conserving).then(|| FiniteScratch::new(&film.geometry, film.table.map_or(crate::laws::FilmSupply::default(), |t| t.supply)))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -120,6 +186,7 @@ mod tests {
                 eps_max: 0.99,
                 mixed: None,
                 heat: None,
+                mass_conserving: false,
             }),
             guide_normal: None,
             penetration_limit: c,

@@ -8,6 +8,8 @@
 //! y = (q, q̇). The film's viscosity travels to the force laws in the joint's
 //! [`ImpactMemory::viscosity`], set from the state for each evaluation ([`Heat::memory_at`]).
 
+use std::borrow::Cow;
+
 use super::{ClearanceJoint, ImpactMemory};
 use crate::laws::viscosity::{Thermal, Vogel};
 
@@ -31,12 +33,12 @@ impl Heat {
     }
 
     /// The joint's memory at oil temperature `t` \[K\]: with the viscosity μ(T) when it follows the
-    /// temperature, else unchanged.
+    /// temperature, else the memory itself (borrowed: a mass-conserving film's content is shared).
     #[inline]
-    pub fn memory_at(&self, memory: &ImpactMemory, t: f64) -> ImpactMemory {
+    pub fn memory_at<'a>(&self, memory: &'a ImpactMemory, t: f64) -> Cow<'a, ImpactMemory> {
         match self.vogel {
-            Some(v) => ImpactMemory { viscosity: v.viscosity(t), ..*memory },
-            None => *memory,
+            Some(v) => Cow::Owned(ImpactMemory { viscosity: v.viscosity(t), ..memory.clone() }),
+            None => Cow::Borrowed(memory),
         }
     }
 
@@ -63,10 +65,10 @@ impl ClearanceJoint {
     /// The joint's memory at the state `y`: with the viscosity of y's oil temperature when the
     /// joint has one that the film follows, else `memory` itself.
     #[inline]
-    pub fn memory_at(&self, memory: &ImpactMemory, y: &[f64]) -> ImpactMemory {
+    pub fn memory_at<'a>(&self, memory: &'a ImpactMemory, y: &[f64]) -> Cow<'a, ImpactMemory> {
         match self.heat() {
             Some(h) => h.memory_at(memory, y[h.state]),
-            None => *memory,
+            None => Cow::Borrowed(memory),
         }
     }
 }
@@ -87,7 +89,7 @@ mod tests {
         assert!(h.holds_at(170.0) && !h.holds_at(164.0) && !h.holds_at(f64::NAN));
         // A constant viscosity: the memory as it was (0: the film's own), any temperature holds.
         let plain = Heat { vogel: None, ..h };
-        assert_eq!(plain.memory_at(&m, 330.0), m);
+        assert_eq!(*plain.memory_at(&m, 330.0), m);
         assert!(plain.holds_at(100.0));
         assert_eq!(h.rate(300.0, 40.0), 0.8);
     }

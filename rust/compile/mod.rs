@@ -186,7 +186,8 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
             &l.dry,
             Some(Film {
                 model: l.film,
-                table: (l.film == crate::laws::FilmModel::Finite).then(|| crate::laws::bearing_finite_cache::table_for(2.0 * c.journal_radius / l.length, l.supply)),
+                table: (l.film == crate::laws::FilmModel::Finite && l.cavitation == crate::laws::FilmCavitation::Reynolds)
+                    .then(|| crate::laws::bearing_finite_cache::table_for(2.0 * c.journal_radius / l.length, l.supply)),
                 geometry: BearingGeometry {
                     viscosity: initial_viscosity(l),
                     journal_radius: c.journal_radius,
@@ -202,9 +203,10 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
                         sigma,
                         crate::clearance::mixed::composite_modulus(l.dry.youngs_modulus, l.dry.poisson_ratio, l.dry.journal_youngs_modulus, l.dry.journal_poisson_ratio),
                     ),
-                    friction: ModifiedCoulomb { friction_coefficient: l.boundary_friction.unwrap_or(l.dry.friction), v0: l.dry.v0, v1: l.dry.v1 },
+                    friction: crate::clearance::mixed::boundary_friction(l.boundary_friction.unwrap_or(l.dry.friction), l.boundary_slip),
                 }),
                 heat: heat(l),
+                mass_conserving: l.cavitation == crate::laws::FilmCavitation::Jfo,
             }),
         ),
     };

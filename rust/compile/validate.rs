@@ -385,6 +385,22 @@ pub(super) fn lubricated(f: &str, l: &LubricatedDesc) -> Result<()> {
             "applies to film = \"finite\" only: the long films' pressure is referred to the widest gap (P12) and the short film has no flow around the bearing",
         ));
     }
+    if l.cavitation == crate::laws::FilmCavitation::Jfo {
+        if l.film != crate::laws::FilmModel::Finite {
+            return Err(Error::invalid(
+                format!("{f}.cavitation"),
+                "jfo",
+                "applies to film = \"finite\" only: mass-conserving cavitation follows the oil over the bearing, which the closed-form films do not resolve",
+            ));
+        }
+        if l.supply != crate::laws::FilmSupply::WidestGap {
+            return Err(Error::invalid(
+                format!("{f}.supply"),
+                "none",
+                "cavitation = \"jfo\" needs the supply groove on the widest gap (supply = \"widest_gap\"): with the film ambient only at its ends no oil could come back in",
+            ));
+        }
+    }
     within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;
     within(&format!("{f}.m"), l.m, 0.0, 1.0, true, true)?;
     if let Some(e0) = l.e0 {
@@ -394,6 +410,12 @@ pub(super) fn lubricated(f: &str, l: &LubricatedDesc) -> Result<()> {
     validate_dry(f, &l.dry)?;
     if let Some(sigma) = l.roughness {
         positive(&format!("{f}.roughness"), sigma)?;
+    }
+    if let Some(v) = l.boundary_slip {
+        positive(&format!("{f}.boundary_slip"), v)?;
+        if l.roughness.is_none() {
+            return Err(Error::invalid(format!("{f}.boundary_slip"), num(v), "applies with roughness only (the boundary friction's slip ramp): give roughness too"));
+        }
     }
     if let Some(mu_b) = l.boundary_friction {
         non_negative(&format!("{f}.boundary_friction"), mu_b)?;

@@ -54,6 +54,7 @@ impl Default for ReynoldsGrid {
 
 /// A solver for one bearing (k = D/L, supply convention) on one grid, reusing its buffers and
 /// its last pressure field as the next starting guess.
+#[derive(Clone, Debug)]
 pub struct ReynoldsSolver {
     pub k: f64,
     pub supply: FilmSupply,
@@ -62,11 +63,21 @@ pub struct ReynoldsSolver {
     last_eps: f64,
     /// PSOR sweeps of the last solve.
     pub sweeps: usize,
+    /// The θ nodes \[rad\] and their cells' widths of the last solve (its grid is stretched by ε).
+    theta: Vec<f64>,
+    width: Vec<f64>,
 }
 
 impl ReynoldsSolver {
     pub fn new(k: f64, supply: FilmSupply, grid: ReynoldsGrid) -> Self {
-        ReynoldsSolver { k, supply, grid, pressure: vec![0.0; grid.n_theta * grid.n_zeta], last_eps: f64::NAN, sweeps: 0 }
+        ReynoldsSolver { k, supply, grid, pressure: vec![0.0; grid.n_theta * grid.n_zeta], last_eps: f64::NAN, sweeps: 0, theta: Vec::new(), width: Vec::new() }
+    }
+
+    /// The last solve's field: θ nodes \[rad\] (from the widest gap, counter-clockwise), their
+    /// cells' widths \[rad\], and P ≥ 0 at (θ_i, ζ_j), row-major in θ, ζ_j = j/n_ζ from the
+    /// mid-plane (j = 0) towards the end (P = 0 at ζ = 1, not stored).
+    pub fn field(&self) -> (&[f64], &[f64], &[f64]) {
+        (&self.theta, &self.width, &self.pressure)
     }
 
     /// The dimensionless load `I = (I_ξ, I_η)` at (ε, θm) (both halves of the width).
@@ -151,6 +162,8 @@ impl ReynoldsSolver {
             }
         }
         self.sweeps = sweeps;
+        self.theta.clone_from(&th);
+        self.width.clone_from(&width);
         // I = 2 ∫₀¹ ∫ P (cosθ, sinθ) dθ dζ (trapezoid in ζ: half weight on the symmetry plane).
         let (mut ix, mut iy) = (0.0, 0.0);
         for i in 0..nt {

@@ -69,3 +69,17 @@ pub enum FilmSupply {
 pub fn attitude_angle(force: (f64, f64)) -> f64 {
     force.1.abs().atan2(-force.0)
 }
+
+/// How a finite film ruptures and reforms (docs/physics.md §4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
+pub enum FilmCavitation {
+    /// Reynolds (Swift–Stieber) condition, p ≥ 0 without following the oil (the tables').
+    #[cfg_attr(feature = "serde", serde(rename = "reynolds"))]
+    #[default]
+    Reynolds,
+    /// Jakobsson–Floberg–Olsson: mass-conserving, the film content carried as a state
+    /// ([`super::bearing_jfo`]).
+    #[cfg_attr(feature = "serde", serde(rename = "jfo"))]
+    Jfo,
+}

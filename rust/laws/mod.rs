@@ -10,8 +10,10 @@
 //! - [`bearing_long`]: long (Pinkus–Sternlicht) bearing, Gümbel condition (docs/physics.md §4, P10–P14).
 //! - [`bearing_short`]: short (Ocvirk) bearing, Gümbel condition (docs/physics.md §4).
 //! - [`bearing_finite`]: finite bearing, the Reynolds equation solved into a table per L/D and
-//!   supply; [`bearing_finite_cache`]: where those tables are kept (process and disk).
+//!   supply; [`bearing_finite_cache`]: where those tables are kept (process and disk);
+//!   [`bearing_jfo`]: the finite film with mass-conserving cavitation (film content as a state).
 //! - [`film_friction`]: the film's friction torques and power loss; the dry friction's moment.
+//! - [`film_field`]: the film's oil flow, peak pressure and pressure field (readings only).
 //! - [`viscosity`]: Vogel's viscosity law and the joint's lumped heat balance.
 //! - [`asperity`]: Greenwood–Tripp asperity pressure and load (rough surfaces).
 //! - [`transition`]: small-eccentricity scaling (P15–P16) and film-to-contact blend (P18).
@@ -25,11 +27,13 @@
 pub mod asperity;
 pub mod bearing_finite;
 pub mod bearing_finite_cache;
+pub mod bearing_jfo;
 pub mod bearing_long;
 pub mod bearing_short;
 pub mod contact;
 pub mod contact_line;
 pub mod film;
+pub mod film_field;
 pub mod film_friction;
 pub mod friction;
 pub mod geometry;
@@ -42,6 +46,6 @@ pub use bearing_long::{long_bearing_centre_limit, long_bearing_force, long_beari
 pub use bearing_short::{short_bearing_force, short_bearing_pressure, short_bearing_pressure_integrated};
 pub use contact::{hysteresis_factor, stiffness_internal, stiffness_paper_printed, ContactLaw, NormalLaw};
 pub use film::{film_force, FilmModel};
-pub use geometry::{attitude_angle, BearingGeometry, FilmState, FilmSupply, FILM_EPS_CEILING};
+pub use geometry::{attitude_angle, BearingGeometry, FilmCavitation, FilmState, FilmSupply, FILM_EPS_CEILING};
 pub use friction::ModifiedCoulomb;
 pub use transition::{film_eps, small_eccentricity_scale, transition_weights};

@@ -89,6 +89,7 @@ fn input_error(py: Python<'_>, field: &str, value: impl std::fmt::Display, reaso
 // ---------------------------------------------------------------- reading plain data
 
 mod de;
+mod film;
 mod output;
 
 use output::output_to_dict;
@@ -355,6 +356,22 @@ impl CompiledModel {
             .map_err(|e| to_pyerr(py, &e))?;
         output_to_dict(py, &out)
     }
+
+    /// The film pressure of clearance joint `joint` (its index) in the state `y` (docs/physics.md
+    /// §4, "Oil flow and pressure"; `film.rs`); `temperature` [K] the oil's then, `content` the
+    /// fill a mass-conserving joint's run recorded. `None` for a dry joint.
+    #[pyo3(signature = (joint, y, temperature=None, content=None))]
+    fn film_field<'py>(
+        &self,
+        py: Python<'py>,
+        joint: usize,
+        y: PyReadonlyArray1<'py, f64>,
+        temperature: Option<f64>,
+        content: Option<PyReadonlyArray1<'py, f64>>,
+    ) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let y = self.state_vector(py, &y)?;
+        film::film_field(py, &self.model, joint, &y, temperature, content)
+    }
 }
 
 impl CompiledModel {
@@ -575,6 +592,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", crate::version())?;
     m.add("JOINT_COLUMNS", JOINT_COLUMNS.to_vec())?;
     m.add("ENERGY_COLUMNS", crate::energy::ENERGY_COLUMNS.to_vec())?;
+    m.add("FILM_COLUMNS", crate::clearance::FILM_COLUMNS.to_vec())?;
     m.add_class::<CompiledModel>()?;
     m.add_function(wrap_pyfunction!(compile, m)?)?;
     m.add_function(wrap_pyfunction!(idealize, m)?)?;

@@ -10,7 +10,7 @@ use super::to_pyerr;
 use crate::record::JOINT_COLUMNS;
 use crate::simulate::RunOutput;
 
-fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, PyAny>> {
+pub(super) fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, PyAny>> {
     let rows = if cols == 0 { 0 } else { v.len() / cols };
     Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
 }
@@ -47,6 +47,9 @@ fn recording_into<'py>(py: Python<'py>, d: &Bound<'py, PyDict>, rec: &crate::rec
     }
     if ch.energy {
         d.set_item("energy", array2(py, &rec.energy, crate::energy::ENERGY_COLUMNS.len())?)?;
+    }
+    if ch.film {
+        super::film::recorded(py, rec, d)?;
     }
     Ok(())
 }

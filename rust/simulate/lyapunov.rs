@@ -57,7 +57,7 @@ pub struct Shadow<'a> {
 
 impl<'a> Shadow<'a> {
     pub fn new(model: &'a Model, spec: LyapunovSpec, method: Method, ode: Settings) -> Self {
-        let none = Channels { states: false, accelerations: false, reactions: false, joints: false, violation: false, energy: false };
+        let none = Channels { states: false, accelerations: false, reactions: false, joints: false, violation: false, energy: false, film: false };
         let n = model.state_dim();
         Shadow {
             sys: MechanismSystem::new(model, none, 0, None),
@@ -108,7 +108,7 @@ impl<'a> Shadow<'a> {
 
     /// Start the shadow at the run's start `t` (state `y`, impact memory `memory`).
     pub fn start_at(&mut self, t: f64, y: &[f64], memory: &[crate::clearance::ImpactMemory]) {
-        self.sys.memory.copy_from_slice(memory);
+        crate::clearance::cavitation::copy_detached(&mut self.sys.memory, memory);
         let mut delta = first_direction(y.len());
         match self.place(t, y, &mut delta) {
             Ok(()) => self.started = true,
@@ -141,7 +141,7 @@ impl<'a> Shadow<'a> {
                     return Ok(());
                 }
                 dense.eval(start, &mut y_ref);
-                self.sys.memory.copy_from_slice(memory);
+                crate::clearance::cavitation::copy_detached(&mut self.sys.memory, memory);
                 let mut delta = first_direction(y_ref.len());
                 self.place(start, &y_ref, &mut delta)?;
                 self.started = true;

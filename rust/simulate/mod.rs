@@ -3,12 +3,15 @@
 //! what a failed run keeps. The system's other roles live beside it: `observe.rs` (monitors,
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
 //! `newton.rs` (the implicit methods' Jacobian), `heat.rs` (its rows and columns of the oil
-//! temperatures), `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at
-//! exact times), `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
+//! temperatures), `lifted.rs` (the same in sparse lifted form, for large mechanisms),
+//! `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at exact times),
+//! `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
 
 mod bearings;
+mod cavitation;
 mod diagnosis;
 mod heat;
+mod lifted;
 pub mod lyapunov;
 mod newton;
 mod observe;
@@ -23,7 +26,7 @@ use crate::clearance::{ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::energy::EnergyBook;
 use crate::error::{Error, Result};
-use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Stats};
+use crate::integrate::{integrate, DenseOutput, LiftedPattern, Method, OdeSystem, Stats};
 use crate::model::Model;
 use crate::monitor::reference::ReferenceStates;
 use crate::monitor::{Monitor, MonitorResult, References};
@@ -93,7 +96,7 @@ pub struct MechanismSystem<'a> {
     output_ws: Option<Workspace>,
     pub memory: Vec<ImpactMemory>,
     /// The memory as it was during the step last accepted (what its outputs are evaluated with).
-    step_memory: Vec<ImpactMemory>,
+    pub(super) step_memory: Vec<ImpactMemory>,
     pub recording: Recording,
     stop: Option<StopCheck<'a>>,
     /// Start of the run and its wall-time budget \[s\] ([`RunSettings::max_wall_time`]).
@@ -156,6 +159,9 @@ pub struct MechanismSystem<'a> {
     g_probe: Vec<f64>,
     /// The state whose mobility columns `mobility` holds (heat.rs reuses them for the border).
     mobility_at: Vec<f64>,
+    // lifted.rs
+    /// The lifted pattern's layout, built when an implicit method asks for it.
+    lifted: Option<Box<lifted::LiftedLayout>>,
 }
 
 impl<'a> MechanismSystem<'a> {
@@ -195,6 +201,7 @@ impl<'a> MechanismSystem<'a> {
             mobility_done: vec![false; 3 * model.n_bodies()],
             g_base: vec![0.0; 3 * model.n_bodies()],
             g_probe: vec![0.0; 3 * model.n_bodies()],
+            lifted: None,
             mobility_at: Vec::new(),
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
@@ -237,9 +244,12 @@ impl OdeSystem for MechanismSystem<'_> {
     /// after it (switching.rs, docs/physics.md §3, P3), the last state, the wall-time budget
     /// and the stop check.
     fn step_accepted(&mut self, t0: f64, y0: &[f64], t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<bool> {
-        self.step_memory.copy_from_slice(&self.memory);
+        self.step_memory.clone_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
+        // The film content of mass-conserving joints moves on (rust/simulate/cavitation.rs):
+        // f(t1, y1) changed with it, an explicit method's last stage is stale.
+        let moved = self.memory.iter().any(|m| m.film.is_some()) && self.cavitation_step(t0, t1, dense);
         if self.sections.is_some() {
             self.record_sections(t1, dense)?;
         }
@@ -263,7 +273,7 @@ impl OdeSystem for MechanismSystem<'_> {
                 }
             }
         }
-        Ok(changed)
+        Ok(changed || moved)
     }
 
     /// See newton.rs.
@@ -284,6 +294,15 @@ impl OdeSystem for MechanismSystem<'_> {
     /// See heat.rs.
     fn border_jacobian(&mut self, t: f64, y: &[f64], a_z: &mut [f64], z_y: &mut [f64]) -> Result<()> {
         self.heat_jacobian(t, y, a_z, z_y)
+    }
+
+    /// See lifted.rs.
+    fn lifted_pattern(&mut self) -> Option<LiftedPattern> {
+        self.lifted_pattern_of()
+    }
+
+    fn lifted_jacobian(&mut self, t: f64, y: &[f64], exact: bool, a0: &mut [f64], k_q: &mut [f64], k_v: &mut [f64]) -> Result<usize> {
+        self.lifted_values(t, y, exact, a0, k_q, k_v)
     }
 
     fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
@@ -360,6 +379,7 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.gap_resolution = rs.ode.atol;
+    sys.cavitation_start();
     sys.monitors = monitors;
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;

@@ -82,6 +82,9 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
     # roughness = 0.5e-6             # m, composite RMS σ: Greenwood–Tripp asperities where
     # boundary_friction = 0.12       #   h < 4σ with friction μ_b, in place of the band e0
+    # boundary_slip = 1e-4           # m/s, slip over which μ_b ramps up from standstill
+    # cavitation = "jfo"             # with film = "finite": mass-conserving cavitation (the oil
+    #                                #   content followed through the ruptured film)
     # viscosity = {vogel = [6.4e-5, 900.0, 164.0]}  # or Vogel's μ = a exp(b/(T − c)) [Pa s, K, K]
     #                                #   of the oil temperature, which needs:
     # [clearance_joint.lubricated.thermal]  # C dT/dt = P_loss − hA (T − T_ambient), docs/physics.md §4
