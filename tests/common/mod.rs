@@ -112,6 +112,8 @@ pub fn lubricated_chain(n: usize, every: usize) -> MechanismDesc {
         dry: DryDesc::steel(),
         roughness: None,
         boundary_friction: None,
+        boundary_slip: None,
+        cavitation: Default::default(),
         thermal: None,
     };
     chain_with(n, |i| i.is_multiple_of(every).then(|| ClearanceModelDesc::Lubricated(film.clone())))
