@@ -17,6 +17,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from .draw_labels import place_labels
 from .draw_points import PointMarks, paths_of, widen
 from .errors import InputError
 
@@ -215,7 +216,7 @@ class Drawing:
     def _label(self, text: str, offset: Tuple[float, float], colour: str, **kw: Any) -> Any:
         if not self._labels:
             return None
-        return self._add(self.ax.annotate(text, (0.0, 0.0), xytext=offset, textcoords="offset points", fontsize=7, color=colour, zorder=6, **kw))
+        return self._add(self.ax.annotate(text, (0.0, 0.0), xytext=offset, textcoords="offset points", fontsize=8, color=colour, zorder=6, **kw))
 
     def _polygon(self, **style: Any) -> Any:
         from matplotlib import patches
@@ -426,12 +427,14 @@ def plot_pose(desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] =
             ax = fig.add_subplot(1, 1, 1)
         else:
             fig = ax.figure
+        before = len(ax.texts)
         draw(ax, desc, q, magnify=magnify, t=t)
         (x0, x1), (y0, y1) = _limits(desc, np.asarray(q)[None, :])
         ax.set_xlim(x0, x1)
         ax.set_ylim(y0, y1)
         if title:
             ax.set_title(title if t is None else f"{title}, t = {t:.4f} s", fontsize=9)
+        place_labels(ax, ax.texts[before:])  # the names of a still drawing, clear of each other
     return fig
 
 

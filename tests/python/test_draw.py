@@ -142,3 +142,32 @@ def test_a_drawing_moved_to_a_pose_matches_one_drawn_there(scene):
     for a, b in zip(geometry(moved), geometry(fresh)):
         assert np.allclose(a, b, rtol=0, atol=1e-12)
     assert not all(np.allclose(a, b) for a, b in zip(geometry(draw.Drawing(Figure().add_subplot(), res.description, q0, 5.0, size)), geometry(fresh)))
+
+
+@pytest.mark.parametrize("scene", ["nine_bar_lubricated.toml", "engine.toml", "four_bar_spring.toml", "slider_crank_guide_clearance.toml"])
+def test_the_labels_of_a_drawing_do_not_overlap(scene):
+    """A still drawing moves its names clear of each other (the nine-bar's 'drive4', 'crank4' and
+    'A (c = ..., ×10)' were written over each other at the same pin) and inside the axes."""
+    m = load_scene(SCENES / scene)
+    fig = m.plot()
+    ax = fig.axes[0]
+    fig.draw_without_rendering()
+    boxes = [t.get_window_extent() for t in ax.texts if t.get_text()]
+    assert len(boxes) >= 4
+    for i, a in enumerate(boxes):
+        for b in boxes[:i]:
+            assert not a.overlaps(b), (a, b)
+    frame = ax.get_window_extent().expanded(1.02, 1.02)
+    assert all(frame.contains(b.x0, b.y0) and frame.contains(b.x1, b.y1) for b in boxes)
+
+
+def test_a_mechanism_picture_is_cropped_to_its_drawing():
+    """The notebook picture of a flat mechanism has no wide white frame: the slider-crank's
+    drawing filled 55 % of its picture's height, the rest white above and below."""
+    import io
+
+    for m in (clearsim.models.slider_crank("dry"), clearsim.models.nine_bar("dry")):
+        with Image.open(io.BytesIO(m._repr_png_())) as im:
+            ink = np.asarray(im.convert("L")) < 250
+        rows, cols = np.flatnonzero(ink.any(axis=1)), np.flatnonzero(ink.any(axis=0))
+        assert (rows[-1] - rows[0] + 1) / ink.shape[0] > 0.9 and (cols[-1] - cols[0] + 1) / ink.shape[1] > 0.9, ink.shape
