@@ -441,7 +441,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print("impacts: " + ", ".join(f"{j} {n}" for j, n in run.result.impacts.items()))
         for joint, b in r.get("bearings", {}).items():
             extra_b = (f", λ = {b['lambda']:.3g}" if "lambda" in b else "") + (f", oil {b['temperature_start']:.5g} → {b['temperature_end']:.5g} K" if "temperature_end" in b else "")
-            print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W")
+            print(f"bearing {joint}: min film {b['min_film_thickness'] * 1e6:.4g} µm{extra_b}, mean power loss {b['mean_power_loss']:.4g} W (t = {b['window_start']:.6g} to {b['window_end']:.6g} s)")
         for text in cli_readings.reaction_text(r.get("reactions", {})):
             print(text)
         for q, res in run.reliability.items():

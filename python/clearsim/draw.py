@@ -2,7 +2,9 @@
 
 Bodies are drawn through the points where joints, clearance joints and force elements attach
 (a bar for two points, a plate for more, a block for a slider), ground joints with hatched
-supports, drivers and motors with a curved arrow, springs as zigzags, loads as arrows. A
+supports, drivers and motors with a curved arrow, springs as zigzags, loads as arrows (by their
+value at the drawn time: none for a load that is zero then), labels moved apart where they would
+overlap (:mod:`clearsim.label_layout`). A
 clearance is far too small to see at the mechanism's scale, so each clearance joint is drawn
 magnified: the bearing circle, the journal inside it displaced by ``magnify × e`` (e the true
 eccentricity), and the factor written beside it. The links themselves stay at their true pose.
@@ -17,9 +19,9 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from .draw_labels import place_labels
 from .draw_points import PointMarks, paths_of, widen
 from .errors import InputError
+from .label_layout import renderer_of, separate
 
 #: Colours of the drawing (colour-blind safe).
 BODY_COLOUR = "#0072B2"
@@ -95,19 +97,49 @@ def default_magnify(desc: Dict[str, Any], size: float) -> float:
     return max(1.0, float(max(m * k for m in (1, 2, 5) if m * k <= raw)))
 
 
-def _load_direction(f: Dict[str, Any]) -> np.ndarray:
-    """A representative direction of an applied force: its constant value, or its largest
-    table entry."""
-
-    def big(profile: Dict[str, Any]) -> float:
-        if profile["kind"] == "constant":
-            return float(profile["value"])
-        ys = profile["table"]["y"]
-        return float(max(ys, key=abs)) if ys else 0.0
-
-    v = np.array([big(f["fx"]), big(f["fy"])])
+def _load_direction(f: Dict[str, Any], desc: Dict[str, Any], q: np.ndarray, t: Optional[float]) -> Optional[np.ndarray]:
+    """The unit direction of an applied force at time ``t`` [s] and pose ``q`` (a table in a
+    driver's angle reads the driven body's angle in ``q``); without ``t``, a table's largest
+    entry. ``None`` when the force is zero: no arrow."""
+    v = np.array([_profile_value(f[c], desc, q, t) for c in ("fx", "fy")])
     n = float(np.hypot(*v))
-    return v / n if n > 0 else np.array([0.0, -1.0])
+    return v / n if n > 0 else None
+
+
+def _profile_value(profile: Dict[str, Any], desc: Dict[str, Any], q: np.ndarray, t: Optional[float]) -> float:
+    """A load profile's value (forces.py's entry: a constant or a piecewise-linear table, held at
+    its ends, repeated every ``period`` of its variable) at time ``t`` or at the angle of the
+    driven body in ``q``; the largest entry when ``t`` is ``None``."""
+    if profile["kind"] == "constant":
+        return float(profile["value"])
+    table = profile["table"]
+    xs, ys = np.asarray(table["x"], dtype=float), np.asarray(table["y"], dtype=float)
+    if not ys.size:
+        return 0.0
+    if t is None:
+        return float(ys[np.argmax(np.abs(ys))])
+    argument = profile.get("argument", {})
+    x = float(t)
+    if argument.get("kind") == "angle":
+        body = _driven_body(desc, argument)
+        if body is None:
+            return float(ys[np.argmax(np.abs(ys))])
+        x = float(q[3 * body + 2])
+    period = table.get("period")
+    if period:
+        x = xs[0] + (x - xs[0]) % float(period)
+    return float(np.interp(x, xs, ys))
+
+
+def _driven_body(desc: Dict[str, Any], argument: Dict[str, Any]) -> Optional[int]:
+    """The body index a load table's driver (or motor) turns, from the description."""
+    if isinstance(argument.get("body"), int):
+        return int(argument["body"])
+    name = argument.get("driver")
+    for d in list(desc.get("drivers", [])) + [f for f in desc.get("forces", []) if f.get("kind") == "motor"]:
+        if d.get("name") == name and isinstance(d.get("body"), int):
+            return int(d["body"])
+    return None
 
 
 def _zigzag(a: np.ndarray, b: np.ndarray, width: float, turns: int = 6) -> np.ndarray:
@@ -186,21 +218,50 @@ class Drawing:
     any, so an animation redraws only these artists over a fixed background (:func:`animate`).
     """
 
-    def __init__(self, ax: Any, desc: Dict[str, Any], q: np.ndarray, mag: float, size: float, labels: bool = True) -> None:
+    def __init__(self, ax: Any, desc: Dict[str, Any], q: np.ndarray, mag: float, size: float, labels: bool = True, t: Optional[float] = None) -> None:
         self.ax = ax
+        self.desc = desc
         self.artists: List[Any] = []
+        #: The labels and the offset [points] each is written at before :meth:`layout` moves it.
+        self.labels: List[Tuple[Any, Tuple[float, float]]] = []
+        #: Artists labels are moved off (the magnified bearings).
+        self.obstacles: List[Any] = []
         self._updates: List[Callable[[np.ndarray], None]] = []
         self._labels = labels
+        self.t = t
         self._bodies(desc, size)
         self._joints(desc, size)
         self._clearance(desc, mag, size)
         self._drives_and_forces(desc, size)
-        self.update(np.asarray(q, dtype=float))
+        self.update(np.asarray(q, dtype=float), t)
 
-    def update(self, q: np.ndarray) -> None:
-        """Move every artist to the pose ``q``."""
+    def update(self, q: np.ndarray, t: Optional[float] = None) -> None:
+        """Move every artist to the pose ``q`` at time ``t`` [s] (a load's arrow shows its value
+        then; ``None``: a table load by its largest entry), each label back at its own offset."""
+        self.t = t
+        for label, offset in self.labels:
+            label.xyann = offset
         for up in self._updates:
             up(q)
+
+    def layout(self, settle: bool = True) -> None:
+        """Move the labels apart where they overlap (:func:`clearsim.label_layout.separate`), in
+        the figure's pixels: call it once the axes' limits are set. ``settle``: run the figure's
+        layout engine first (and again while labels move: a constrained layout moves the axes);
+        an animation's frames, drawn over a frozen layout, do without."""
+        if not self.labels:
+            return
+        fig = self.ax.figure
+        renderer = renderer_of(fig)
+        engine = fig.get_layout_engine() if settle else None
+        if type(engine).__name__ == "PlaceHolderLayoutEngine":  # a layout frozen
+            engine = None
+        for _ in range(3 if engine is not None else 1):
+            if engine is not None:
+                engine.execute(fig)
+            self.ax.apply_aspect()
+            if not separate([label for label, _ in self.labels], renderer, fig.dpi, self.obstacles):
+                break
 
     # ------------------------------------------------------------------ artists
     def _add(self, artist: Any) -> Any:
@@ -216,7 +277,9 @@ class Drawing:
     def _label(self, text: str, offset: Tuple[float, float], colour: str, **kw: Any) -> Any:
         if not self._labels:
             return None
-        return self._add(self.ax.annotate(text, (0.0, 0.0), xytext=offset, textcoords="offset points", fontsize=8, color=colour, zorder=6, **kw))
+        label = self._add(self.ax.annotate(text, (0.0, 0.0), xytext=offset, textcoords="offset points", fontsize=7, color=colour, zorder=6, **kw))
+        self.labels.append((label, offset))
+        return label
 
     def _polygon(self, **style: Any) -> Any:
         from matplotlib import patches
@@ -303,6 +366,7 @@ class Drawing:
             ring = mag * c["clearance"]
             rb = max(r_draw, ring / 0.6)  # a large magnification draws a larger bearing
             bearing = self._patch(patches.Circle((0.0, 0.0), rb, facecolor="white", edgecolor=CLEARANCE_COLOUR, lw=1.5, zorder=4))
+            self.obstacles.append(bearing)
             journal = self._patch(patches.Circle((0.0, 0.0), rb - ring, facecolor="#f6d5bf", edgecolor=CLEARANCE_COLOUR, lw=1.0, zorder=5))
             label = self._label(f"{c['name']} (c = {c['clearance'] * 1e3:.3g} mm, ×{mag:g})", (6, -10), CLEARANCE_COLOUR)
 
@@ -376,7 +440,12 @@ class Drawing:
 
                 def load(q: np.ndarray, f: Dict[str, Any] = f, arrow: Any = arrow, label: Any = label) -> None:
                     p = _point(q, f["body"], f["point"])
-                    u = _load_direction(f)
+                    u = _load_direction(f, self.desc, q, self.t)
+                    arrow.set_visible(u is not None)  # a load that is zero then draws nothing
+                    if label is not None:
+                        label.set_visible(u is not None)
+                    if u is None:
+                        return
                     if f.get("frame") == "body":
                         u = _rotate(_pose(q, f["body"])[1], u)
                     tail = p - 0.12 * size * u
@@ -389,17 +458,26 @@ class Drawing:
 
 def draw(ax: Any, desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] = None, size: Optional[float] = None, labels: bool = True, t: Optional[float] = None) -> float:
     """Draw the mechanism ``desc`` (a :meth:`Mechanism.description`) at coordinates ``q`` on
-    ``ax``. Returns the clearance magnification used."""
+    ``ax`` at time ``t`` [s] (loads drawn by their value then: none for a zero load), labels
+    moved apart where they overlap at the axes' present limits. Returns the clearance
+    magnification used."""
+    mag, drawing = _draw(ax, desc, q, magnify, size, labels, t)
+    ax.autoscale_view()
+    drawing.layout()
+    return mag
+
+
+def _draw(ax: Any, desc: Dict[str, Any], q: np.ndarray, magnify: Optional[float], size: Optional[float], labels: bool, t: Optional[float]) -> Tuple[float, Drawing]:
     q = np.asarray(q, dtype=float)
     size = size or extent(desc, q)
     mag = float(magnify) if magnify is not None else default_magnify(desc, size)
-    Drawing(ax, desc, q, mag, size, labels)
+    drawing = Drawing(ax, desc, q, mag, size, labels, t)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     if t is not None:
         ax.set_title(f"t = {t:.4f} s", fontsize=9)
-    return mag
+    return mag, drawing
 
 
 def _limits(desc: Dict[str, Any], qs: np.ndarray) -> Tuple[Tuple[float, float], Tuple[float, float]]:
@@ -427,14 +505,13 @@ def plot_pose(desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] =
             ax = fig.add_subplot(1, 1, 1)
         else:
             fig = ax.figure
-        before = len(ax.texts)
-        draw(ax, desc, q, magnify=magnify, t=t)
+        _, drawing = _draw(ax, desc, q, magnify, None, True, t)
         (x0, x1), (y0, y1) = _limits(desc, np.asarray(q)[None, :])
         ax.set_xlim(x0, x1)
         ax.set_ylim(y0, y1)
+        drawing.layout()  # at the limits the picture is drawn with
         if title:
             ax.set_title(title if t is None else f"{title}, t = {t:.4f} s", fontsize=9)
-        place_labels(ax, ax.texts[before:])  # the names of a still drawing, clear of each other
     return fig
 
 
@@ -506,7 +583,7 @@ def animate(
         # The background (axes, ticks, labels, clearance circles of the insets) is drawn once;
         # each frame moves the mechanism's artists, the orbits and the time label and redraws
         # only them over it (blitting).
-        drawing = Drawing(ax, desc, qs[0], mag, size)
+        drawing = Drawing(ax, desc, qs[0], mag, size, t=float(times[0]))
         ax.set_aspect("equal")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
@@ -534,9 +611,10 @@ def animate(
             axi.tick_params(labelsize=6)
 
         def frame(i: int) -> None:
-            drawing.update(qs[i])
+            drawing.update(qs[i], float(times[i]))
             if marks is not None:
                 marks.update(qs[i], int(upto[i]))
+            drawing.layout(settle=False)
             clock.set_text(f"t = {times[i]:.4f} s")
             for k, (trace, dot) in enumerate(traces):
                 o = orbit[k][: max(1, upto[i])]

@@ -55,11 +55,12 @@ JOINT_UNITS: Dict[str, str] = JOINT_COLUMN_UNITS
 _SUFFIX = {"position": "", "velocity": "_dot", "acceleration": "_ddot"}
 
 
-def _require(module: str) -> Any:
+def _require(module: str, what: str = "this export") -> Any:
+    """The optional ``module``, or an ImportError naming the extra that installs it."""
     try:
         return __import__(module)
     except ImportError:
-        raise ImportError(f"{module} is needed for this export: pip install 'clearsim[io]'") from None
+        raise ImportError(f"{module} is needed for {what}: pip install 'clearsim[io]'") from None
 
 
 #: The units of a reaction's columns (:meth:`clearsim.Result.joint_force`, ``driver_torque``).
@@ -202,18 +203,23 @@ def to_xarray(res: "Result") -> Any:
 
 def save(res: "Result", path: "str | Path", points: Optional[PointsLike] = None) -> Path:
     """Write the result to ``.csv`` (one column per output, units in the header: ``slider9.y [m]``;
-    ``points`` as :func:`point_columns`) or ``.nc`` (NetCDF through xarray). Returns the path."""
+    ``points`` as :func:`point_columns`) or ``.nc`` (NetCDF 4 through xarray and netCDF4: an
+    ImportError naming ``pip install 'clearsim[io]'`` when either is missing). Returns the path."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix == ".csv":
         write_columns(path, [("t", "s", res.t)] + columns(res, points))
     elif suffix in (".nc", ".netcdf"):
+        # Both before anything is written: without netCDF4 xarray would fall back to another
+        # engine (scipy's NetCDF 3) or fail with its own message.
+        for module in ("xarray", "netCDF4"):
+            _require(module, f"saving {path.name} (NetCDF 4 through xarray)")
         ds = to_xarray(res)
         # NetCDF attributes take strings and numbers; lists of unit strings are joined.
         for var in ds.data_vars.values():
             for key in [k for k, v in var.attrs.items() if isinstance(v, list)]:
                 var.attrs[key] = ", ".join(var.attrs[key])
-        ds.to_netcdf(path)
+        ds.to_netcdf(path, engine="netcdf4")
     else:
         raise InputError(f"invalid path = {str(path)!r}: save writes .csv or .nc files", field="path", value=str(path))
     return path

@@ -107,10 +107,12 @@ class JointReadings:
         return False
 
     def _tracked(self, j: int, quantity: str) -> Optional[Dict[str, Any]]:
+        """The exact monitor of clearance joint ``j``'s ``quantity``, with its window
+        (``window``: [t_start, t_end] [s])."""
         results = self._raw.get("monitors") or []
         for spec, found in zip(self.monitor_specs, results):
             if spec.get("exact") and spec["coordinate"] == j and spec["quantity"] == quantity and not spec.get("reference"):
-                return dict(found)
+                return {**found, "window": (float(spec["t_start"]), float(spec["t_start"]) + float(spec["bin_width"]))}
         return None
 
     def driver_angle(self, t: float) -> Optional[float]:
@@ -127,8 +129,9 @@ class JointReadings:
         """Per lubricated joint (a dry one has no film: it is left out even when ``extremes``
         tracks its gap, whose negative minimum is its penetration): ``min_film_thickness`` [m] with ``t_min_film`` [s] and
         ``min_film_crank_angle_deg`` (the first driver's angle then, if any), ``peak_power_loss``
-        and ``mean_power_loss`` [W] over the run, tracked at every integration step (independent
-        of ``dt_out``); with ``roughness`` σ also ``lambda`` = min film / σ (below ~3 the
+        and ``mean_power_loss`` [W], tracked at every integration step (independent of
+        ``dt_out``) over ``window_start`` to ``window_end`` [s]: the run, or from
+        ``simulate(extremes_from=)`` on (the window of :meth:`Result.extremes` too); with ``roughness`` σ also ``lambda`` = min film / σ (below ~3 the
         asperities carry load: mixed lubrication); with a heat model (``thermal``) also
         ``temperature_start`` and ``temperature_end`` [K], the oil temperature at the run's
         first and last output (the state itself there: independent of ``dt_out``)."""
@@ -142,6 +145,8 @@ class JointReadings:
                 continue
             time = float(np.sum(p["bin_time"]))
             entry: Dict[str, Any] = {
+                "window_start": p["window"][0],
+                "window_end": p["window"][1],
                 "min_film_thickness": float(h["min"]),
                 "t_min_film": float(h["t_min"]),
                 "peak_power_loss": float(p["max"]),
@@ -172,7 +177,9 @@ def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]
     heat = any("temperature_end" in b for b in bearings.values())
     head = "| lubricated joint | min film [µm] | λ = h_min/σ | at t [s] | crank angle [deg] | peak power loss [W] | mean power loss [W] |"
     head += " oil T start [K] | oil T end [K] |" if heat else ""
-    lines = ["", head, "|---" * head.count(" | ") + "|---|"]
+    windows = sorted({(b["window_start"], b["window_end"]) for b in bearings.values() if "window_start" in b})
+    over = "; ".join(f"t = {a:.6g} to {b:.6g} s" for a, b in windows) or "the run"
+    lines = ["", f"Bearings over {over} (minimum, peak and mean tracked at every integration step):", "", head, "|---" * head.count(" | ") + "|---|"]
     for joint, b in bearings.items():
         row = (
             f"| {joint} | {num(b.get('min_film_thickness'), 1e6)} | {num(b.get('lambda'), fmt='.3g')} | {num(b.get('t_min_film'), fmt='.6g')} | "

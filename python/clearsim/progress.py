@@ -68,12 +68,12 @@ def _close_widgets(widget: Any) -> None:
 
 
 class Bar:
-    """A progress bar over ``total`` units that exists only once shown: it counts (``n``,
+    """A progress bar over ``total`` units (``None``: a count, no end known) that exists only once shown: it counts (``n``,
     ``update``) from its creation and opens the tqdm bar (with the elapsed time, rate and time
     left counted from its creation) at the first update after ``delay`` seconds. Use it as a
     context manager or call :meth:`close`."""
 
-    def __init__(self, total: float, desc: str, unit: str, *, enabled: bool, delay: float, leave: bool, unit_scale: bool) -> None:
+    def __init__(self, total: Optional[float], desc: str, unit: str, *, enabled: bool, delay: float, leave: bool, unit_scale: bool) -> None:
         self.total = total
         self.n: float = 0
         self.delay = delay
@@ -148,9 +148,9 @@ class Bar:
         self.close()
 
 
-def bar(total: float, desc: str, unit: str = "run", *, enabled: bool = True, delay: Optional[float] = None, leave: bool = False, unit_scale: bool = False) -> Bar:
+def bar(total: Optional[float], desc: str, unit: str = "run", *, enabled: bool = True, delay: Optional[float] = None, leave: bool = False, unit_scale: bool = False) -> Bar:
     """A progress bar over ``total`` units (runs, or simulated seconds with ``unit="s"``) with
-    an estimate of the time left, shown after ``delay`` seconds (``None``: :data:`DELAY`); a
+    an estimate of the time left (``None``: a count with its rate, no end known), shown after ``delay`` seconds (``None``: :data:`DELAY`); a
     disabled bar when ``enabled`` is false or bars are switched off. Use it as a context
     manager; ``update(n)`` advances it. Nothing is created (no widget in a notebook) for a run
     shorter than the delay."""

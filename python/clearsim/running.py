@@ -265,12 +265,15 @@ class Running:
             settings["h_max"] = h_max
         if max_seconds is not None:
             settings["max_seconds"] = max_seconds
+        # One window for every reading tracked at each step: the extremes and the bearing summary.
+        start = t0 if extremes_from is None else max(check_finite("extremes_from", extremes_from), t0)
         if extremes is not False:
-            start = t0 if extremes_from is None else check_finite("extremes_from", extremes_from)
-            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, max(start, t0), t_end)
+            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end)
+        elif extremes_from is not None and not t_end > start:
+            raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
         if sections is not None:
             settings["sections"] = section_spec(sections)
-        films = film_monitors(self.description(), self.clearance_joint_names, t0, t_end)
+        films = film_monitors(self.description(), self.clearance_joint_names, start, t_end)
         if films:
             settings["monitors"] = settings.get("monitors", []) + films
         return settings
@@ -312,7 +315,8 @@ class Running:
             keeps its partial result.
         extremes, extremes_from:
             Bodies and clearance joints whose peaks to track at every step (``True``: all), for
-            :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on: independent of
+            :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on (the window of
+            :meth:`Result.bearing_summary` too, which says it): independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
         sections:

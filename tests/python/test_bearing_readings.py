@@ -101,6 +101,27 @@ def test_the_minimum_film_does_not_depend_on_the_output_grid() -> None:
     assert "pin: h_min" in repr(runs[0])
 
 
+def test_the_summary_says_its_window_and_follows_extremes_from() -> None:
+    """bearing_summary's means run over one window, which it names (window_start, window_end
+    [s], and the printed table's caption): the run, or from extremes_from on — whether or not the
+    extremes track the joint (its mean power changed with extremes=True before). Its mean power
+    is the stored power's time average over that window (trapezoids on a fine grid)."""
+    from clearsim.joint_readings import summary_markdown
+
+    m = rotor("finite", 0.04, 1000.0)  # the journal sinks from the centre: the loss changes in time
+    whole = m.simulate(0.1, dt_out=1e-3, progress=False).bearing_summary()["pin"]
+    assert (whole["window_start"], whole["window_end"]) == (0.0, pytest.approx(0.1, abs=1e-15))
+    late = [m.simulate(0.1, dt_out=2e-5, extremes=e, extremes_from=0.05, progress=False) for e in (False, True)]
+    a, b = (r.bearing_summary()["pin"] for r in late)
+    assert a == b and (a["window_start"], a["window_end"]) == (0.05, pytest.approx(0.1, abs=1e-15))
+    t, p = late[0].t, late[0].power_loss("pin")
+    keep = t >= 0.05
+    average = float(np.sum(0.5 * (p[keep][1:] + p[keep][:-1]) * np.diff(t[keep]))) / 0.05
+    assert a["mean_power_loss"] == pytest.approx(average, rel=1e-3)  # the monitor integrates 4 samples a step
+    assert abs(whole["mean_power_loss"] / a["mean_power_loss"] - 1) > 1e-3  # the window matters here
+    assert "t = 0.05 to 0.1 s" in "\n".join(summary_markdown(late[0].summary()["bearings"]))
+
+
 def test_dry_friction_moment_and_power_in_contact() -> None:
     """A dry pin pressed against its bearing by the load while turning: R_j F_t on the journal,
     −R_b F_t on the bearing, and the friction power −F_t · slip ≈ c_f F_N R_j ω."""

@@ -4,6 +4,7 @@ Result and errors pickle."""
 from __future__ import annotations
 
 import pickle
+import sys
 
 import numpy as np
 import pytest
@@ -59,6 +60,18 @@ def test_netcdf_round_trip(run, tmp_path):
         assert back["time"].attrs["units"] == "s"
     finally:
         back.close()
+
+
+@pytest.mark.parametrize("missing", ["xarray", "netCDF4"])
+def test_netcdf_without_its_packages_names_the_extra_to_install(run, tmp_path, monkeypatch, missing):
+    """A .nc file needs xarray and netCDF4: without either, save says which and the extra that
+    installs both, before anything is written (without netCDF4 xarray wrote a NetCDF 3 file
+    through scipy, or failed with its own message)."""
+    _, res = run
+    monkeypatch.setitem(sys.modules, missing, None)  # ``import missing`` now raises ImportError
+    with pytest.raises(ImportError, match=rf"{missing} is needed for saving run\.nc.*pip install 'clearsim\[io\]'"):
+        res.save(tmp_path / "run.nc")
+    assert not (tmp_path / "run.nc").exists()
 
 
 def test_save_rejects_an_unknown_format(run, tmp_path):

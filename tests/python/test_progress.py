@@ -72,3 +72,28 @@ def test_a_notebook_bar_closes_every_widget_it_opened(monkeypatch: pytest.Monkey
         b.update(5)
         assert len(_instances) - before >= 4  # shown: a box, a bar, two labels (and their models)
     assert len(_instances) == before
+
+
+def test_form_shows_its_runs_and_iterations(capfd: pytest.CaptureFixture[str], bars_at_once: None) -> None:
+    """FORM (minutes on a mechanism: 14 runs and more an iteration) counts its runs and shows
+    the iteration, |u| and g in a bar, like the sampling methods' bars; a model without
+    ``progress`` (a LimitState) or with it off shows none."""
+    import time
+
+    from clearsim.reliability import LimitState, Normal
+
+    def g(x):
+        time.sleep(0.05)  # a slow model: the bar refreshes (every 0.1 s)
+        return 3.0 - x["a"] - 0.05 * x["b"] ** 2
+
+    model = LimitState(g, {"a": Normal(0, 1), "b": Normal(0, 1)})
+    model.form()
+    assert capfd.readouterr().err == ""
+    model.progress = True  # as a Study has it
+    res = model.form()
+    err = capfd.readouterr().err
+    assert "FORM" in err and "iteration" in err and "|u|" in err, err[-300:]
+    assert re.search(r"FORM: \d+run", err) and max(int(n) for n in re.findall(r"FORM: (\d+)run", err)) <= res.n_runs, err[-300:]
+    model.progress = False
+    model.form()
+    assert capfd.readouterr().err == ""

@@ -120,3 +120,60 @@ def test_bad_input_and_an_unreachable_failure_region():
     # p_f = Φ(−9) ≈ 1e-19: no candidate of 10⁴ fails; AK-MCS says so instead of returning 0.
     with pytest.raises(ReliabilityError, match="AK-IS"):
         LimitState(lambda x: 9.0 - x["x1"], INPUTS).ak_mcs(max_runs=30, max_population=10_000)
+
+
+def test_the_spread_bounds_the_kriging_standard_deviation():
+    """Kriging.mean_and_spread: the mean is Kriging.mean's, and the spread — the error of
+    predicting by the nearest training point alone — bounds the standard deviation everywhere
+    (noise-free and noisy fits, both covariances), so |μ|/spread is a lower bound of U."""
+    rng = np.random.default_rng(3)
+    for covariance in COVARIANCES:
+        for noise in (0.0, 0.05):
+            x = rng.standard_normal((20, 2)) * 2
+            y = np.sin(x[:, 0]) + 0.3 * x[:, 1] ** 2 + noise * rng.standard_normal(20)
+            k = Kriging(x, y, covariance, noise)
+            c = np.vstack([rng.standard_normal((5000, 2)) * 4, x + 1e-3])
+            mean, spread = k.mean_and_spread(c)
+            assert np.allclose(mean, k.mean(c), rtol=0, atol=1e-12 * k.amplitude)
+            assert np.all(np.sqrt(k.variance(c)) <= spread * (1 + 1e-9))
+
+
+def test_ak_mcs_grows_its_population_until_a_rare_event_shows():
+    """g = 3.7 − (x1 + x2)/√2, p_f = Φ(−3.7) = 1.08e-4, from 1000 candidates: none is failed, so
+    the population grows (×10, then to the CoV target) instead of raising, as Echard et al. grow
+    it. Within ×1.3 of the exact p_f and inside its interval, in ≤ 150 calls."""
+
+    def g(a, b):
+        return 3.7 - (a + b) / math.sqrt(2)
+
+    res = LimitState(lambda x: g(x["x1"], x["x2"]), INPUTS).ak_mcs(max_runs=150, seed=1, population=1000, cov=0.1)
+    exact = stats.norm.cdf(-3.7)
+    assert res.extra["population"] >= 500_000 and res.extra["converged"] and res.cov <= 0.1
+    assert exact / 1.3 <= res.pf <= 1.3 * exact and res.interval[0] <= exact <= res.interval[1]
+    assert res.extra["evaluations"] <= 150
+
+
+def test_ak_mcs_on_a_rare_event_of_a_mechanism():
+    """The lubricated slider-crank (1 cycle, c ~ N(0.5, 0.05) mm, peak |x error| of the slider
+    ≤ 0.745 mm): the peak grows with c, so p_f = P(c > c*) with c* found by bisection on the runs
+    (a second method: p_f ≈ 6e-5). AK-MCS from 1000 candidates (none failed: it grew the
+    population where it raised before) comes within ×1.3 of it in ≤ 150 runs."""
+    import clearsim
+    from clearsim import reliability as rel
+
+    limit = 0.745e-3
+    study = rel.Study(lambda c: clearsim.models.slider_crank("lubricated", clearance=c), {"c": rel.Normal(0.5e-3, 0.05e-3)},
+                      rel.Output(body="slider", component="x"), limit=limit, cycles=1.0, progress=False)  # fmt: skip
+    lo, hi = 0.6e-3, 0.8e-3
+    for _ in range(3):  # the peak is monotone in c: bracket c* to 1e-3 of its width
+        cs = np.linspace(lo, hi, 9)
+        peaks = study.run_samples({"c": cs})[0].peaks
+        k = int(np.searchsorted(peaks, limit))
+        assert 0 < k < cs.size and np.all(np.diff(peaks) > 0)
+        lo, hi = cs[k - 1], cs[k]
+    c_star = lo + (hi - lo) * (limit - peaks[k - 1]) / (peaks[k] - peaks[k - 1])
+    exact = stats.norm.sf((c_star - 0.5e-3) / 0.05e-3)
+    runs = study.n_runs
+    res = study.ak_mcs(max_runs=150, seed=0, population=1000, cov=0.1)
+    assert res.n_runs == study.n_runs - runs <= 150 and res.extra["converged"]
+    assert exact / 1.3 <= res.pf <= 1.3 * exact, (res.pf, exact)

@@ -110,3 +110,21 @@ def test_outputs_are_given_one_way():
     path.write_text(text)
     with pytest.raises(InputError, match="either as \\[\\[study.output\\]\\] tables or by"):
         load_scene_file(path)
+
+
+def test_sobol_alone_draws_its_panel(tmp_path):
+    """`--methods sobol` alone: the figure has the Sobol panel only (there is no p_f to draw).
+    It crashed after the runs with `IndexError: pop from empty list` while drawing."""
+    from PIL import Image
+
+    text = SCENE.read_text()
+    start = text.index("[study.tolerance]")
+    scene = tmp_path / SCENE.name
+    scene.write_text(text[:start])
+    out = tmp_path / "rel"
+    assert main(["reliability", str(scene), "-o", str(out), "--methods", "sobol", "--samples", "8", "-q"]) == 0
+    rows = list(csv.DictReader((out / "sobol.csv").open()))
+    assert [r["input"] for r in rows] == ["A.clearance", "B.clearance"]
+    with Image.open(out / "reliability.png") as im:
+        assert im.size[0] < 1.5 * im.size[1]  # one panel, not a p_f panel beside it
+    assert "Sobol indices" in (out / "report.md").read_text()

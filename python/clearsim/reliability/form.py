@@ -137,6 +137,33 @@ def _gradient(model: ModelLike, u: np.ndarray, h: float, on_failure: str) -> Tup
     return float(g[0]), (g[1 : d + 1] - g[d + 1 :]) / (2.0 * h)
 
 
+class _Shown:
+    """The model seen through FORM's progress bar (:func:`clearsim.progress.bar`, shown when the
+    model's ``progress`` is on, a study's by default): the runs made so far, the iteration, |u|
+    and g. Everything else is the model's."""
+
+    def __init__(self, model: ModelLike, desc: str) -> None:
+        from ..progress import bar
+
+        self._model = model
+        shown = getattr(model, "progress", getattr(getattr(model, "parent", None), "progress", False))
+        self._bar = bar(None, desc, "run", enabled=bool(shown))
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._model, name)
+
+    def limit_state(self, u: Any, on_failure: str = "fail") -> np.ndarray:
+        g = self._model.limit_state(u, on_failure)
+        self._bar.update(int(np.size(g)))
+        return g
+
+    def note(self, iteration: int, u: np.ndarray, g: float, h: float) -> None:
+        self._bar.set_postfix_str(f"iteration {iteration}, |u| {float(np.linalg.norm(u)):.4g}, g {g:.3g}, step {h:.3g}", refresh=False)
+
+    def close(self) -> None:
+        self._bar.close()
+
+
 def form(
     model: ModelLike, *, start: Optional[Sequence[float]] = None, step: Union[float, str] = "auto", max_iterations: int = 50, on_failure: str = "fail",
     tolerance: float = 1e-3,
@@ -148,7 +175,17 @@ def form(
     ``start``: the starting point in u (default: the mean point, u = 0); ``step``: the gradient
     step in u, ``"auto"`` (default: from the measured noise, see the module docs) or a number;
     ``max_iterations`` of the search; ``tolerance``: convergence when u moves by less than this
-    (in u). Raises :class:`ReliabilityError` when the search does not converge."""
+    (in u). Raises :class:`ReliabilityError` when the search does not converge. A progress bar
+    (a study's ``progress``) counts the runs and shows the iteration, |u| (β once converged) and g."""
+    shown = _Shown(model, f"FORM {model.mode_names[0]}" if hasattr(model, "parent") else "FORM")  # a series system's mode: named
+    try:
+        return _search(shown, start, step, max_iterations, on_failure, tolerance)
+    finally:
+        shown.close()
+
+
+def _search(model: Any, start: Optional[Sequence[float]], step: Union[float, str], max_iterations: int, on_failure: str, tolerance: float) -> FormResult:
+    """:func:`form`'s search on ``model`` (a :class:`_Shown`)."""
     t0, runs0 = time.perf_counter(), model.n_runs
     check_model(model, on_failure)
     d = model.dimension
@@ -200,6 +237,7 @@ def form(
         if abs(g) < best[0]:
             best = (abs(g), u.copy(), g, grad.copy())
         history.append(moved)
+        model.note(iteration, u, g, h)
         capped = capped + 1 if (float(np.linalg.norm(u)) >= U_MAX * (1 - 1e-9) and g > 0) else 0
         if capped >= 3:
             warnings.warn(

@@ -126,7 +126,7 @@ class ReliabilityModel:
         still ``reliability``. See :func:`clearsim.reliability.tolerance.tolerance`."""
         return tolerance(self, name, reliability, bracket=bracket, cov=cov, max_runs=max_runs, seed=seed, step=step)
 
-    def ak_mcs(self, max_runs: int = 150, seed: Optional[int] = 0, *, cov: float = 0.05, population: int = 10_000, max_population: int = 1_000_000,
+    def ak_mcs(self, max_runs: int = 150, seed: Optional[int] = 0, *, cov: float = 0.05, population: int = 10_000, max_population: int = 100_000_000,
                covariance: str = "matern52", noise: Union[float, str] = "auto", on_failure: str = "fail") -> SamplingResult:  # fmt: skip
         """AK-MCS (Echard et al. 2011): p_f from a Kriging surrogate trained on at most
         ``max_runs`` runs, on a Monte Carlo population grown until its CoV is ``cov``; one

@@ -8,7 +8,7 @@ import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 from statistics import NormalDist
-from typing import Any, Callable, Dict, List, Optional, Sequence
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -241,8 +241,9 @@ def _write(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> 
 
 
 def input_column(path: str) -> str:
-    """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`clearsim.schema.INPUT_UNITS`)."""
-    return column_name(path, INPUT_UNITS.get(path.rpartition(".")[2]))
+    """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`clearsim.schema.INPUT_UNITS`);
+    a ``[parameters]`` name by itself."""
+    return column_name(path, INPUT_UNITS.get(path.rpartition(".")[2]) if "." in path else None)  # a [parameters] name has no unit to look up
 
 
 def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
@@ -260,19 +261,8 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
         fig = plots.new_figure(4.2 * len(panels), 3.6)
         axes = list(fig.subplots(1, len(panels), squeeze=False)[0])
         unit = study.output.unit
-        ax = axes.pop(0)
-        # p_f by method with its 95 % interval (FORM: a point, no interval).
-        for y, (k, r) in enumerate(estimates):
-            lo, hi = getattr(r, "interval", (r.pf, r.pf))
-            if r.pf > 0:
-                ax.errorbar([r.pf], [y], xerr=[[r.pf - lo], [hi - r.pf]] if hi > lo else None, fmt="o", capsize=3, color=f"C{y}")
-            ax.annotate(f"{r.pf:.3g}  ({r.n_runs} runs)", (r.pf if r.pf > 0 else 1e-300, y), textcoords="offset points", xytext=(0, 7), ha="center", fontsize=7)
-        ax.set_yticks(range(len(estimates)), [k.replace("_", " ") for k, _ in estimates])
-        ax.set_ylim(-0.6, len(estimates) - 0.3)
-        if any(r.pf > 0 for _, r in estimates):  # else a log axis has nothing to show
-            ax.set_xscale("log")
-        ax.set_xlabel("probability of exceedance p_f")
-        ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}" if len(study.outputs) == 1 else f"p_f of the system ({len(study.outputs)} modes)")
+        if panels[0] == "pf":  # p_f by method with its 95 % interval (FORM: a point, no interval); none for Sobol alone
+            _pf_panel(axes.pop(0), estimates, study, unit)
         if "monte_carlo" in found and not np.isfinite(found["monte_carlo"].peaks).any():
             _no_sample(axes.pop(0), found["monte_carlo"])  # every run failed: nothing to draw but why
         elif "monte_carlo" in found and len(study.outputs) == 1:
@@ -316,6 +306,21 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
             ax.set_title(f"Sobol indices of the peak ({s.n_runs} runs)")
             ax.legend(fontsize=7)
         return plots.save(fig, path)
+
+
+def _pf_panel(ax: Any, estimates: Sequence[Tuple[str, Any]], study: Any, unit: str) -> None:
+    """p_f by method with its 95 % interval (FORM: a point, no interval)."""
+    for y, (k, r) in enumerate(estimates):
+        lo, hi = getattr(r, "interval", (r.pf, r.pf))
+        if r.pf > 0:
+            ax.errorbar([r.pf], [y], xerr=[[r.pf - lo], [hi - r.pf]] if hi > lo else None, fmt="o", capsize=3, color=f"C{y}")
+        ax.annotate(f"{r.pf:.3g}  ({r.n_runs} runs)", (r.pf if r.pf > 0 else 1e-300, y), textcoords="offset points", xytext=(0, 7), ha="center", fontsize=7)
+    ax.set_yticks(range(len(estimates)), [k.replace("_", " ") for k, _ in estimates])
+    ax.set_ylim(-0.6, len(estimates) - 0.3)
+    if any(r.pf > 0 for _, r in estimates):  # else a log axis has nothing to show
+        ax.set_xscale("log")
+    ax.set_xlabel("probability of exceedance p_f")
+    ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}" if len(study.outputs) == 1 else f"p_f of the system ({len(study.outputs)} modes)")
 
 
 def _no_sample(ax: Any, mc: Any) -> None:

@@ -5,10 +5,11 @@
 ``clearsim run`` uses). SI units throughout: m, kg, s, rad (angles of the crank in the
 ``[reliability]`` block in degrees, as in the paper).
 
-The package's rooms, each importing only those listed before it: :mod:`.toml_reader` (TOML
-with line numbers), :mod:`.builder` (the mechanism's tables), :mod:`.settings` (``[simulation]``,
-``[outputs]``), :mod:`.study` (``[study]`` and the :class:`~clearsim.reliability.Study` it sets
-up), :mod:`.alias` (``[reliability]``, the short form of ``[study]`` with ``methods = ["fosm"]``),
+The package's rooms, each importing only those listed before it: :mod:`.parameters` (the
+``[parameters]`` table and its expressions), :mod:`.toml_reader` (TOML with line numbers),
+:mod:`.builder` (the mechanism's tables), :mod:`.settings` (``[simulation]``, ``[outputs]``),
+:mod:`.study` (``[study]`` and the :class:`~clearsim.reliability.Study` it sets up),
+:mod:`.alias` (``[reliability]``, the short form of ``[study]`` with ``methods = ["fosm"]``),
 :mod:`.sweep` (``[sweep]``, a bifurcation diagram for ``clearsim sweep``), :mod:`.loader`
 (:class:`Scene`, :func:`load_scene_file`).
 
@@ -17,6 +18,12 @@ Format
 Every table and key is listed below; anything else is an error naming the key, the file and the
 line. ``[[...]]`` tables may repeat. Points on a body are in the body's frame (from its
 centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
+
+    [parameters]                     # optional: named numbers (clearsim.scene.parameters)
+    crank = 0.05                     # m; any numeric field below may be written as a name or an
+    rod = 0.12                       #   expression of them: ends = [["crank", 0], ["crank + rod", 0]],
+    half_rod = "rod / 2"             #   points = [["-half_rod", 0.0], ...] (+ - * / **, parentheses,
+                                     #   sqrt sin cos tan asin acos atan atan2 hypot radians degrees, pi)
 
     [mechanism]                      # optional
     name = "my press"                # free text (optional)
@@ -179,7 +186,9 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # body = "slider"                #   above: body/component or joint, quantity, limit and
     # ...                            #   side = "above" (default) or "below"
     [[study.input]]                  # one per random input
-    path = "rod-slider.clearance"    # element.field of the mechanism (Mechanism.with_values), SI
+    path = "rod-slider.clearance"    # element.field of the mechanism (Mechanism.with_values), SI,
+    # parameter = "rod"              #   or a [parameters] name: each sample rebuilds the mechanism
+                                     #   with it (a link length: every point written with it follows)
     distribution = "normal"          # normal | lognormal (mean, std) | uniform (low, high)
     mean = 0.5e-3                    #   | truncated_normal (mean, std, low, high)
     std = 0.05e-3
@@ -197,6 +206,11 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     transient_cycles = 20            # forcing periods before the Poincaré sections are taken
     cycles = 100                     # periods analysed; lyapunov = "auto" | true | false,
                                      #   period [s], phase [rad], tol, label: see clearsim.scene.sweep
+
+A random link length is a ``[parameters]`` entry that the link's points are written with and a
+``[[study.input]]`` with ``parameter =`` its name. The Python API's form of the same study is a
+``build`` function: ``rel.Study(lambda rod: my_mechanism(rod), {"rod": rel.Normal(0.12, 1e-3)},
+...)`` (docs/reliability.md); both give the same answers, bit for bit, with the same seed.
 
 Elements may come in any order: names that refer to other elements (a joint's bodies, a load
 table's driver) are resolved when the whole file is read. A value that is valid but looks like

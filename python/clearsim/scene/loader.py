@@ -4,11 +4,13 @@ ideal mechanism and the ``[reliability]`` FOSM with it (format: :mod:`clearsim.s
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
+from functools import partial
+from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
@@ -22,7 +24,8 @@ from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
 from .sweep import SWEEP_KEYS, SweepSettings, parse_sweep
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
-from .toml_reader import Table, read_toml
+from .parameters import read_parameters
+from .toml_reader import Source, Table, read_toml
 
 PathLike = Union[str, Path]
 
@@ -68,7 +71,12 @@ class Scene:
     name: str = ""
     description: str = ""
     path: Optional[Path] = None
+    #: The values of the ``[parameters]`` table (named numbers the scene's fields may use).
+    parameters: Dict[str, float] = field(default_factory=dict)
     _ideal: Optional[Mechanism] = field(default=None, repr=False, compare=False)
+    #: ``rebuild({parameter: value})``: the mechanism with those parameters changed (a
+    #: ``[[study.input]]`` may randomise a parameter).
+    _rebuild: Optional[Callable[[Mapping[str, float]], Mechanism]] = field(default=None, repr=False, compare=False)
 
     def with_overrides(self, *, t_end: Optional[float] = None, integrator: Optional[str] = None) -> "Scene":
         """A copy with another ``t_end`` [s] and/or integrator (validated)."""
@@ -94,7 +102,7 @@ class Scene:
         settings = self.study_settings()
         if settings is None:
             raise InputError(f"{self.path or 'the scene'} has no [study] table (random inputs, output and limit) nor [reliability]", field="study", value=None)
-        return study_of(settings, self.mechanism, self.simulation, progress)
+        return study_of(settings, self.mechanism, self.simulation, progress, rebuild=self._rebuild)
 
     def simulate(self) -> Result:
         """Run the mechanism with the scene's settings."""
@@ -172,7 +180,7 @@ def _progress(items: List[Any], enabled: bool, desc: str) -> Iterator[Any]:
 
 # ====================================================================== reading a scene
 _TOP_KEYS = (
-    "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study", "sweep",
+    "parameters", "mechanism", "body", "joint", "driver", "clearance_joint", "force", "simulation", "outputs", "reliability", "study", "sweep",
 )  # fmt: skip
 
 
@@ -200,33 +208,7 @@ def load_scene_file(path: PathLike) -> Scene:
     """
     path = Path(path)
     src, data = read_toml(path)
-    top = Table(src, (), data, _TOP_KEYS)
-    builder = _Builder(src, top)
-
-    def emit(caught: List[warnings.WarningMessage]) -> None:
-        for w in caught:  # a plausibility warning located in the file, like an error
-            if isinstance(w.message, PlausibilityWarning):
-                where = builder.relocate(InputError(str(w.message), field=getattr(w.message, "field", "")), None)
-                warnings.warn(PlausibilityWarning(str(where)), stacklevel=3)
-            else:
-                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-
-    failed: Optional[InputError] = None
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        mech = builder.build()
-        try:
-            # The Rust core's checks, located in the file; the compiled model is cached on the
-            # mechanism, so the scene's own run does not compile it again (Mechanism.copy()
-            # leaves it out of copies).
-            mech.compile()
-        except InputError as err:
-            failed = err
-    # The warnings first: a unit slip they name (a journal radius in mm) is often the cause
-    # of the error that follows (an L/D outside the finite film's table).
-    emit(caught)
-    if failed is not None:
-        raise builder.relocate(failed, None) from None
+    builder, mech = _located_build(src, data)
     name = builder.mechanism_table.string("name", path.stem)
     description = builder.mechanism_table.string("description", "")
     outputs = _outputs(builder, mech)
@@ -240,9 +222,53 @@ def load_scene_file(path: PathLike) -> Scene:
         table = builder.top.table("sweep", SWEEP_KEYS)
         assert table is not None
         sweep = parse_sweep(table, mech)
-    return Scene(
-        mech, sim, outputs, reliability, study=study, sweep=sweep, name=name, description=description, path=path, _ideal=mech.idealized()
-    )
+    return Scene(mech, sim, outputs, reliability, study=study, sweep=sweep, name=name, description=description, path=path,
+                 parameters=dict(src.parameters), _ideal=mech.idealized(), _rebuild=partial(_rebuilt, src, data))  # fmt: skip
+
+
+def _located_build(src: Source, data: Dict[str, Any], overrides: Optional[Mapping[str, float]] = None) -> Tuple[_Builder, Mechanism]:
+    """The scene's mechanism built from its tables ``data`` with the ``[parameters]`` (each of
+    ``overrides`` replacing its definition), and the builder that located it: errors and
+    plausibility warnings name the file and the line. The nominal build (no ``overrides``) is
+    also compiled (the Rust core's checks, located in the file)."""
+    if overrides is not None:
+        src = copy.copy(src)  # its own parameters; the text and its lines shared
+    top = Table(src, (), data, _TOP_KEYS)
+    src.parameters = read_parameters(top, overrides)
+    builder = _Builder(src, top)
+
+    def emit(caught: List[warnings.WarningMessage]) -> None:
+        for w in caught:  # a plausibility warning located in the file, like an error
+            if isinstance(w.message, PlausibilityWarning):
+                where = builder.relocate(InputError(str(w.message), field=getattr(w.message, "field", "")), None)
+                warnings.warn(PlausibilityWarning(str(where)), stacklevel=4)
+            else:
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+
+    failed: Optional[InputError] = None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        mech = builder.build()
+        if overrides is None:
+            try:
+                # The Rust core's checks, located in the file; the compiled model is cached on the
+                # mechanism, so the scene's own run does not compile it again (Mechanism.copy()
+                # leaves it out of copies).
+                mech.compile()
+            except InputError as err:
+                failed = err
+    # The warnings first: a unit slip they name (a journal radius in mm) is often the cause
+    # of the error that follows (an L/D outside the finite film's table).
+    emit(caught)
+    if failed is not None:
+        raise builder.relocate(failed, None) from None
+    return builder, mech
+
+
+def _rebuilt(src: Source, data: Dict[str, Any], values: Mapping[str, float]) -> Mechanism:
+    """The scene's mechanism with the ``[parameters]`` named in ``values`` set to them (a
+    ``[[study.input]]`` that randomises a parameter: Scene.study_model's build)."""
+    return _located_build(src, data, values)[1]
 
 
 def load_scene(path: PathLike) -> Mechanism:

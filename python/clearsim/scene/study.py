@@ -39,7 +39,9 @@ system), and the methods to run.
     # side = "below"                   # fails when it falls below the limit (default "above")
 
     [[study.input]]                    # one per random input
-    path = "B.clearance"               # element.field of the mechanism, SI units
+    path = "B.clearance"               # element.field of the mechanism, SI units, or
+    # parameter = "rod"                #   a name of [parameters] (clearsim.scene.parameters): each
+                                       #   sample rebuilds the mechanism with it (a link length)
     distribution = "normal"            # normal | lognormal (mean, std) | uniform (low, high)
     mean = 0.5e-3                      #   | truncated_normal (mean, std, low, high)
     std = 0.05e-3
@@ -60,8 +62,9 @@ system), and the methods to run.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
 
+from ..errors import InputError
 from ..reliability.distributions import Distribution, LogNormal, Normal, TruncatedNormal, Uniform
 from ..reliability.fosm import BIN_WIDTH
 from ..reliability.life import MAX_BLOCKS
@@ -76,7 +79,7 @@ METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fos
 OUTPUT_KEYS = ("body", "component", "joint", "quantity", "limit", "side")
 #: The keys of [study] (the loader checks them before parse_study reads the table).
 STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step", "max_runs", "life")
-INPUT_KEYS = ("path", "distribution", "mean", "std", "low", "high")
+INPUT_KEYS = ("path", "parameter", "distribution", "mean", "std", "low", "high")
 TOLERANCE_KEYS = ("input", "reliability", "bracket")
 LIFE_KEYS = ("cycles", "samples", "reliability", "max_growth", "max_jump", "settle", "max_blocks")
 DISTRIBUTIONS = ("normal", "lognormal", "uniform", "truncated_normal")
@@ -149,6 +152,30 @@ def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
     return output, Limit(limit, side)
 
 
+def _input_name(it: Any, mech: Any) -> Tuple[str, str]:
+    """A ``[[study.input]]``'s name and the key that gives it: ``path`` (``element.field`` of the
+    mechanism) or ``parameter`` (a name of ``[parameters]``: each sample rebuilds the scene with
+    it; a name has no dot, so the two never meet)."""
+    if "parameter" in it:
+        if "path" in it:
+            raise it.error("parameter", "invalid [[study.input]]: give path (element.field) or parameter (a [parameters] name), not both")
+        name = it.string("parameter")
+        known = it.src.parameters
+        if name not in known:
+            raise it.error("parameter", f"invalid study.input parameter {name!r}: no such parameter (known: {', '.join(known) or 'none: no [parameters] table'})", name)
+        return name, "parameter"
+    if "path" not in it:
+        raise it.error(None, "missing key 'path' (element.field of the mechanism) or 'parameter' (a name of [parameters]) in [[study.input]]")
+    path = it.string("path")
+    if "." not in path and path in it.src.parameters:
+        raise it.error("path", f"invalid study.input path {path!r}: a parameter is randomised by parameter = {path!r}", path)
+    try:
+        mech.with_values({path: 0.0})
+    except Exception as err:  # an InputError naming the path
+        raise it.error("path", str(err), path) from None
+    return path, "path"
+
+
 def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySettings:
     """Read the ``[study]`` table ``t`` (a scene ``_Table``: errors point at the key's line)."""
     tables = t.array_of_tables("output", OUTPUT_KEYS)
@@ -164,11 +191,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
         raise t.error("omega", "missing key 'omega' in [study]: the drive speed [rad/s] (no constant-speed driver to take it from)", omega)
     inputs: Dict[str, Distribution] = {}
     for it in t.array_of_tables("input", INPUT_KEYS):
-        path = it.string("path")
-        try:
-            mech.with_values({path: 0.0})
-        except Exception as err:  # an InputError naming the path
-            raise it.error("path", str(err), path) from None
+        path, key = _input_name(it, mech)
         kind = it.string("distribution", choices=DISTRIBUTIONS)
         try:
             if kind == "normal":
@@ -184,7 +207,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
                 raise
             raise it.error(getattr(err, "field", None) and str(getattr(err, "field")).split(".")[-1], str(err)) from None
         if path in inputs:
-            raise it.error("path", f"invalid study.input path {path!r}: given twice", path)
+            raise it.error(key, f"invalid study.input {key} {path!r}: given twice", path)
         inputs[path] = d
     if not inputs:
         raise t.error(None, "missing [[study.input]]: give at least one random input (path, distribution, parameters)")
@@ -236,9 +259,9 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
 
 def scene_study(scene: Any, progress: bool = True) -> Study:
     """The :class:`Study` of a scene's ``[study]`` table: its mechanism with the random inputs
-    set by path (:meth:`clearsim.Mechanism.with_values`), run with the scene's integrator
-    settings."""
-    return study_of(scene.study, scene.mechanism, scene.simulation, progress)
+    set by path (:meth:`clearsim.Mechanism.with_values`) or, for ``[parameters]``, rebuilt with
+    them, run with the scene's integrator settings."""
+    return study_of(scene.study, scene.mechanism, scene.simulation, progress, rebuild=getattr(scene, "_rebuild", None))
 
 
 #: The name of the one fixed input of a study without inputs ([reliability]'s nominal run):
@@ -246,13 +269,19 @@ def scene_study(scene: Any, progress: bool = True) -> Study:
 NOMINAL = "nominal"
 
 
-def study_of(s: StudySettings, mech: Any, sim: Any, progress: bool = True) -> Study:
+def study_of(s: StudySettings, mech: Any, sim: Any, progress: bool = True, rebuild: Optional[Callable[[Mapping[str, float]], Any]] = None) -> Study:
     """The :class:`Study` of the settings ``s`` on ``mech``, run with the integrator settings of
     ``sim`` (a :class:`~clearsim.scene.SimulationSettings`: integrator, tolerances, step, step
-    bounds, step budget) from ``s.t0``."""
+    bounds, step budget) from ``s.t0``. ``rebuild({parameter: value})`` makes the mechanism with
+    ``[parameters]`` changed (inputs named without a dot; paths have one)."""
+    parameters = [k for k in s.inputs if "." not in k]
+    if parameters and rebuild is None:
+        raise InputError(f"invalid inputs {parameters!r}: [parameters] inputs need the scene to rebuild the mechanism (Scene.study_model)", field="inputs", value=parameters)
 
     def build(**values: float) -> Any:
-        return mech.with_values({k: v for k, v in values.items() if k in s.inputs})
+        changed = {k: v for k, v in values.items() if k in parameters}
+        base = rebuild(changed) if (changed and rebuild is not None) else mech
+        return base.with_values({k: v for k, v in values.items() if k in s.inputs and k not in parameters})
 
     opts: Dict[str, Any] = dict(integrator=sim.integrator, rtol=sim.rtol, atol=sim.atol)
     if sim.max_steps is not None:

@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 from ..errors import InputError
+from .parameters import ExpressionError, evaluate
 
 try:  # Python ≥ 3.11
     import tomllib as _toml
@@ -42,6 +43,9 @@ class Source:
     def __init__(self, path: Path, text: str) -> None:
         self.path = path
         self.lines = text.splitlines()
+        #: The values of the scene's ``[parameters]`` (:mod:`.parameters`): a numeric field may
+        #: be written as a name or an expression of them.
+        self.parameters: Dict[str, float] = {}
         # (line index, is array table, name parts)
         self.headers: List[Tuple[int, bool, Tuple[str, ...]]] = []
         for k, line in enumerate(self.lines):
@@ -172,9 +176,17 @@ class Table:
             return value
         return self._as_number(key, value)
 
-    def _as_number(self, key: str, value: Any) -> float:
+    def _as_number(self, key: str, value: Any, whole: Any = None, what: str = "a number") -> float:
+        """``value`` (the field ``key``, or an entry of ``whole``) as a float: a number, or a
+        name or an expression of the scene's ``[parameters]`` written as a string."""
+        if isinstance(value, str):
+            try:
+                return evaluate(value, self.src.parameters)
+            except ExpressionError as err:
+                shown = value if whole is None else whole
+                raise self.error(key, f"invalid {dotted_key(self.where, key)} = {shown!r}: must be {what} or an expression of [parameters]: {err.reason}", shown) from None
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise self._bad(key, value, "a number")
+            raise self._bad(key, value if whole is None else whole, what)
         return float(value)
 
     def integer(self, key: str, default: Any = REQUIRED) -> Any:
@@ -217,9 +229,7 @@ class Table:
         what = f"an array of {length} numbers" if length else "an array of numbers"
         if not isinstance(value, list) or (length is not None and len(value) != length):
             raise self._bad(key, value, what)
-        if any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value):
-            raise self._bad(key, value, what)
-        return [float(v) for v in value]
+        return [self._as_number(key, v, value, what) for v in value]
 
     def point(self, key: str, default: Any = REQUIRED) -> Any:
         return self.numbers(key, default, length=2)
@@ -229,12 +239,9 @@ class Table:
         if key not in self.data:
             return value
         what = f"an array of {count} points [x, y]"
-        if not isinstance(value, list) or len(value) != count:
+        if not isinstance(value, list) or len(value) != count or not all(isinstance(p, list) and len(p) == 2 for p in value):
             raise self._bad(key, value, what)
-        for p in value:
-            if not (isinstance(p, list) and len(p) == 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in p)):
-                raise self._bad(key, value, what)
-        return [[float(v) for v in p] for p in value]
+        return [[self._as_number(key, v, value, what) for v in p] for p in value]
 
     def table(self, key: str, known: Sequence[str]) -> Optional["Table"]:
         if key not in self.data:
