@@ -36,6 +36,7 @@ from .model import ReliabilityModel
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
 from ..batch import error_of, failed, progress, run_all
 from .runs import REFERENCE_POINTS_PER_CYCLE, monitor_spec, output_grid, reference_grid
+from .window import at_window_start, warn_at_start
 from .. import display
 
 __all__ = ["Output", "Limit", "Study", "Evaluation", "MonteCarloEstimate", "ModeEstimate", "FosmResult", "BODY_QUANTITIES", "JOINT_QUANTITIES", "REFERENCE_POINTS_PER_CYCLE"]
@@ -271,6 +272,7 @@ class Study(ReliabilityModel, Modes):
         self._counter = [0]  # simulations of the mechanism with clearances so far (ideal twins aside)
         self._ideal: "OrderedDict[str, Any]" = OrderedDict()
         self._assembly_checked = False
+        self._warned_start = False  # warned once that the peaks sit at the window's start
 
     # ------------------------------------------------------------------ outputs and limits (Modes)
     @property
@@ -358,6 +360,7 @@ class Study(ReliabilityModel, Modes):
         self, points: Mapping[str, Any], *, keep_traces: int = 0, points_per_cycle: int = 360, trace_outputs: Optional[Sequence[str]] = None,
         raw_traces: bool = False, keep_monitors: bool = False, check_assembly: bool = True, what: str = "runs", show: Optional[bool] = None,
         on_job: Optional[Callable[[int, Dict[str, Any], Dict[str, Any]], None]] = None, on_raw: Optional[Callable[[int, Dict[str, Any]], None]] = None,
+        on_trace: Optional[Callable[[int, Any], Any]] = None,
     ) -> Tuple[Evaluation, List[Any]]:  # fmt: skip
         """The sample loop: run the model at ``points`` (``{input name: (N,) array}``; missing
         inputs at their mean) in chunks of :data:`CHUNK`, keeping each run's extremes and
@@ -368,7 +371,9 @@ class Study(ReliabilityModel, Modes):
         with ``raw_traces`` as ``{"sample": raw run, "ideal": the ideal run on the same grid,
         "columns": each output's monitored coordinate or joint index}``. ``on_job(k, description,
         settings)`` may change sample k's description and run settings before it runs (life.py
-        writes the worn state there); ``on_raw(k, raw)`` sees each completed run's raw result."""
+        writes the worn state there); ``on_raw(k, raw)`` sees each completed run's raw result;
+        ``on_trace(k, trace)`` turns a kept trace into what is kept (the full run dropped as its
+        chunk ends)."""
         full = {name: np.atleast_1d(np.asarray(points[name], dtype=float)) if name in points else None for name in self.inputs}
         n = max((v.size for v in full.values() if v is not None), default=1)
         cols = {name: (v if v is not None else np.full(n, self.inputs[name].nominal)) for name, v in full.items()}
@@ -381,6 +386,8 @@ class Study(ReliabilityModel, Modes):
         failures: List[Tuple[int, str]] = []
         monitors: Optional[List[Any]] = [None] * n if keep_monitors else None
         traces: List[Any] = []
+        at_start = np.zeros((n, m_out), dtype=bool)  # peaks at the window's start (window.py)
+        t_start = math.nan
         bar = progress(n, (self.progress and n >= 256) if show is None else show, what)  # big batches only (not FORM's gradients)
         try:
             for start in range(0, n, CHUNK):
@@ -408,16 +415,22 @@ class Study(ReliabilityModel, Modes):
                         else:
                             values[k, i] = float(mon["peak"])
                         first[k, i] = float(mon["first_passage"])
+                        t_start = job.settings["monitors"][i]["t_start"]
+                        at_start[k, i] = lim.side == "above" and at_window_start(float(mon["t_peak"]), t_start, self.cycles * job.period)
                     if monitors is not None:
                         monitors[k] = mons
                     if k < keep_traces:
-                        traces.append(self._trace(job, raw, raw_traces))
+                        trace = self._trace(job, raw, raw_traces)
+                        traces.append(trace if on_trace is None else on_trace(k, trace))
                 failures += sorted(errors.items())
                 self.n_runs += stop - start
                 bar.update(stop - start)
         finally:
             bar.close()
-        return Evaluation(values, first, sorted(failures), monitors), traces
+        ev = Evaluation(values, first, sorted(failures), monitors)
+        if not getattr(self, "_warned_start", False):
+            self._warned_start = warn_at_start(at_start, ~ev.failed, values, [o.label for o in self.outputs], [o.unit for o in self.outputs], self.skip_cycles, t_start)
+        return ev, traces
 
     def _trace(self, job: _Job, raw: Dict[str, Any], raw_traces: bool) -> Any:
         if not raw_traces:

@@ -1,0 +1,48 @@
+"""The analysed window's start-up check: a study whose peaks sit at the window's opening (the
+start-up jolt of a run from rest at t = 0 when ``skip_cycles = 0``) reports that jolt for every
+sample, whatever its inputs; it warns, naming ``skip_cycles`` (docs/reliability.md, "The start-up
+transient")."""
+
+from __future__ import annotations
+
+import warnings
+from typing import Sequence
+
+import numpy as np
+
+from ..errors import ReliabilityWarning
+
+__all__ = ["EDGE_SHARE", "MOST", "at_window_start", "warn_at_start"]
+
+#: A peak this close to the window's start (a share of the window's length: 3.6° of crank a
+#: cycle) sits at its start.
+EDGE_SHARE = 0.01
+#: The share of the completed samples with their peak at the start above which a study warns.
+MOST = 0.5
+
+
+def at_window_start(t_peak: float, t_start: float, span: float) -> bool:
+    """Whether a peak at ``t_peak`` [s] sits at the start of a window ``[t_start, t_start + span]`` [s]."""
+    return bool(t_peak - t_start <= EDGE_SHARE * span)
+
+
+def warn_at_start(at_start: np.ndarray, completed: np.ndarray, values: np.ndarray, labels: Sequence[str], units: Sequence[str], skip_cycles: float, t_start: float) -> bool:
+    """Warn (:class:`clearsim.errors.ReliabilityWarning`) when most ``completed`` samples' peak of
+    an output sits at the window's start (``at_start``, (N, outputs)); ``values`` their peaks.
+    Returns whether it warned."""
+    n_ok = int(np.count_nonzero(completed))
+    if n_ok == 0:
+        return False
+    for i, (label, unit) in enumerate(zip(labels, units)):
+        hits = at_start[:, i] & completed
+        share = int(np.count_nonzero(hits)) / n_ok
+        if share > MOST:
+            peak = float(np.nanmedian(values[hits, i]))
+            warnings.warn(
+                f"the peak {label} sits at the analysed window's start (t = {t_start:.4g} s, skip_cycles = {skip_cycles:g}) in {share:.0%} of {n_ok} "
+                f"completed samples (median {peak:.5g} {unit}): that is the start-up transient, not the mechanism's running, and it hides the "
+                f"inputs' effect; analyse later turns with a larger skip_cycles (docs/reliability.md, 'The start-up transient')",
+                ReliabilityWarning, stacklevel=4,
+            )  # fmt: skip
+            return True
+    return False
