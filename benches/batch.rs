@@ -37,7 +37,7 @@ fn bench_batch(c: &mut Criterion) {
     for threads in [1usize, 2] {
         g.bench_with_input(BenchmarkId::from_parameter(format!("{threads}_threads")), &threads, |b, &th| {
             b.iter(|| {
-                let outs = run_batch(&descs, std::slice::from_ref(&rs), th, None);
+                let outs = run_batch(&descs, std::slice::from_ref(&rs), None, th, None);
                 assert!(outs.iter().all(|o| o.as_ref().is_ok_and(|o| o.error.is_none())));
                 outs.len()
             })

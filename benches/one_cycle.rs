@@ -7,7 +7,10 @@
 //! ```
 //!
 //! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`) and a method, `rk45`
-//! (default), `dop853` or `radau`. Prints the statistics of the run and the wall time; divide
+//! (default), `dop853` or `radau`; a third, `monitored`, adds what a Study sample carries: a
+//! monitor of the last body's x displacement measured against the model's own ideal twin, made
+//! by the batch (rust/batch.rs), 8 points a step (the reference run is then in the count: run
+//! `monitored-bare` for it alone, i.e. the same reference without the monitor's sampling). Prints the statistics of the run and the wall time; divide
 //! cachegrind's `I refs` by the right-hand sides for instructions per right-hand side. The
 //! settings are the benches' (`common::bench_run`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
 //! model (the dry nine-bar) takes a different number of steps after any change of round-off:
@@ -16,7 +19,9 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
+use clearsim::batch::run_batch;
 use clearsim::integrate::Method;
+use clearsim::monitor::{MonitorSpec, Quantity, ReferenceGrid, ReferenceOf, Target};
 use clearsim::simulate::simulate;
 
 fn main() {
@@ -33,9 +38,29 @@ fn main() {
         }
     };
     let model = common::model(name);
-    let rs = common::bench_run(method, common::cycle(name), 1000);
+    let mut rs = common::bench_run(method, common::cycle(name), 1000);
+    let mode = args.get(2).map_or("", String::as_str);
+    if mode.starts_with("monitored") {
+        let t_end = common::cycle(name);
+        rs.reference = Some(ReferenceGrid { t_start: 0.0, t_end, intervals: 7200, record: false });
+        rs.monitors.push(MonitorSpec {
+            target: Target::Coordinate(3 * (model.n_bodies() - 1)),
+            quantity: Quantity::Displacement,
+            reference: Some(ReferenceOf::OwnIdeal),
+            t_start: 0.0,
+            bin_width: t_end / 20.0,
+            bins: 20,
+            limit: Some(1e-3),
+            samples_per_step: if mode == "monitored-bare" { 1 } else { 8 },
+            exact: false,
+        });
+    }
     let start = std::time::Instant::now();
-    let out = simulate(&model, &rs, None).expect("a valid run");
+    let out = if mode.starts_with("monitored") {
+        run_batch(&[common::description(name)], std::slice::from_ref(&rs), None, 1, None).pop().unwrap().expect("a valid run")
+    } else {
+        simulate(&model, &rs, None).expect("a valid run")
+    };
     let wall = start.elapsed();
     if let Some(e) = &out.error {
         eprintln!("the run stopped: {e}");

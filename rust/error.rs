@@ -51,6 +51,10 @@ pub enum Error {
     /// The user interrupted the run (Ctrl-C).
     #[error("interrupted at t = {t} s")]
     Interrupted { t: f64 },
+    /// The reference run a sample is measured against failed (`what`: the mechanism run, e.g.
+    /// "ideal mechanism"), so the sample was not run ([`crate::batch`]).
+    #[error("{cause} ({what})")]
+    Reference { what: &'static str, cause: Box<Error> },
 }
 
 impl Error {
@@ -72,7 +76,16 @@ impl Error {
             | Error::NewtonFailure { t, .. }
             | Error::PenetrationTooDeep { t, .. }
             | Error::Interrupted { t } => Some(*t),
+            Error::Reference { cause, .. } => cause.time(),
             _ => None,
+        }
+    }
+
+    /// The error at the root of a chain of [`Error::Reference`] (what kind of failure it is).
+    pub fn root(&self) -> &Error {
+        match self {
+            Error::Reference { cause, .. } => cause.root(),
+            other => other,
         }
     }
 

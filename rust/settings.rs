@@ -11,7 +11,7 @@ use crate::compile::num;
 use crate::error::{Error, Result};
 use crate::integrate::{Method, Settings};
 use crate::model::Model;
-use crate::monitor::MonitorSpec;
+use crate::monitor::{MonitorSpec, ReferenceGrid, Target};
 use crate::record::Channels;
 
 /// What to run.
@@ -31,6 +31,9 @@ pub struct RunSettings {
     pub max_wall_time: Option<f64>,
     /// Outputs tracked between the output samples ([`crate::monitor`]).
     pub monitors: Vec<MonitorSpec>,
+    /// The grid of the reference runs the monitors are measured against (needed when one is:
+    /// [`crate::monitor::reference`]; the batch makes the runs, rust/batch.rs).
+    pub reference: Option<ReferenceGrid>,
     /// A time \[s\] in [t0, t_end] at which the wear books are also read
     /// ([`crate::clearance::wear::WearBook::at_mark`]): what wears after it is the difference.
     pub wear_mark: Option<f64>,
@@ -210,6 +213,16 @@ impl RunSettings {
         }
         for (i, m) in self.monitors.iter().enumerate() {
             m.validate(i)?;
+            if let (Some(of), None) = (m.reference, self.reference) {
+                let why = "a monitor measured against a reference needs the settings' reference grid (reference = {t_start, t_end, intervals})";
+                return Err(Error::invalid(format!("monitors[{i}].reference"), of.name(), why));
+            }
+        }
+        if let Some(grid) = &self.reference {
+            grid.validate()?;
+            if grid.t_start < self.t0 {
+                return Err(Error::invalid("reference.t_start", num(grid.t_start), format!("must not lie before the run's t0 = {}", num(self.t0))));
+            }
         }
         if let Some(sec) = &self.sections {
             if !(sec.period > 0.0 && sec.period.is_finite()) {
@@ -239,8 +252,9 @@ impl RunSettings {
         Ok(())
     }
 
-    /// The monitors against the compiled model: each names a body coordinate (below 3 × bodies)
-    /// or a clearance joint that exists (their own fields are checked by [`Self::validate`]).
+    /// The monitors against the compiled model: each names a body coordinate (below 3 × bodies),
+    /// a body (for a point) or a clearance joint that exists (their own fields are checked by
+    /// [`Self::validate`]).
     pub fn validate_for(&self, model: &Model) -> Result<()> {
         if self.lyapunov.is_some() {
             if let Some(c) = model.clearance.iter().find(|c| c.wear.is_some() || c.film.is_some_and(|f| f.heat.is_some())) {
@@ -248,14 +262,20 @@ impl RunSettings {
                 return Err(Error::invalid(format!("clearance joint '{}'", c.name), "wear or thermal model", why));
             }
         }
-        for spec in &self.monitors {
-            if spec.quantity.of_joint() {
-                if spec.coordinate >= model.clearance.len() {
+        let nb = model.n_bodies();
+        for (i, spec) in self.monitors.iter().enumerate() {
+            match spec.target {
+                Target::Joint(j) if j >= model.clearance.len() => {
                     let n = model.clearance.len();
-                    return Err(Error::invalid("monitor.coordinate", spec.coordinate, format!("must be a clearance joint index below {n}")));
+                    return Err(Error::invalid(format!("monitors[{i}].coordinate"), j, format!("must be a clearance joint index below {n}")));
                 }
-            } else if spec.coordinate >= 3 * model.n_bodies() {
-                return Err(Error::invalid("monitor.coordinate", spec.coordinate, format!("must be below 3 × bodies = {}", 3 * model.n_bodies())));
+                Target::Coordinate(c) if c >= 3 * nb => {
+                    return Err(Error::invalid(format!("monitors[{i}].coordinate"), c, format!("must be below 3 × bodies = {}", 3 * nb)));
+                }
+                Target::Point { body, .. } if body >= nb => {
+                    return Err(Error::invalid(format!("monitors[{i}].body"), body, format!("must be a body index below {nb}")));
+                }
+                _ => {}
             }
         }
         Ok(())
@@ -318,6 +338,9 @@ pub struct RunSettingsDesc {
     pub max_seconds: Option<f64>,
     #[serde(default)]
     pub monitors: Vec<MonitorSpec>,
+    /// The reference runs' grid ([`RunSettings::reference`]).
+    #[serde(default)]
+    pub reference: Option<ReferenceGrid>,
     /// A time \[s\] at which the wear books are also read (the output's `*_at_mark`).
     #[serde(default)]
     pub wear_mark: Option<f64>,
@@ -362,6 +385,7 @@ impl RunSettingsDesc {
             channels: self.outputs.unwrap_or_default(),
             max_wall_time: self.max_seconds,
             monitors: self.monitors,
+            reference: self.reference,
             wear_mark: self.wear_mark,
             sections: self.sections,
             lyapunov: self.lyapunov,
@@ -403,8 +427,11 @@ mod tests {
         assert!(err(serde_json::json!({"integrator": "rk4", "t_end": 0.1})).contains("needs a fixed step"));
         assert!(err(serde_json::json!({"integrator": "rk45", "t_end": 0.1, "rtoll": 1e-3})).contains("unknown field `rtoll`"));
         let e = err(serde_json::json!({"integrator": "rk45", "t_end": 0.1, "monitors": [{"coordinate": 0, "quantity": "displacement",
-            "t_start": 0.0, "bin_width": 0.01, "reference": {"t": [0.0, 1.0], "value": [0.0], "rate": [0.0, 0.0]}}]}));
-        assert!(e.contains("monitors[0].reference") && e.contains("same length"), "{e}");
+            "t_start": 0.0, "bin_width": 0.01, "reference": "own_ideal"}]}));
+        assert!(e.contains("monitors[0].reference = own_ideal") && e.contains("reference grid"), "{e}");
+        let e = err(serde_json::json!({"integrator": "rk45", "t_end": 0.1, "monitors": [{"body": 0, "point": [0.1, 0.0], "quantity": "displacement",
+            "t_start": 0.0, "bin_width": 0.01}]}));
+        assert!(e.contains("component"), "{e}");
     }
 
     /// The grid Python built before the core did (clearsim 0.x `Mechanism.run_settings`):

@@ -23,24 +23,36 @@ class Outputs(TypedDict, total=False):
     violation: bool
     energy: bool
 
-class Reference(TypedDict):
-    """A reference curve for a monitor: values and rates at strictly increasing times [s]."""
+class ReferenceGrid(TypedDict):
+    """The grid the reference runs record on (rust/monitor/reference.rs): ``intervals`` equal
+    intervals over [t_start, t_end] [s] (numpy's linspace); ``record``: the run's result also
+    gives each reference at its output times (``"reference": {"own_ideal": {"q", "qd", "qdd"}}``)."""
 
-    t: Sequence[float]
-    value: Sequence[float]
-    rate: Sequence[float]
+    t_start: float
+    t_end: float
+    intervals: int
+    record: NotRequired[bool]
 
 class Monitor(TypedDict):
-    """One monitored output (rust/monitor.rs): a body coordinate's error against a reference,
-    or a clearance joint's quantity, in time bins from ``t_start`` [s]."""
+    """One monitored output (rust/monitor/): what it watches — ``coordinate`` (a body coordinate,
+    3 per body: x, y, θ; or a clearance joint's index for a joint quantity), or ``body`` with
+    ``point`` (body frame [m]) and ``component`` (x, y, magnitude) — its error against the
+    reference it names (``own_ideal``: the run's own mechanism made ideal; ``nominal``: the
+    batch's nominal description made ideal; the core makes the runs), or the quantity itself,
+    in time bins from ``t_start`` [s]."""
 
-    coordinate: int
-    quantity: str  # displacement, velocity, acceleration, eccentricity, force, contact_force, film_force
+    coordinate: NotRequired[int]
+    body: NotRequired[int]
+    point: NotRequired[Sequence[float]]
+    component: NotRequired[str]  # x, y, magnitude (a point's)
+    # displacement, velocity, acceleration; eccentricity, force, contact_force, film_force,
+    # film_thickness, friction_torque, power_loss (a clearance joint's)
+    quantity: str
     t_start: float
     bin_width: float
     bins: NotRequired[int]
     limit: NotRequired[Optional[float]]
-    reference: NotRequired[Optional[Reference]]
+    reference: NotRequired[Optional[str]]  # own_ideal, nominal
     samples_per_step: NotRequired[int]
     exact: NotRequired[bool]  # extremes located on the exact quantity between samples
 
@@ -87,6 +99,8 @@ class RunSettings(TypedDict):
     outputs: NotRequired[Outputs]
     max_seconds: NotRequired[float]
     monitors: NotRequired[List[Monitor]]
+    # The grid of the reference runs, needed when a monitor names a reference.
+    reference: NotRequired[ReferenceGrid]
     # A time [s] in [t0, t_end] at which the wear books are also read: each result's "wear"
     # entry then has bearing_at_mark, journal_at_mark [m] and volume_at_mark [m³].
     wear_mark: NotRequired[float]
@@ -117,7 +131,11 @@ class CompiledModel:
     def initial_state(self, t0: float) -> npt.NDArray[np.float64]: ...
     def rhs(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def jacobian(self, t: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
-    def simulate(self, settings: Union[RunSettings, Mapping[str, Any]], progress: Optional[Callable[[float], None]] = None) -> Dict[str, Any]: ...
+    def simulate(
+        self, settings: Union[RunSettings, Mapping[str, Any]], progress: Optional[Callable[[float], None]] = None, nominal: Optional[Mapping[str, Any]] = None
+    ) -> Dict[str, Any]:
+        """Run the model; monitors measured against its own ideal twin (or the ideal of the
+        ``nominal`` description) get their reference run here."""
     def idealized(self) -> "CompiledModel": ...
 
 def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
@@ -140,7 +158,12 @@ def run_batch(
     descriptions: Sequence[Union[str, Mapping[str, Any]]],
     settings: Union[RunSettings, Mapping[str, Any], Sequence[Union[RunSettings, Mapping[str, Any]]]],
     threads: int = 0,
-) -> List[Union[Dict[str, Any], BaseException]]: ...
+    nominal: Optional[Union[str, Mapping[str, Any]]] = None,
+) -> List[Union[Dict[str, Any], BaseException]]:
+    """Run the descriptions on ``threads`` threads (0: all cores), each distinct reference run
+    that the monitors name made once and shared (rust/batch.rs); ``nominal``: the nominal
+    design's description, for monitors measured against its ideal. One result dict or the
+    exception that prevented the run, per description."""
 
 run_batch_py = run_batch
 

@@ -41,7 +41,7 @@ from .cli_support import EXIT_ERROR, EXIT_FAILURE, OutputsFailed, _describe, _po
 from .export import error_columns
 from .errors import ClearsimError
 from .joint_readings import summary_markdown
-from .schema import INTEGRATORS, body_unit
+from .schema import INTEGRATORS, REFERENCES, body_unit
 from .sweep_command import add_sweep_parser
 from .scene import BODY_CHANNELS, COMPONENTS, ERROR_QUANTITIES, JOINT_CHANNELS, Scene, SceneRun, load_scene_file
 
@@ -469,7 +469,7 @@ def _cmd_reliability(args: argparse.Namespace) -> int:
     methods = args.methods.split(",") if args.methods else None
     echo = (lambda *a, **k: None) if args.quiet else print
     with _summary_on_failure(out_dir, "clearsim reliability", "report.md"):
-        files = run_study(scene, out_dir, methods=methods, samples=args.samples, progress=not args.quiet, plots=not args.no_plots, echo=echo)
+        files = run_study(scene, out_dir, methods=methods, samples=args.samples, progress=not args.quiet, plots=not args.no_plots, echo=echo, reference=args.reference)
     echo(f"wrote {len(files)} files to {out_dir}")
     return 0
 
@@ -555,6 +555,10 @@ def build_parser() -> argparse.ArgumentParser:
     rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
     rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm,ak_mcs,ak_is")
     rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")
+    rel.add_argument(
+        "--reference", choices=REFERENCES, help="what body and point errors are measured against, instead of the scene's [study] reference: "
+        "own_ideal (each sample's ideal twin: what the clearances add) or nominal (the nominal design's ideal motion: every tolerance counts)",
+    )  # fmt: skip
     rel.add_argument("--no-plots", action="store_true", help="write no figure")
     rel.add_argument("-q", "--quiet", action="store_true", help="no progress bars, nothing on stdout")
     rel.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help="print the traceback of a failure")

@@ -13,8 +13,8 @@ from .errors import InputError, check_choice
 from .dynamics.readings import DynamicsReadings
 from .joint_reactions import JointReactions
 from .joint_readings import JointReadings
-from .points import PointsLike, TrackedPoint, point_motion, tracked_points
-from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMNS, JOINT_MONITOR_UNITS, READING_MONITOR_UNITS
+from .points import PointsLike, TrackedPoint, check_point, point_motion, tracked_points
+from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMNS, JOINT_MONITOR_UNITS, POINT_MONITOR_COMPONENTS, READING_MONITOR_UNITS
 
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
 CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
@@ -47,27 +47,40 @@ class Extremes:
 
 
 def extreme_monitors(
-    which: Union[bool, Sequence[str]], body_names: Sequence[str], joint_names: Sequence[str], t0: float, t_end: float
+    which: Union[bool, Sequence[Any]], body_names: Sequence[str], joint_names: Sequence[str], t0: float, t_end: float
 ) -> List[Dict[str, Any]]:
-    """The core monitors (rust/monitor.rs, ``exact``) that track :meth:`Result.extremes` of the
-    bodies and clearance joints named in ``which`` (``True``: all of them) over [t0, t_end] [s]."""
+    """The core monitors (rust/monitor/, ``exact``) that track :meth:`Result.extremes` of the
+    bodies and clearance joints named in ``which`` (``True``: all of them), and of the points
+    given there as ``(body, (x, y))`` (body frame [m]), over [t0, t_end] [s]."""
     if not t_end > t0:
         raise InputError(f"invalid extremes_from = {t0!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=t0)
     names = list(body_names) + list(joint_names) if which is True else ([] if which is False else list(which))
+    known = ", ".join(list(body_names) + list(joint_names))
     for name in names:
-        if not isinstance(name, str) or (name not in body_names and name not in joint_names):
-            known = ", ".join(list(body_names) + list(joint_names))
-            raise InputError(f"invalid extremes = {name!r}: no such body or clearance joint (known: {known})", field="extremes", value=name)
+        if isinstance(name, (tuple, list)):
+            if len(name) != 2 or name[0] not in body_names:
+                raise InputError(f"invalid extremes = {name!r}: a point is (body, (x, y)) on one of the bodies ({', '.join(body_names)})", field="extremes", value=name)
+            check_point(name[1], "extremes")
+        elif not isinstance(name, str) or (name not in body_names and name not in joint_names):
+            raise InputError(f"invalid extremes = {name!r}: no such body or clearance joint (known: {known}); a point is (body, (x, y))", field="extremes", value=name)
     # Four samples a step screen it for extremes (the step's ends are exact, the searches find
     # what lies between): the same extremes as eight to round-off, at a third less cost.
     span = {"t_start": t0, "bin_width": t_end - t0, "exact": True, "samples_per_step": 4}
     out: List[Dict[str, Any]] = []
-    for name in dict.fromkeys(names):
-        if name in body_names:
-            b = list(body_names).index(name)
+    seen = set()
+    for name in names:
+        key = (name[0], check_point(name[1], "extremes")) if isinstance(name, (tuple, list)) else name
+        if key in seen:
+            continue
+        seen.add(key)
+        if isinstance(key, tuple):
+            b = list(body_names).index(key[0])
+            out += [{"body": b, "point": list(key[1]), "component": c, "quantity": q, **span} for c in POINT_MONITOR_COMPONENTS for q in BODY_QUANTITIES]
+        elif key in body_names:
+            b = list(body_names).index(key)
             out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITIES]
         else:
-            j = list(joint_names).index(name)
+            j = list(joint_names).index(key)
             out += [{"coordinate": j, "quantity": q, **span} for q in (*JOINT_QUANTITIES, *READING_QUANTITIES)]
     return out
 
@@ -316,9 +329,11 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         return export.errors_table(self, ideal, bodies, points, quantities)
 
     # ------------------------------------------------------------------ extremes
-    def extremes(self, name: str, quantity: str, component: Optional[str] = None) -> Extremes:
+    def extremes(self, name: str, quantity: str, component: Optional[str] = None, point: Optional[Sequence[float]] = None) -> Extremes:
         """Largest and smallest value of a body's ``quantity`` (``"displacement"``,
-        ``"velocity"`` or ``"acceleration"`` of ``component`` ``"x"``, ``"y"`` or ``"theta"``)
+        ``"velocity"`` or ``"acceleration"`` of ``component`` ``"x"``, ``"y"`` or ``"theta"``),
+        of a point's on a body (``point=(x, y)``, body frame [m]: its global ``"x"``, ``"y"`` or
+        the ``"magnitude"`` of its displacement, velocity or acceleration vector, m, m/s, m/s²)
         or of a clearance joint's (``"eccentricity"`` ratio e/c, ``"force"`` on the journal,
         ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]; ``"film_thickness"`` [m], the
         reading h = c − |e| (not a study's window minimum c (1 − ε_max), :data:`clearsim.schema.JOINT_QUANTITY_UNITS`),
@@ -327,31 +342,46 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         Tracked at every accepted integration step and located between steps on the exact
         quantity (accelerations from the KKT solve, as stored; docs/performance.md, "Peaks"), so
         they are independent of ``dt_out`` and at least every stored output. The run must ask for
-        them: ``simulate(..., extremes=["slider", "pin"])`` (or ``extremes=True`` for every body
-        and joint), over the whole run or from ``extremes_from`` [s] on (e.g. the last revolution).
+        them: ``simulate(..., extremes=["slider", "pin", ("crank", (0.05, 0.0))])`` (or
+        ``extremes=True`` for every body and joint), over the whole run or from ``extremes_from``
+        [s] on (e.g. the last revolution).
         """
-        if name in self.body_names:
+        match: Dict[str, Any]
+        if point is not None:
+            if name not in self.body_names:
+                raise InputError(f"invalid name = {name!r}: a point lies on a body (known: {', '.join(self.body_names)})", field="name", value=name)
+            check_choice("quantity", quantity, list(BODY_QUANTITIES))
+            check_choice("component", component, list(POINT_MONITOR_COMPONENTS), "(a point's)")
+            at = list(check_point(point, "point"))
+            match = {"body": self.body_names.index(name), "point": at, "component": component}
+            unit = BODY_QUANTITIES[quantity][0]
+            what = f"{name} ({at[0]:g}, {at[1]:g}).{component} {quantity}"
+            asked = f"({name!r}, ({at[0]:g}, {at[1]:g}))"
+        elif name in self.body_names:
             check_choice("quantity", quantity, list(BODY_QUANTITIES))
             check_choice("component", component, list(_COMPONENTS), "(a body's quantity has three)")
             c = _COMPONENTS.index(str(component))
-            coordinate = 3 * self.body_names.index(name) + c
+            match = {"coordinate": 3 * self.body_names.index(name) + c}
             unit = BODY_QUANTITIES[quantity][c == 2]
+            what, asked = f"{name}.{component} {quantity}", repr(name)
         elif name in self.joint_names:
             check_choice("quantity", quantity, list(JOINT_QUANTITIES) + list(READING_QUANTITIES))
             if component is not None:
                 raise InputError(f"invalid component = {component!r}: a joint's {quantity} has none (give component=None)", field="component", value=component)
-            coordinate = self.joint_names.index(name)
+            match = {"coordinate": self.joint_names.index(name)}
             unit = {**JOINT_QUANTITIES, **READING_QUANTITIES}[quantity]
+            what, asked = f"{name} {quantity}", repr(name)
         else:
             known = ", ".join(self.body_names + self.joint_names)
             raise InputError(f"invalid name = {name!r}: no such body or clearance joint (known: {known})", field="name", value=name)
         results = self._raw.get("monitors") or []
         for spec, found in zip(self.monitor_specs, results):
-            if spec.get("exact") and spec["coordinate"] == coordinate and spec["quantity"] == quantity and not spec.get("reference"):
-                what = f"{name}.{component} {quantity}" if component else f"{name} {quantity}"
+            if spec.get("exact") and spec["quantity"] == quantity and not spec.get("reference") and all(spec.get(k) == v for k, v in match.items()):
+                if point is None and "point" in spec:
+                    continue
                 return Extremes(float(found["max"]), float(found["t_max"]), float(found["min"]), float(found["t_min"]), what, unit)
         raise InputError(
-            f"invalid name = {name!r}: this run did not track its extremes (pass extremes=[{name!r}] or extremes=True to simulate)", field="name", value=name
+            f"invalid name = {name!r}: this run did not track its extremes (pass extremes=[{asked}] or extremes=True to simulate)", field="name", value=name
         )
 
     # ------------------------------------------------------------------ data out

@@ -6,7 +6,6 @@ and ``simulate_with_ideal``. SI units throughout.
 
 from __future__ import annotations
 
-import json
 import math
 import warnings
 from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, TypedDict, Union
@@ -41,7 +40,7 @@ class RunOptions(TypedDict, total=False):
     h_min: float  # [s]
     max_steps: int
     max_seconds: Optional[float]  # [s] of wall time
-    extremes: Union[bool, Sequence[str]]  # bodies and clearance joints (Result.extremes)
+    extremes: Union[bool, Sequence[Any]]  # bodies, clearance joints and (body, (x, y)) points (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
     sections: Union[None, float, Tuple[float, float]]  # Poincaré sections: period [s] or (period [s], phase [rad])
 
@@ -216,7 +215,7 @@ class Running:
         h_min: float = H_MIN,
         max_steps: int = MAX_STEPS,
         max_seconds: Optional[float] = None,
-        extremes: Union[bool, Sequence[str]] = False,
+        extremes: Union[bool, Sequence[Any]] = False,
         extremes_from: Optional[float] = None,
         sections: Union[None, float, Tuple[float, float]] = None,
     ) -> Dict[str, Any]:
@@ -314,7 +313,8 @@ class Running:
             :class:`clearsim.SimulationError` ("wall-time budget ... used up at t = ...") and
             keeps its partial result.
         extremes, extremes_from:
-            Bodies and clearance joints whose peaks to track at every step (``True``: all), for
+            Bodies, clearance joints and points ``(body, (x, y))`` (body frame [m]) whose peaks
+            to track at every step (``True``: every body and joint), for
             :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on (the window of
             :meth:`Result.bearing_summary` too, which says it): independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
@@ -351,22 +351,6 @@ class Running:
             raw = compiled.simulate(settings, advance)
         return self._finish(raw, settings)
 
-    def reference_job(self, t_ref: Sequence[float], **kwargs: Unpack[RunOptions]) -> Tuple[str, Dict[str, Any], Dict[str, Any]]:
-        """The run of the ideal counterpart that errors are measured against (docs/physics.md
-        §5), as ``(key, description, settings)`` for :func:`clearsim.run_descriptions`: states
-        and accelerations on the grid ``t_ref`` [s], at a tenth of ``rtol`` and ``atol``
-        (``integrator="auto"`` resolves for the ideal mechanism, which has no film). Mechanisms
-        whose ideal counterparts are equal get the same ``key``, so a batch runs it once
-        (random clearances do not change it)."""
-        ideal = self.idealized()
-        desc = ideal.description()
-        grid = np.asarray(t_ref, dtype=float)
-        options: Dict[str, Any] = dict(kwargs, t_out=grid, outputs=["states", "accelerations"])
-        options["rtol"] = options.get("rtol", 1e-6) / 10
-        options["atol"] = options.get("atol", 1e-9) / 10
-        key = json.dumps(desc, sort_keys=True, default=_plain) + f"|{grid[0]!r}|{grid[-1]!r}|{len(grid)}"
-        return key, desc, ideal.run_settings(float(grid[-1]), **options)
-
     def simulate_with_ideal(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Tuple[Result, Result]:
         """Run this mechanism and its ideal counterpart (:meth:`idealized`) with the same
         settings on the same output grid, in parallel in the Rust core. Returns
@@ -379,7 +363,7 @@ class Running:
         # ``integrator="auto"`` resolves per mechanism: the ideal one has no film (nor joints).
         ideal_kwargs: Dict[str, Any] = dict(kwargs)
         if ideal_kwargs.get("extremes") not in (None, True, False):
-            ideal_kwargs["extremes"] = [n for n in ideal_kwargs["extremes"] if n in ideal.body_names]
+            ideal_kwargs["extremes"] = [n for n in ideal_kwargs["extremes"] if (n[0] if isinstance(n, (tuple, list)) else n) in ideal.body_names]
         ideal_settings = ideal.run_settings(t_end, **ideal_kwargs)
         raws = run_descriptions([self.description(), ideal.description()], [settings, ideal_settings])
         actual, twin = raws
@@ -535,11 +519,3 @@ class Running:
 
 __all__ = ["RunOptions", "Running", "COMPONENTS", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]
 
-
-def _plain(value: Any) -> Any:
-    """JSON form of the numpy values inside a description (to key the ideal runs)."""
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    raise TypeError(f"cannot key a description holding {type(value).__name__}")

@@ -17,6 +17,16 @@ from . import _core
 #: The components of a body's pose q = (x, y, θ), in the order of the state and of every result
 #: array: x, y [m] and theta [rad] (one word for them throughout: "component").
 COMPONENTS: Tuple[str, str, str] = ("x", "y", "theta")
+#: What a monitor of a point fixed on a body watches (``rust/monitor/target.rs``): the global x or
+#: y component of its displacement, velocity or acceleration, or the magnitude of the vector (of
+#: the error vector |P − P_ref| against a reference). The exported columns of a point are its x
+#: and y (:data:`clearsim.points.POINT_COMPONENTS`).
+POINT_MONITOR_COMPONENTS: Tuple[str, str, str] = ("x", "y", "magnitude")
+#: What a study's errors are measured against (the core's ``ReferenceOf``,
+#: ``rust/monitor/reference.rs``): each sample's own ideal twin (the paper's question: what do
+#: the clearances add?) or the nominal design's ideal motion (a designer's: how far from the
+#: nominal motion, link-length and pivot tolerances included?).
+REFERENCES: Tuple[str, str] = ("own_ideal", "nominal")
 #: The integrators of :meth:`clearsim.Mechanism.simulate` (``"auto"`` picks one per mechanism).
 INTEGRATORS: Tuple[str, ...] = ("auto", "rk45", "rk4", "dop853", "radau", "rodas4")
 #: The channels a run can store, and those it stores by default.
@@ -61,7 +71,7 @@ JOINT_QUANTITY_UNITS: Dict[str, str] = {
 }
 JOINT_QUANTITIES: Tuple[str, ...] = tuple(JOINT_QUANTITY_UNITS)
 #: The quantities of a clearance joint the core's monitors track for
-#: :meth:`clearsim.Result.extremes` (``rust/monitor.rs``, ``Quantity``), and their units: the
+#: :meth:`clearsim.Result.extremes` (``rust/monitor/mod.rs``, ``Quantity``), and their units: the
 #: eccentricity ratio e/c and the force magnitudes on the journal...
 JOINT_MONITOR_UNITS: Dict[str, str] = {"eccentricity": "1", "force": "N", "contact_force": "N", "film_force": "N"}
 #: ... and the bearing readings of a lubricated joint (:mod:`clearsim.joint_readings`). Here
@@ -114,7 +124,9 @@ __all__ = [
     "JOINT_QUANTITY_UNITS",
     "JOINT_MONITOR_UNITS",
     "OUTPUTS",
+    "POINT_MONITOR_COMPONENTS",
     "READING_MONITOR_UNITS",
+    "REFERENCES",
     "ascii_unit",
     "body_unit",
     "unit_in_name",

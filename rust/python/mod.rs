@@ -14,7 +14,7 @@ use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::batch::run_batch;
+use crate::batch::{run_batch, run_one};
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
 use crate::integrate::OdeSystem;
@@ -32,7 +32,8 @@ fn to_pyerr(py: Python<'_>, e: &Error) -> PyErr {
     let build = || -> PyResult<PyErr> {
         let errors = py.import("clearsim.errors")?;
         let kwargs = PyDict::new(py);
-        let class = match e {
+        // A failed reference run is the kind of error its cause is, with the message saying whose.
+        let class = match e.root() {
             Error::InvalidInput { field, value, .. } => {
                 kwargs.set_item("field", field)?;
                 kwargs.set_item("value", value)?;
@@ -230,6 +231,18 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
     d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;
     d.set_item("impacts", out.impacts.clone())?;
     d.set_item("max_violation", out.max_violation.to_vec())?;
+    if !out.references.is_empty() {
+        let n = out.recording.coordinates;
+        let refs = PyDict::new(py);
+        for r in &out.references {
+            let rd = PyDict::new(py);
+            rd.set_item("q", array2(py, &r.q, n)?)?;
+            rd.set_item("qd", array2(py, &r.qd, n)?)?;
+            rd.set_item("qdd", array2(py, &r.qdd, n)?)?;
+            refs.set_item(r.of.name(), rd)?;
+        }
+        d.set_item("reference", refs)?;
+    }
     let monitors = PyList::empty(py);
     for m in &out.monitors {
         let md = PyDict::new(py);
@@ -437,13 +450,19 @@ impl CompiledModel {
     }
 
     /// Run the model; returns a dict of arrays (see `clearsim.result.Result`). `progress(t)`,
-    /// if given, is called with the simulated time reached [s] about every 50 ms.
-    #[pyo3(signature = (settings, progress=None))]
-    fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+    /// if given, is called with the simulated time reached [s] about every 50 ms. Monitors
+    /// measured against the model's own ideal twin (or, given `nominal`, a description of the
+    /// nominal design, against its ideal) get their reference run here (`crate::batch::run_one`).
+    #[pyo3(signature = (settings, progress=None, nominal=None))]
+    fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>, nominal: Option<Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
         let rs = read_settings(settings.as_any())?;
-        let model = &self.model;
+        let nominal = nominal.map(|d| read_description(&d)).transpose()?;
+        let (model, desc) = (&self.model, &self.desc);
         let stop = make_stop(py, progress);
-        let out = py.detach(|| simulate(model, &rs, Some(&stop))).map_err(|e| to_pyerr(py, &e))?;
+        let measured = rs.monitors.iter().any(|m| m.reference.is_some());
+        let out = py
+            .detach(|| if measured { run_one(model, desc, &rs, nominal.as_ref(), Some(&stop)) } else { simulate(model, &rs, Some(&stop)) })
+            .map_err(|e| to_pyerr(py, &e))?;
         output_to_dict(py, &out)
     }
 
@@ -530,13 +549,16 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     to_plain(py, &all)
 }
 
-/// Run many descriptions in parallel (rayon; GIL released). `settings` is one dict shared by
-/// all runs or a list with one dict per description. Returns one result dict per description,
-/// or the exception that prevented that run.
+/// Run many descriptions in parallel on `threads` threads (0: all cores; rayon, GIL released).
+/// `settings` is one dict shared by all runs or a list with one dict per description;
+/// `nominal`, the nominal design's description, for monitors measured against its ideal
+/// (`crate::batch::run_batch` makes each distinct reference run once). Returns one result dict
+/// per description, or the exception that prevented that run.
 #[pyfunction]
-#[pyo3(signature = (descriptions, settings, threads=0))]
-fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize) -> PyResult<Vec<Bound<'py, PyAny>>> {
+#[pyo3(signature = (descriptions, settings, threads=0, nominal=None))]
+fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize, nominal: Option<Bound<'py, PyAny>>) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
+    let nominal = nominal.map(|d| read_description(&d)).transpose()?;
     let settings: Vec<RunSettings> = if let Ok(d) = settings.cast::<PyDict>() {
         vec![read_settings(d.as_any())?]
     } else {
@@ -547,7 +569,7 @@ fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, sett
         list.iter().map(|d| read_settings(d.as_any())).collect::<PyResult<Vec<_>>>()?
     };
     let stop = make_stop(py, None);
-    let outs = py.detach(|| run_batch(&descs, &settings, threads, Some(&stop)));
+    let outs = py.detach(|| run_batch(&descs, &settings, nominal.as_ref(), threads, Some(&stop)));
     let mut res = Vec::with_capacity(outs.len());
     for o in outs {
         match o {

@@ -24,7 +24,8 @@ use crate::energy::EnergyBook;
 use crate::error::{Error, Result};
 use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Stats};
 use crate::model::Model;
-use crate::monitor::{Monitor, MonitorResult};
+use crate::monitor::reference::ReferenceStates;
+use crate::monitor::{Monitor, MonitorResult, References};
 use crate::record::{Channels, Recording};
 use crate::system::Workspace;
 use lyapunov::{LyapunovBook, Shadow};
@@ -59,6 +60,9 @@ pub struct RunOutput {
     pub monitors: Vec<MonitorResult>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
+    /// The references the monitors were measured against, at the output times (only with
+    /// [`crate::monitor::ReferenceGrid::record`]: for error traces).
+    pub references: Vec<ReferenceStates>,
     /// The channels at the section times ([`RunSettings::sections`]), when asked for.
     pub sections: Option<Recording>,
     /// What the Lyapunov shadow found ([`RunSettings::lyapunov`]), when asked for.
@@ -89,6 +93,8 @@ pub struct MechanismSystem<'a> {
     /// current step (k × monitors).
     pub monitors: Vec<Monitor>,
     monitor_values: Vec<f64>,
+    /// The sample times of the current step.
+    monitor_times: Vec<f64>,
     /// Work integrals, when the `energy` channel is recorded.
     energy: Option<EnergyBook>,
     /// Wear of each clearance joint that models it.
@@ -138,6 +144,7 @@ impl<'a> MechanismSystem<'a> {
             budget: None,
             monitors: Vec::new(),
             monitor_values: Vec::new(),
+            monitor_times: Vec::new(),
             scratch2: Vec::new(),
             energy: channels.energy.then(|| EnergyBook::new(model)),
             wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
@@ -264,9 +271,21 @@ impl OdeSystem for MechanismSystem<'_> {
 
 /// Run a compiled model with validated settings ([`RunSettings::validate`]; a monitor that does
 /// not fit the model is an `Err`); a run that fails part-way is an `Ok` whose
-/// `error` says why, with everything recorded until then.
+/// `error` says why, with everything recorded until then. Its monitors are measured against no
+/// reference run (a monitor that names one is an `Err`: [`simulate_measured`]).
 pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
+    simulate_measured(model, rs, &References::default(), stop)
+}
+
+/// [`simulate`] with the reference runs its monitors are measured against (rust/batch.rs makes
+/// them): each must have the model's bodies, and a monitor that names a reference not given is
+/// an `Err` before the run.
+pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &References, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
     rs.validate_for(model)?;
+    for run in [&references.own_ideal, &references.nominal].into_iter().flatten() {
+        crate::monitor::reference::check_bodies(run, &model.body_names)?;
+    }
+    let monitors = rs.monitors.iter().enumerate().map(|(i, spec)| Monitor::new(i, spec.clone(), references)).collect::<Result<Vec<_>>>()?;
     let method = rs.method_for(model);
     let start = Instant::now();
     let (q0, qd0) = match assemble(model, rs.t0) {
@@ -285,6 +304,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                references: Vec::new(),
                 sections: None,
                 lyapunov: None,
             })
@@ -296,7 +316,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.gap_resolution = rs.ode.atol;
-    sys.monitors.extend(rs.monitors.iter().map(|spec| Monitor::new(spec.clone())));
+    sys.monitors = monitors;
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;
     }
@@ -332,8 +352,14 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
         max_violation[0] = max_violation[0].max(v[0]);
         max_violation[1] = max_violation[1].max(v[1]);
     }
+    // The references at the output times, for error traces.
+    let recorded = match rs.reference {
+        Some(grid) if grid.record => [&references.own_ideal, &references.nominal].into_iter().flatten().map(|r| r.states_at(&sys.recording.t)).collect(),
+        _ => Vec::new(),
+    };
     Ok(RunOutput {
         method,
+        references: recorded,
         impacts: sys.memory.iter().map(|m| m.impacts).collect(),
         recording: sys.recording,
         stats,

@@ -1,5 +1,5 @@
 //! What a run observes along its accepted steps besides the recorded samples: the monitors'
-//! extremes between the output times (rust/monitor.rs), the work integrals of the energy balance
+//! extremes between the output times (rust/monitor/), the work integrals of the energy balance
 //! (rust/energy.rs, docs/physics.md §10.5), the wear books (rust/clearance/wear.rs, §12) and the
 //! oil temperatures (rust/clearance/thermal.rs, §4).
 
@@ -8,51 +8,76 @@ use crate::clearance::wear::WearRate;
 use crate::energy::Powers;
 use crate::error::{Error, Result};
 use crate::integrate::DenseOutput;
-use crate::monitor::{golden_section, Quantity};
+use crate::monitor::target::State;
+use crate::monitor::{golden_section, Kinematics, Quantity, Target};
+
+/// The run's state inside an accepted step, read off its dense output at time `t`: positions
+/// and velocities directly, accelerations as the time derivative of the dense velocity (central
+/// difference over ±`d`).
+struct DenseState<'a> {
+    dense: &'a dyn DenseOutput,
+    t: f64,
+    d: f64,
+    nq: usize,
+}
+
+impl Kinematics for DenseState<'_> {
+    fn q(&self, c: usize) -> f64 {
+        self.dense.eval_component(self.t, c)
+    }
+    fn qd(&self, c: usize) -> f64 {
+        self.dense.eval_component(self.t, self.nq + c)
+    }
+    fn qdd(&self, c: usize) -> f64 {
+        (self.dense.eval_component(self.t + self.d, self.nq + c) - self.dense.eval_component(self.t - self.d, self.nq + c)) / (2.0 * self.d)
+    }
+}
 
 impl MechanismSystem<'_> {
-    /// Feed every monitor its quantity at (t, y): a coordinate of q or q̇, or of q̈ from the
-    /// KKT solve (one solve for all monitors that need it).
+    /// Feed every monitor its error at (t, y): from q, q̇, or q̈ of the KKT solve (one solve for
+    /// all monitors that need it).
     pub(super) fn observe(&mut self, t: f64, y: &[f64]) -> Result<()> {
         if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration) {
             self.ws.evaluate(self.model, &self.memory, t, y)?;
         }
         for j in 0..self.monitors.len() {
-            let v = self.monitored_value(j, y);
-            self.monitors[j].observe(t, v);
+            let e = self.monitored_error(j, t, y, &self.ws.qdd);
+            self.monitors[j].observe(t, e);
         }
         Ok(())
     }
 
-    /// Monitor `j`'s quantity at state `y` (accelerations: from the last KKT solve).
-    pub(super) fn monitored_value(&self, j: usize, y: &[f64]) -> f64 {
-        let spec = &self.monitors[j].spec;
-        let c = spec.coordinate;
+    /// Monitor `j`'s error at time `t` and state `y` with accelerations `qdd` (read only by
+    /// acceleration monitors): a body target's against its reference (rust/monitor/target.rs), a
+    /// joint's quantity itself.
+    pub(super) fn monitored_error(&self, j: usize, t: f64, y: &[f64], qdd: &[f64]) -> f64 {
+        let m = &self.monitors[j];
+        match m.spec.target {
+            Target::Joint(c) => self.joint_value(c, m.spec.quantity, y),
+            _ => m.error(t, &State { y, qdd, nq: 3 * self.model.n_bodies() }),
+        }
+    }
+
+    /// Clearance joint `c`'s `quantity` at state `y`.
+    fn joint_value(&self, c: usize, quantity: Quantity, y: &[f64]) -> f64 {
         let nq = 3 * self.model.n_bodies();
-        match spec.quantity {
-            Quantity::Displacement => y[c],
-            Quantity::Velocity => y[nq + c],
-            Quantity::Acceleration => self.ws.qdd[c],
-            q => {
-                let k = self.joint_kinematics(c, y);
-                if q == Quantity::Eccentricity {
-                    return k.eps;
-                }
-                let joint = &self.model.clearance[c];
-                let f = joint.force(&k, &self.memory[c]);
-                match q {
-                    Quantity::Force => f.total.norm(),
-                    Quantity::ContactForce => f.normal,
-                    Quantity::FilmForce => f.film_xi.hypot(f.film_eta),
-                    _ => {
-                        let (w_b, w_j) = crate::clearance::body_rates(joint, &y[nq..2 * nq]);
-                        let r = joint.readings(&k, &f, &self.memory[c], w_b, w_j);
-                        match q {
-                            Quantity::FilmThickness => r.film_thickness,
-                            Quantity::FrictionTorque => r.torque_journal,
-                            _ => r.power_loss,
-                        }
-                    }
+        let k = self.joint_kinematics(c, y);
+        if quantity == Quantity::Eccentricity {
+            return k.eps;
+        }
+        let joint = &self.model.clearance[c];
+        let f = joint.force(&k, &self.memory[c]);
+        match quantity {
+            Quantity::Force => f.total.norm(),
+            Quantity::ContactForce => f.normal,
+            Quantity::FilmForce => f.film_xi.hypot(f.film_eta),
+            _ => {
+                let (w_b, w_j) = crate::clearance::body_rates(joint, &y[nq..2 * nq]);
+                let r = joint.readings(&k, &f, &self.memory[c], w_b, w_j);
+                match quantity {
+                    Quantity::FilmThickness => r.film_thickness,
+                    Quantity::FrictionTorque => r.torque_journal,
+                    _ => r.power_loss,
                 }
             }
         }
@@ -188,12 +213,18 @@ impl MechanismSystem<'_> {
         let nq = 3 * self.model.n_bodies();
         let h = t1 - t0;
         let any_acc = self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration);
-        if self.monitor_values.len() < k * nm {
-            self.monitor_values.resize(k * nm, 0.0); // once per run
+        // The errors of the step's points, k × monitors (sized once per run).
+        let mut errors = std::mem::take(&mut self.monitor_values);
+        if errors.len() < k * nm {
+            errors.resize(k * nm, 0.0);
         }
         let mut s = std::mem::take(&mut self.scratch);
-        let at = |i: usize| if i + 1 == k { t1 } else { t0 + h * (i + 1) as f64 / k as f64 };
-        // A joint quantity needs the whole state; body coordinates only their own component.
+        // The step's sample times, the last at t1.
+        let mut times = std::mem::take(&mut self.monitor_times);
+        times.clear();
+        times.extend((0..k).map(|i| if i + 1 == k { t1 } else { t0 + h * (i + 1) as f64 / k as f64 }));
+        let at = |i: usize| times[i];
+        // A joint quantity needs the whole state; body targets only their own components.
         let whole_state = self.monitors.iter().any(|m| m.spec.quantity.of_joint());
         let d = 0.25 * h / k as f64;
         for i in 0..k - 1 {
@@ -201,14 +232,12 @@ impl MechanismSystem<'_> {
             if whole_state {
                 dense.eval(t, &mut s);
             }
+            let state = DenseState { dense, t, d, nq };
             for j in 0..nm {
-                let spec = &self.monitors[j].spec;
-                let c = spec.coordinate;
-                self.monitor_values[i * nm + j] = match spec.quantity {
-                    Quantity::Displacement => dense.eval_component(t, c),
-                    Quantity::Velocity => dense.eval_component(t, nq + c),
-                    Quantity::Acceleration => (dense.eval_component(t + d, nq + c) - dense.eval_component(t - d, nq + c)) / (2.0 * d),
-                    _ => self.monitored_value(j, &s),
+                let m = &self.monitors[j];
+                errors[i * nm + j] = match m.spec.target {
+                    Target::Joint(c) => self.joint_value(c, m.spec.quantity, &s),
+                    _ => m.error(t, &state),
                 };
             }
         }
@@ -221,9 +250,8 @@ impl MechanismSystem<'_> {
             if self.monitors[j].spec.quantity != Quantity::Acceleration || self.monitors[j].spec.exact || k < 2 {
                 continue;
             }
-            let m = &self.monitors[j];
             let (imax, _) = (0..k - 1).fold((usize::MAX, -1.0f64), |best, i| {
-                let e = m.error(at(i), self.monitor_values[i * nm + j]).abs();
+                let e = errors[i * nm + j].abs();
                 if e > best.1 { (i, e) } else { best }
             });
             if imax == usize::MAX {
@@ -237,7 +265,7 @@ impl MechanismSystem<'_> {
                 }
                 solved = imax;
             }
-            self.monitor_values[imax * nm + j] = self.ws.qdd[self.monitors[j].spec.coordinate];
+            errors[imax * nm + j] = self.monitored_error(j, at(imax), &s, &self.ws.qdd);
         }
         // The acceleration at t1: the explicit methods' last stage f(t1, y1) holds it (same
         // memory), otherwise one KKT solve — done last, so that the workspace still holds it
@@ -246,21 +274,28 @@ impl MechanismSystem<'_> {
         if any_acc && end_rate.is_none() {
             result = result.and_then(|()| self.ws.evaluate_and_keep(self.model, &self.memory, t1, y1));
         }
-        for j in 0..nm {
-            let m = &self.monitors[j].spec;
-            self.monitor_values[(k - 1) * nm + j] = match end_rate {
-                Some(f1) if m.quantity == Quantity::Acceleration => f1[nq + m.coordinate],
-                _ => self.monitored_value(j, y1),
+        if result.is_ok() {
+            let qdd = match end_rate {
+                Some(f1) => &f1[nq..2 * nq],
+                None => &self.ws.qdd[..],
             };
-        }
-        self.scratch = s;
-        result?;
-        for i in 0..k {
             for j in 0..nm {
-                let v = self.monitor_values[i * nm + j];
-                self.monitors[j].observe(at(i), v);
+                errors[(k - 1) * nm + j] = self.monitored_error(j, t1, y1, qdd);
             }
         }
+        self.scratch = s;
+        if let Err(e) = result {
+            self.monitor_values = errors;
+            self.monitor_times = times;
+            return Err(e);
+        }
+        for i in 0..k {
+            for j in 0..nm {
+                self.monitors[j].observe(at(i), errors[i * nm + j]);
+            }
+        }
+        self.monitor_values = errors;
+        self.monitor_times = times;
         if self.monitors.iter().any(|m| m.spec.exact) {
             self.search_extremes(dense)?;
         }
@@ -268,7 +303,7 @@ impl MechanismSystem<'_> {
     }
 
     /// Locate the extremes of the exact monitors between the samples of the step just observed
-    /// (rust/monitor.rs: `Monitor::search_bracket`, `golden_section`).
+    /// (rust/monitor: `Monitor::search_bracket`, `golden_section`).
     fn search_extremes(&mut self, dense: &dyn DenseOutput) -> Result<()> {
         let mut s = std::mem::take(&mut self.scratch);
         let mut result = Ok(());
@@ -280,7 +315,7 @@ impl MechanismSystem<'_> {
                     if self.monitors[j].spec.quantity == Quantity::Acceleration {
                         self.ws.evaluate(self.model, &self.memory, t, &s)?;
                     }
-                    Ok(sign * self.monitors[j].error(t, self.monitored_value(j, &s)))
+                    Ok(sign * self.monitored_error(j, t, &s, &self.ws.qdd))
                 });
                 match found {
                     Ok((t, v)) => self.monitors[j].record_extreme(t, sign * v),

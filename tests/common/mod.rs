@@ -37,6 +37,7 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
         channels: clearsim::record::Channels::default(),
         max_wall_time: None,
         monitors: Vec::new(),
+        reference: None,
         wear_mark: None,
         sections: None,
         lyapunov: None,

@@ -1,6 +1,8 @@
-"""Every Study sample is measured against its own reference, whatever the reference cache holds
-(issue 36, item 1: a Monte Carlo run with more distinct ideal mechanisms than the cache's 256
-measured its first samples against none, their "error" being the slider's position itself)."""
+"""Every Study sample is measured against its own reference, however many distinct references a
+batch holds (issue 36, item 1: a Monte Carlo run with more distinct ideal mechanisms than the
+Python cache's 256 measured its first samples against none, their "error" being the slider's
+position itself). The core's batch now makes the references (rust/batch.rs: each distinct one
+run on first use, dropped after its last sample); a monitor without its reference cannot be built."""
 
 from __future__ import annotations
 
@@ -9,7 +11,7 @@ import pytest
 
 import clearsim
 from clearsim import reliability as rel
-from clearsim.reliability import study as study_module
+from clearsim.schema import ATOL, RTOL
 
 
 def _slider_crank(rpm: float) -> clearsim.Mechanism:
@@ -22,10 +24,11 @@ def _study(cycles: float = 1.0) -> rel.Study:
                      rel.Limit(1e-3), cycles=cycles, progress=False)  # fmt: skip
 
 
-def test_more_distinct_references_than_the_cache_agree_with_the_samples_run_one_by_one(monkeypatch):
-    # The cache shrunk to 3: a chunk of 20 samples has 20 distinct references.
-    monkeypatch.setattr(study_module, "IDEAL_CACHE", 3)
+@pytest.mark.parametrize("threads", [1, 2])
+def test_more_distinct_references_than_the_cache_agree_with_the_samples_run_one_by_one(threads):
+    # One core batch of 20 samples with 20 distinct references, on one thread and on two.
     study = _study(cycles=0.5)
+    study.threads = threads
     points = {"rpm": np.linspace(4900.0, 5100.0, 20)}
     together, _ = study.evaluate(points)
     alone = np.array([_study(cycles=0.5).evaluate({"rpm": [v]})[0].peaks[0] for v in points["rpm"]])
@@ -48,8 +51,7 @@ def test_a_thousand_distinct_references_through_monte_carlo():
     assert mc.pf == 0.0
 
 
-def test_traces_past_the_cache_carry_their_own_ideal(monkeypatch):
-    monkeypatch.setattr(study_module, "IDEAL_CACHE", 2)
+def test_traces_past_the_cache_carry_their_own_ideal():
     study = _study(cycles=0.25)
     ev, traces = study.run_samples({"rpm": [4950.0, 5000.0, 5050.0, 5100.0]}, keep_traces=4, raw_traces=True)
     assert all(isinstance(tr["ideal"], dict) for tr in traces)
@@ -61,3 +63,8 @@ def test_traces_past_the_cache_carry_their_own_ideal(monkeypatch):
         x = r * np.cos(theta) + np.sqrt(l**2 - (r * np.sin(theta)) ** 2)
         col = tr["columns"][0]
         assert ideal["q"][-1, col] == pytest.approx(x, abs=1e-6)
+        # A second method: the ideal twin run on its own, at the reference's tolerances (a tenth
+        # of the study's) with the trace's output times: the reference at those times is that run.
+        twin = _slider_crank(rpm).idealized().simulate(float(ideal["t"][-1]), t_out=ideal["t"], rtol=RTOL / 10, atol=ATOL / 10, progress=False)
+        np.testing.assert_allclose(ideal["q"], twin._raw["q"], rtol=1e-12, atol=1e-15)
+        np.testing.assert_allclose(ideal["qd"], twin._raw["qd"], rtol=1e-12, atol=1e-12)

@@ -230,6 +230,8 @@ def short_scene(name: str, kind: str, t0_turns: float) -> Optional[Dict[str, Any
             study["omega"] = 314.16
     study.pop("tolerance", None)
     study.update(skip_cycles=t0_turns, cycles=SPAN, methods=["monte_carlo", "fosm"], samples=2)
+    if t0_turns == T0_TURNS["T/4"]:  # errors against the nominal design's motion (issue 36 item 3)
+        study["reference"] = "nominal"
     # a tracked point on the analysed body (issue 36 item 2): its columns in clearsim run's files
     data.setdefault("outputs", {})["points"] = [{"name": TRACKED, "body": body, "point": list(TRACKED_POINT)}]
     return data
@@ -305,6 +307,8 @@ def _run_scene_path(tmp_path: Path, capsys: Any, name: str, kind: str, t0: str, 
         else:
             report = (out / "report.md").read_text(encoding="utf-8")
             assert "monte_carlo" in report and (out / "samples.csv").is_file() and (out / "fosm.csv").is_file()
+            if data["study"].get("reference") == "nominal" and "body" in data["study"]:
+                assert '`reference = "nominal"`' in report
         return
     scene = load_scene_file(file)
     sim = scene.simulation
@@ -393,6 +397,14 @@ def test_model_path(name, kind, t0, path):
         est = study.monte_carlo(2)
         assert est.n_runs == 2 and not est.failures and np.all(np.isfinite(est.peaks))
         assert (est.pf == 0.0) if kind == "ideal" else True
+        # A point on the analysed body against the nominal design's motion (issue 36 items 2, 3).
+        point = Output(body=body, point=TRACKED_POINT, component="magnitude", quantity="displacement")
+        nominal = Study(lambda c: _model(name, kind, clearance=c), inputs, point, 1.0, omega=omega, cycles=SPAN, skip_cycles=T0_TURNS[t0],
+                        reference="nominal", progress=False, **LOOSE)  # fmt: skip
+        est = nominal.monte_carlo(2)
+        assert est.n_runs == 2 and not est.failures and np.all(np.isfinite(est.peaks))
+        if kind == "ideal":  # a clearance that is not there moves nothing: zero to the reference's accuracy
+            assert np.all(est.peaks < 1e-4)
     else:  # clearsim.monte_carlo: per-bin reliability and FOSM over a window shorter than a turn
         mc = clearsim.monte_carlo(lambda c: _model(name, kind, clearance=c), {"c": Normal(0.5e-3, 0.02e-3)}, 2, omega=omega,
                                   cycles=SPAN, skip_cycles=T0_TURNS[t0], body=body, component=component,

@@ -171,7 +171,11 @@ def monte_carlo(
     rtol: float = RTOL,
     atol: float = ATOL,
     axis: Optional[str] = None,
+    reference: str = "own_ideal",
+    threads: Optional[int] = None,
     keep_errors: Union[bool, int] = False,
+    checkpoint: Any = None,
+    timeout: Optional[float] = None,
 ) -> MonteCarloResult:
     """Monte Carlo reliability of one output of a mechanism with random inputs.
 
@@ -193,7 +197,11 @@ def monte_carlo(
         from t = 0, as :meth:`Study.fosm <clearsim.reliability.Study.fosm>`'s.
     body, component:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
-        error against the ideal mechanism. (``axis=`` is the old name of ``component=``.)
+        error against the reference. (``axis=`` is the old name of ``component=``.)
+    reference:
+        What the errors are measured against: ``"own_ideal"`` (default: each sample's own
+        mechanism with ideal joints, what the clearances add) or ``"nominal"`` (the nominal
+        design's ideal motion, every tolerance included), as :class:`~clearsim.reliability.Study`.
     allowable:
         Required: ``{quantity: (lower, upper)}`` allowable |error| range of each analysed
         quantity (``"displacement"``, ``"velocity"``, ``"acceleration"``) in that quantity's unit:
@@ -212,7 +220,11 @@ def monte_carlo(
     executor:
         ``None`` runs the batch in the Rust core on all local cores. Otherwise any object with a
         ``concurrent.futures``-style ``map`` (``ProcessPoolExecutor``, Dask's
-        ``client.get_executor()``): chunks of samples are sent to :func:`run_descriptions`.
+        ``client.get_executor()``): chunks of samples are sent to :func:`run_descriptions`
+        (descriptions and settings only: each worker runs the references itself).
+    threads:
+        The core's threads per batch: default all local cores in this process, one per task
+        under an ``executor``; 0: all the machine's cores.
     integrator, rtol, atol:
         As in :meth:`Mechanism.simulate`; ``"auto"`` (default) runs lubricated samples with
         RADAU5 and their ideal counterparts and dry samples with RK45.
@@ -222,6 +234,10 @@ def monte_carlo(
         (default) for none. Every estimate comes from the integrator's monitors whatever is
         kept; a kept sample costs 8 bytes a stored point and quantity (a full run, ~213 KB on
         the nine-bar, is dropped as its chunk ends), so memory stays bounded at any ``n``.
+    checkpoint, timeout:
+        A directory where finished chunks are saved and the same call resumes from; seconds a
+        cluster may finish nothing before a :class:`clearsim.ClusterError` (as
+        :meth:`Study.monte_carlo <clearsim.reliability.Study.monte_carlo>`).
     """
     start = time.perf_counter()
     n = int(n)
@@ -271,7 +287,7 @@ def monte_carlo(
     study = Study(
         build, distributions, [Output(body=body, component=component, quantity=q) for q in quantities], [Limit.above(limits[q][1]) for q in quantities],
         omega=omega, cycles=cycles, skip_cycles=skip_cycles, bin_width=bin_width, integrator=integrator, rtol=rtol, atol=atol,
-        executor=executor, chunk_size=chunk_size, progress=progress, **budget,
+        reference=reference, executor=executor, threads=threads, chunk_size=chunk_size, progress=progress, **budget,
     )  # fmt: skip
     omega = study.omega if omega is None else omega  # None: the nominal constant-speed driver's
     omegas = np.asarray(inputs[omega], dtype=float) if isinstance(omega, str) else np.full(n, float(omega))
@@ -288,11 +304,11 @@ def monte_carlo(
 
     ev, traces = study.run_samples(
         inputs, keep_traces=keep, points_per_cycle=points_per_cycle, trace_outputs=outputs, raw_traces=True, keep_monitors=True,
-        check_assembly=False, what="Monte Carlo samples", show=progress, on_trace=errors_of,
+        check_assembly=False, what="Monte Carlo samples", show=progress, on_trace=errors_of, checkpoint=checkpoint, timeout=timeout,
     )  # fmt: skip
     assert ev.monitors is not None
     failed_at = dict(ev.failures)
-    failures = [(k, reason[: -len("(ideal mechanism)")] + "(ideal twin of the sample)" if reason.endswith("(ideal mechanism)") else f"{reason} (sample)") for k, reason in ev.failures]
+    failures = [(k, _failure_reason(reason)) for k, reason in ev.failures]
     ok = np.array([k not in failed_at for k in range(n)], dtype=bool)
     monitored: Dict[str, List[Dict[str, Any]]] = {q: [ev.monitors[k][i] for k in range(n) if ok[k]] for i, q in enumerate(quantities)}
     if failures and on_failure == "raise":
@@ -340,6 +356,15 @@ def monte_carlo(
         wall_time=time.perf_counter() - start,
         error_samples=np.array([k for k, _, _ in traces], dtype=int),
     )
+
+
+def _failure_reason(reason: str) -> str:
+    """A failed sample's reason, saying which run failed: the sample or its reference."""
+    if reason.endswith("(nominal ideal mechanism)"):
+        return reason
+    if reason.endswith("(ideal mechanism)"):
+        return reason[: -len("(ideal mechanism)")] + "(ideal twin of the sample)"
+    return f"{reason} (sample)"
 
 
 def _kept(keep_errors: Union[bool, int], n: int) -> int:

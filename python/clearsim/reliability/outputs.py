@@ -1,5 +1,5 @@
-"""What a reliability study watches: the analysed :class:`Output` (a body coordinate's error
-against the ideal mechanism, or a clearance joint's quantity) and its :class:`Limit` (failure
+"""What a reliability study watches: the analysed :class:`Output` (a body coordinate's or a body
+point's error against the reference motion, or a clearance joint's quantity) and its :class:`Limit` (failure
 when the output's peak passes above it, or its minimum falls below it).
 
 A study with several outputs is a series system: it fails when any output passes its limit
@@ -9,12 +9,13 @@ A study with several outputs is a series system: it fails when any output passes
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
 from ..errors import InputError, check_choice, check_finite, check_positive, renamed
-from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, body_unit
+from ..points import check_point
+from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, POINT_MONITOR_COMPONENTS, body_unit
 
 __all__ = ["BODY_QUANTITIES", "JOINT_QUANTITIES", "Output", "Limit", "Modes", "as_limit"]
 
@@ -25,12 +26,18 @@ SIDES = ("above", "below")
 
 @dataclass(frozen=True)
 class Output:
-    """The analysed output: a body coordinate's error against the ideal mechanism, or a clearance
-    joint's quantity.
+    """The analysed output: a body coordinate's or a body point's error against the reference
+    motion (the study's ``reference``: each sample's ideal twin or the nominal design's ideal),
+    or a clearance joint's quantity.
 
     ``Output(body="slider9", component="y", quantity="displacement" | "velocity" | "acceleration")``:
-    |response − ideal response| in m, m/s, m/s² (``component="x"``/``"y"``) or rad, rad/s,
-    rad/s² (``component="theta"``). ``axis=`` is the old name of ``component=``.
+    |response − reference response| of the body's centroid in m, m/s, m/s² (``component="x"``/``"y"``)
+    or rad, rad/s, rad/s² (``component="theta"``). ``axis=`` is the old name of ``component=``.
+
+    ``Output(body="coupler", point=(0.1, 0.02), component="x" | "y" | "magnitude", quantity=...)``:
+    the error of a point fixed on the body (body frame [m], as joints take their points): its
+    global displacement r + A p, velocity ṙ + θ̇ B p or acceleration r̈ + θ̈ B p − θ̇² A p, its
+    x or y component, or the magnitude of the error vector |P − P_ref| [m, m/s, m/s²].
 
     ``Output(joint="B", quantity="eccentricity" | "force" | "contact_force" | "film_force" |
     "film_thickness")``: the eccentricity ratio ε = e/c [-], the magnitude of the joint's total
@@ -44,6 +51,8 @@ class Output:
     quantity: str = "displacement"
     #: Old name of ``component``.
     axis: Optional[str] = None
+    #: A point fixed on ``body`` (body frame [m]); ``None``: the body's centroid.
+    point: Optional[Tuple[float, float]] = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "component", renamed("axis", "component", self.axis, self.component, "Output."))
@@ -51,33 +60,59 @@ class Output:
         if (self.body is None) == (self.joint is None):
             raise InputError("invalid Output: give exactly one of body= (with component=) or joint=", field="Output.body", value=self.body)
         if self.body is not None:
-            check_choice("Output.component", self.component, COMPONENTS, "(there is no default)")
+            if self.point is not None:
+                object.__setattr__(self, "point", check_point(self.point, "Output.point"))
+                check_choice("Output.component", self.component, POINT_MONITOR_COMPONENTS, "(a point's: there is no default)")
+            else:
+                check_choice("Output.component", self.component, COMPONENTS, "(there is no default)")
             if self.quantity not in BODY_QUANTITIES:
                 raise InputError(f"invalid Output.quantity = {self.quantity!r}: a body output is one of {', '.join(BODY_QUANTITIES)}", field="Output.quantity", value=self.quantity)
         else:
+            if self.point is not None:
+                raise InputError(f"invalid Output.point = {self.point!r}: a joint output has no point (give body= with point=)", field="Output.point", value=self.point)
             if self.component is not None:
                 raise InputError(f"invalid Output.component = {self.component!r}: a joint output has no component", field="Output.component", value=self.component)
             if self.quantity not in JOINT_QUANTITIES:
                 raise InputError(f"invalid Output.quantity = {self.quantity!r}: a joint output is one of {', '.join(JOINT_QUANTITIES)}", field="Output.quantity", value=self.quantity)
+
+    def target(self, body_names: List[str], joint_names: List[str]) -> Dict[str, Any]:
+        """What the core's monitor watches for this output (``rust/monitor/target.rs``), by the
+        index of its body (coordinate: 3 per body, x, y, θ) or clearance joint in a mechanism
+        with these names; an unknown name is an InputError naming the known ones."""
+        if self.body is not None:
+            if self.body not in body_names:
+                raise InputError(f"invalid Output.body = {self.body!r}: no such body (known: {', '.join(body_names)})", field="Output.body", value=self.body)
+            b = body_names.index(self.body)
+            if self.point is not None:
+                return {"body": b, "point": list(self.point), "component": self.component}
+            return {"coordinate": 3 * b + COMPONENTS.index(str(self.component))}
+        if self.joint not in joint_names:
+            raise InputError(f"invalid Output.joint = {self.joint!r}: no such clearance joint (known: {', '.join(joint_names) or 'none'})", field="Output.joint", value=self.joint)
+        return {"coordinate": joint_names.index(str(self.joint))}
 
     @property
     def unit(self) -> str:
         """Unit of the output (and of its limit)."""
         if self.joint is not None:
             return JOINT_QUANTITY_UNITS[self.quantity]
-        return body_unit(self.quantity, str(self.component))
+        return body_unit(self.quantity, "x" if self.point is not None else str(self.component))
 
     @property
     def label(self) -> str:
         if self.joint is not None:
             return f"{self.quantity.replace('_', ' ')} of joint {self.joint}"
+        if self.point is not None:
+            return f"{self.component} {self.quantity} error of point ({self.point[0]:g}, {self.point[1]:g}) of {self.body}"
         return f"{self.component} {self.quantity} error of {self.body}"
 
     @property
     def name(self) -> str:
-        """A short name for tables and CSV headers: ``slider9.y.displacement``, ``B.eccentricity``."""
+        """A short name for tables and CSV headers: ``slider9.y.displacement``,
+        ``coupler(0.1,0.02).magnitude.displacement`` (a point, body frame [m]), ``B.eccentricity``."""
         if self.joint is not None:
             return f"{self.joint}.{self.quantity}"
+        if self.point is not None:
+            return f"{self.body}({self.point[0]:g},{self.point[1]:g}).{self.component}.{self.quantity}"
         return f"{self.body}.{self.component}.{self.quantity}"
 
     @property

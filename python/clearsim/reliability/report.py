@@ -13,8 +13,8 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from ..csvfile import column_name, file_unit, report_header, write_rows
-from ..errors import ClearsimError, InputError
-from ..schema import INPUT_UNITS
+from ..errors import ClearsimError, InputError, check_choice
+from ..schema import INPUT_UNITS, REFERENCES
 
 #: Why FOSM leaves an output of a series system out (said on stdout and in report.md).
 FOSM_SKIPS = "FOSM compares an error with an allowable range [0, limit]; an output with a lower limit (a film thickness) has none, so it is not analysed"
@@ -152,15 +152,28 @@ METHOD_RUNNERS: Dict[str, Callable[[Run], None]] = {
 }  # fmt: skip
 
 
-def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = None, samples: Optional[int] = None, progress: bool = True, plots: bool = True, echo: Any = print) -> List[Path]:
+#: What each reference answers (report lines; :data:`clearsim.schema.REFERENCES`).
+REFERENCE_TEXT = {
+    "own_ideal": "each sample's own ideal twin (what the clearances add)",
+    "nominal": "the nominal design's ideal motion (how far from the nominal motion: every tolerance counts)",
+}
+
+
+def run_study(
+    scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = None, samples: Optional[int] = None, progress: bool = True, plots: bool = True,
+    echo: Any = print, reference: Optional[str] = None,
+) -> List[Path]:  # fmt: skip
     """Run the study's methods, write ``reliability.csv`` (one row per method, and per failure
     mode on a series system), ``sobol.csv``, ``samples.csv`` (Monte Carlo: inputs, each output's
     peak and first-passage time), ``fosm.csv``, ``reliability.png`` and ``report.md`` into
     ``out_dir``; returns the files. A method that stops with a clearsim error (FORM without a
     design point; a life, ``[study.life]``, over ``max_blocks``) is named in report.md, with the
-    methods it left unrun, after the results found before it are written, then raised."""
+    methods it left unrun, after the results found before it are written, then raised.
+    ``reference`` (``"own_ideal"`` or ``"nominal"``) replaces the scene's ``[study] reference``."""
     settings = scene.study_settings()
     study = scene.study_model(progress=progress)
+    if reference is not None:
+        study.reference = check_choice("reference", reference, REFERENCES)
     chosen = list(methods or settings.methods)
     if not settings.inputs and set(chosen) != {"fosm"}:
         raise InputError(f"invalid methods = {chosen!r}: {scene.path or 'the scene'} has only [reliability] (the FOSM of the nominal mechanism, no random inputs): "
@@ -171,6 +184,8 @@ def run_study(scene: Any, out_dir: Path, *, methods: Optional[Sequence[str]] = N
     r = Run(study, settings, int(samples or settings.samples), echo)
     out_dir.mkdir(parents=True, exist_ok=True)
     echo(f"{scene.name}: {study}")
+    if any(o.body is not None for o in study.outputs):
+        echo(f"{'reference':20s} errors against {REFERENCE_TEXT[study.reference]}")
     stop: Optional[ClearsimError] = None
     for name, runner in METHOD_RUNNERS.items():
         if name in chosen and not (name == "form" and name in r.found):
@@ -335,7 +350,10 @@ def _no_sample(ax: Any, mc: Any) -> None:
 def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str, Any], path: Path, files: List[Path]) -> Path:
     outs = "; ".join(f"{o.label} {lim.text(o.unit)} (`{o.name}`)" for o, lim in zip(study.outputs, study.limits))
     kind = "Output" if len(study.outputs) == 1 else "Outputs (a series system: it fails when any output passes its limit)"
-    lines = [f"# Reliability: {scene.name}", "", f"{kind}: {outs}; {study.cycles:g} cycle(s) after {study.skip_cycles:g}.", "", "Random inputs:", ""]
+    lines = [f"# Reliability: {scene.name}", "", f"{kind}: {outs}; {study.cycles:g} cycle(s) after {study.skip_cycles:g}.", ""]
+    if any(o.body is not None for o in study.outputs):
+        lines += [f"Errors measured against {REFERENCE_TEXT[study.reference]} (`reference = \"{study.reference}\"`).", ""]
+    lines += ["Random inputs:", ""]
     settings = scene.study_settings()
     for name, d in study.inputs.items():
         if name in settings.inputs:

@@ -20,22 +20,22 @@ from __future__ import annotations
 import inspect
 import math
 import time
-from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..errors import InputError, SimulationError, check_finite, check_positive
-from ..schema import ATOL, COMPONENTS, RTOL
+from ..errors import InputError, SimulationError, check_choice, check_finite, check_positive
+from ..schema import ATOL, REFERENCES, RTOL
 from .bridge import check_on_failure
 from .distributions import input_stream
 from .estimates import failure_reasons, wilson_interval
 from .fosm import BIN_WIDTH, FosmResult, allowable_statistics, bin_fold, fosm_from_monitors, window_start_turns
 from .model import ReliabilityModel
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
-from ..batch import error_of, failed, progress, run_all
+from ..batch import error_of, failed, progress, run_all, task_threads
 from .runs import REFERENCE_POINTS_PER_CYCLE, monitor_spec, output_grid, reference_grid
+from .checkpoint import Checkpoint, run_jobs
 from .window import at_window_start, warn_at_start
 from .. import display
 
@@ -43,9 +43,6 @@ __all__ = ["Output", "Limit", "Study", "Evaluation", "MonteCarloEstimate", "Mode
 
 #: Samples built and run together: bounds the memory of a study whatever its size.
 CHUNK = 1024
-#: Ideal reference runs kept for reuse (random inputs that change the ideal mechanism, such as a
-#: drive speed, give one per sample).
-IDEAL_CACHE = 256
 
 
 @dataclass
@@ -139,18 +136,14 @@ class MonteCarloEstimate:
 
 @dataclass
 class _Job:
-    """One sample's run as the loop builds it."""
+    """One sample's run as the loop builds it: its mechanism and run settings (the monitors
+    name the reference they are measured against; the core makes it)."""
 
     k: int
     mechanism: Any
     settings: Dict[str, Any]
-    period: float
+    #: Each output's clearance [m] (a film thickness's; 0 for the others).
     clearances: List[float]
-    ideal_key: Optional[str] = None
-    #: The ideal run it is measured against (its raw result; ``None`` for joint outputs only).
-    ideal: Any = None
-    #: Every ``refine``-th point of the ideal reference is on this run's stored output grid.
-    refine: int = 1
 
 
 def _driver_speed(m: Any) -> float:
@@ -214,9 +207,22 @@ class Study(ReliabilityModel, Modes):
         As in :meth:`clearsim.Mechanism.simulate`.
     max_steps, max_seconds:
         Budget of each run (steps; wall time [s]); a run that uses it up fails with its reason.
+    reference:
+        What body and point errors are measured against: ``"own_ideal"`` (default) each sample's
+        own mechanism with its clearance joints made ideal — the paper's question, what do the
+        clearances add? (link-length and pivot tolerances move the reference with the sample and
+        barely register) — or ``"nominal"``: the ideal motion of the nominal design (``build`` at
+        the inputs' means), one run for all samples — a designer's question, how far from the
+        nominal motion? (every tolerance counts). The core runs each reference once and shares
+        it (docs/reliability.md, "What the error is measured against").
     executor:
         ``None``: in the Rust core on all local cores. Otherwise any ``concurrent.futures``-style
-        executor (``ProcessPoolExecutor``, Dask's ``client.get_executor()``).
+        executor (``ProcessPoolExecutor``, Dask's ``client.get_executor()``): a task carries only
+        the chunk's descriptions and settings (and the nominal description); its worker runs the
+        reference itself.
+    threads:
+        The core's threads per batch: default all local cores in this process, one per task
+        under an ``executor`` (its workers' sizes decide); 0: all the machine's cores.
     progress:
         Progress bars on batches (``False`` silences them).
     """
@@ -237,7 +243,9 @@ class Study(ReliabilityModel, Modes):
         atol: float = ATOL,
         max_steps: Optional[int] = None,
         max_seconds: Optional[float] = None,
+        reference: str = "own_ideal",
         executor: Any = None,
+        threads: Optional[int] = None,
         chunk_size: Optional[int] = None,
         progress: bool = True,
     ) -> None:
@@ -266,11 +274,14 @@ class Study(ReliabilityModel, Modes):
             self.run_options["max_steps"] = max_steps
         if max_seconds is not None:
             self.run_options["max_seconds"] = max_seconds
+        self.reference = check_choice("reference", reference, REFERENCES)
         self.executor = executor
+        task_threads(threads, None)  # checked here, used per batch
+        self.threads = threads
         self.chunk_size = chunk_size
         self.progress = progress
-        self._counter = [0]  # simulations of the mechanism with clearances so far (ideal twins aside)
-        self._ideal: "OrderedDict[str, Any]" = OrderedDict()
+        self._counter = [0]  # simulations of the mechanism with clearances so far (references aside)
+        self._nominal: Optional[Tuple[Dict[str, Any], List[str]]] = None
         self._assembly_checked = False
         self._warned_start = False  # warned once that the peaks sit at the window's start
 
@@ -299,18 +310,6 @@ class Study(ReliabilityModel, Modes):
         t0 = window_start_turns(self.skip_cycles, self.bin_width) * period
         return t0, t0 + self.cycles * period, period
 
-    def _target(self, m: Any, output: Output) -> int:
-        """The monitored coordinate (3 per body) or clearance joint's index of ``output``."""
-        if output.body is not None:
-            names = m.body_names
-            if output.body not in names:
-                raise InputError(f"invalid Output.body = {output.body!r}: no such body (known: {', '.join(names)})", field="Output.body", value=output.body)
-            return 3 * names.index(output.body) + COMPONENTS.index(str(output.component))
-        names = m.clearance_joint_names
-        if output.joint not in names:
-            raise InputError(f"invalid Output.joint = {output.joint!r}: no such clearance joint (known: {', '.join(names) or 'none'})", field="Output.joint", value=output.joint)
-        return names.index(output.joint)
-
     def built(self, params: Mapping[str, float]) -> Any:
         """``build(**params)``, which must be a Mechanism (an InputError naming what it was)."""
         m = self.build(**params)
@@ -326,41 +325,46 @@ class Study(ReliabilityModel, Modes):
             m.check_assembly(t0)
             self._assembly_checked = True
 
-    def _references(self, jobs: Dict[str, Tuple[Any, Any]]) -> Dict[str, Any]:
-        """The ideal runs that body errors are measured against, one per key of ``jobs`` (a
-        failed one as its reason): those not cached yet run in one batch (random clearances do
-        not change them: most studies run one). Every key asked for is in the answer, whatever
-        the cache keeps: the cache holds the last :data:`IDEAL_CACHE` for later calls only (a
-        chunk with more distinct references than that once measured its first samples against
-        none)."""
-        todo = [k for k in jobs if k not in self._ideal]
-        raws = run_all([jobs[k][0] for k in todo], [jobs[k][1] for k in todo], self.executor, self.chunk_size, False, "ideal mechanisms")
-        found = {k: self._ideal[k] for k in jobs if k in self._ideal}
-        for key, raw in zip(todo, raws):
-            found[key] = f"{error_of(raw)} (ideal mechanism)" if failed(raw) else raw
-        for key in jobs:
-            self._ideal[key] = found[key]
-            self._ideal.move_to_end(key)
-        while len(self._ideal) > IDEAL_CACHE:
-            self._ideal.popitem(last=False)
-        return found
+    def _nominal_run(self) -> Tuple[Dict[str, Any], List[str]]:
+        """The nominal design's description (``build`` at the inputs' means: the reference of
+        ``reference="nominal"``, which the core idealises and runs) and its bodies."""
+        if self._nominal is None:
+            m = self.built(self.nominal())
+            self._nominal = (m.description(), list(m.body_names))
+        return self._nominal
 
-    def _monitors(self, job: _Job, t0: float, reference: Any) -> List[Dict[str, Any]]:
+    def _check_bodies(self, m: Any) -> None:
+        """A sample measured against the nominal design must have its bodies (the errors compare
+        body by body): an InputError naming those that differ."""
+        bodies = self._nominal_run()[1]
+        if list(m.body_names) != bodies:
+            only_nominal = [b for b in bodies if b not in m.body_names]
+            only_sample = [b for b in m.body_names if b not in bodies]
+            raise InputError(
+                f"invalid reference = 'nominal': the nominal mechanism's bodies differ from a sample's (only in the nominal: "
+                f"{only_nominal or 'none'}; only in the sample: {only_sample or 'none'}); build must give every sample the same bodies",
+                field="reference", value="nominal",
+            )  # fmt: skip
+
+    def _monitors(self, m: Any, t0: float, period: float, clearances: List[float]) -> List[Dict[str, Any]]:
+        """The monitors of a sample of ``m``: each output's target, measured against the study's
+        reference (body and point outputs) or itself (joint outputs), from ``t0`` [s]."""
         specs = []
-        for o, lim, c in zip(self.outputs, self.limits, job.clearances):
-            col = self._target(job.mechanism, o)
+        for o, lim, c in zip(self.outputs, self.limits, clearances):
+            target = o.target(m.body_names, m.clearance_joint_names)
             if o.quantity == "film_thickness":
                 track: Optional[float] = 1.0 - lim.value / c if c > 0 else None  # ε at which h = c(1 − ε) reaches the limit
             else:
                 track = lim.value if lim.side == "above" else None
-            specs.append(monitor_spec(reference if o.body is not None else None, col, o.monitored, track, t0, job.period, self.cycles, self.bin_width))
+            reference = self.reference if o.body is not None else None
+            specs.append(monitor_spec(target, o.monitored, reference, track, t0, period, self.cycles, self.bin_width))
         return specs
 
     def run_samples(
         self, points: Mapping[str, Any], *, keep_traces: int = 0, points_per_cycle: int = 360, trace_outputs: Optional[Sequence[str]] = None,
         raw_traces: bool = False, keep_monitors: bool = False, check_assembly: bool = True, what: str = "runs", show: Optional[bool] = None,
         on_job: Optional[Callable[[int, Dict[str, Any], Dict[str, Any]], None]] = None, on_raw: Optional[Callable[[int, Dict[str, Any]], None]] = None,
-        on_trace: Optional[Callable[[int, Any], Any]] = None,
+        on_trace: Optional[Callable[[int, Any], Any]] = None, checkpoint: Any = None, timeout: Optional[float] = None,
     ) -> Tuple[Evaluation, List[Any]]:  # fmt: skip
         """The sample loop: run the model at ``points`` (``{input name: (N,) array}``; missing
         inputs at their mean) in chunks of :data:`CHUNK`, keeping each run's extremes and
@@ -368,12 +372,12 @@ class Study(ReliabilityModel, Modes):
 
         The first ``keep_traces`` runs also store their outputs on ``points_per_cycle`` points a
         cycle (``trace_outputs``: the run's ``outputs``): as :class:`clearsim.Result` objects, or
-        with ``raw_traces`` as ``{"sample": raw run, "ideal": the ideal run on the same grid,
-        "columns": each output's monitored coordinate or joint index}``. ``on_job(k, description,
+        with ``raw_traces`` as ``{"sample": raw run, "ideal": the reference's t, q, qd and qdd
+        at the same output times, "columns": each output's monitored coordinate or joint index}``. ``on_job(k, description,
         settings)`` may change sample k's description and run settings before it runs (life.py
         writes the worn state there); ``on_raw(k, raw)`` sees each completed run's raw result;
         ``on_trace(k, trace)`` turns a kept trace into what is kept (the full run dropped as its
-        chunk ends)."""
+        chunk ends). ``checkpoint``, ``timeout``: as :meth:`monte_carlo` (reliability/checkpoint.py)."""
         full = {name: np.atleast_1d(np.asarray(points[name], dtype=float)) if name in points else None for name in self.inputs}
         n = max((v.size for v in full.values() if v is not None), default=1)
         cols = {name: (v if v is not None else np.full(n, self.inputs[name].nominal)) for name, v in full.items()}
@@ -388,16 +392,21 @@ class Study(ReliabilityModel, Modes):
         traces: List[Any] = []
         at_start = np.zeros((n, m_out), dtype=bool)  # peaks at the window's start (window.py)
         t_start = math.nan
-        bar = progress(n, (self.progress and n >= 256) if show is None else show, what)  # big batches only (not FORM's gradients)
+        shown = (self.progress and n >= 256) if show is None else show  # big batches only (not FORM's gradients)
+        bar = progress(n, shown, what)
+        store = Checkpoint(checkpoint) if checkpoint is not None else None
         try:
             for start in range(0, n, CHUNK):
                 stop = min(n, start + CHUNK)
-                jobs, errors = self._chunk_jobs(cols, start, stop, keep_traces, points_per_cycle, trace_outputs, check_assembly)
+                jobs = self._chunk_jobs(cols, start, stop, keep_traces, points_per_cycle, trace_outputs, check_assembly, raw_traces)
+                errors: Dict[int, str] = {}
                 descriptions = [j.mechanism.description() for j in jobs]
                 if on_job is not None:
                     for job, d in zip(jobs, descriptions):
                         on_job(job.k, d, job.settings)
-                raws = run_all(descriptions, [j.settings for j in jobs], self.executor, self.chunk_size, False, what)
+                nominal = self._nominal_run()[0] if self.reference == "nominal" else None
+                raws = run_jobs([j.k for j in jobs], descriptions, [j.settings for j in jobs], executor=self.executor, chunk_size=self.chunk_size, nominal=nominal,
+                                threads=self.threads, show=bool(shown), on_done=bar.update, store=store, timeout=timeout, finished_before=start)  # fmt: skip
                 for job, raw in zip(jobs, raws):
                     k = job.k
                     if failed(raw):
@@ -415,8 +424,9 @@ class Study(ReliabilityModel, Modes):
                         else:
                             values[k, i] = float(mon["peak"])
                         first[k, i] = float(mon["first_passage"])
-                        t_start = job.settings["monitors"][i]["t_start"]
-                        at_start[k, i] = lim.side == "above" and at_window_start(float(mon["t_peak"]), t_start, self.cycles * job.period)
+                        spec = job.settings["monitors"][i]
+                        t_start = spec["t_start"]
+                        at_start[k, i] = lim.side == "above" and at_window_start(float(mon["t_peak"]), t_start, spec["bin_width"] * spec["bins"])
                     if monitors is not None:
                         monitors[k] = mons
                     if k < keep_traces:
@@ -424,7 +434,6 @@ class Study(ReliabilityModel, Modes):
                         traces.append(trace if on_trace is None else on_trace(k, trace))
                 failures += sorted(errors.items())
                 self.n_runs += stop - start
-                bar.update(stop - start)
         finally:
             bar.close()
         ev = Evaluation(values, first, sorted(failures), monitors)
@@ -435,52 +444,47 @@ class Study(ReliabilityModel, Modes):
     def _trace(self, job: _Job, raw: Dict[str, Any], raw_traces: bool) -> Any:
         if not raw_traces:
             return job.mechanism._finish(raw, job.settings)
-        ideal = job.ideal
-        if isinstance(ideal, dict):
-            ideal = {key: (value[:: job.refine] if key in ("t", "q", "qd", "qdd") else value) for key, value in ideal.items()}
-        return {"sample": raw, "ideal": ideal, "columns": [self._target(job.mechanism, o) for o in self.outputs]}
+        m = job.mechanism
+        columns = [o.target(m.body_names, m.clearance_joint_names).get("coordinate") for o in self.outputs]
+        ideal = (raw.get("reference") or {}).get(self.reference)
+        if ideal is not None:
+            ideal = {"t": raw["t"], **ideal}
+        return {"sample": raw, "ideal": ideal, "columns": columns}
 
     def _chunk_jobs(
-        self, points: Mapping[str, np.ndarray], start: int, stop: int, keep: int, points_per_cycle: int, trace_outputs: Optional[Sequence[str]], check_assembly: bool
-    ) -> Tuple[List[_Job], Dict[int, str]]:
-        """Build the chunk's mechanisms and run settings, their ideal references in one batch,
-        and each run's monitors; a sample whose reference failed is a failure with its reason."""
-        errors: Dict[int, str] = {}
+        self, points: Mapping[str, np.ndarray], start: int, stop: int, keep: int, points_per_cycle: int, trace_outputs: Optional[Sequence[str]],
+        check_assembly: bool, record: bool = False,
+    ) -> List[_Job]:  # fmt: skip
+        """Build the chunk's mechanisms and run settings with each run's monitors, naming the
+        reference they are measured against and its grid (the core makes the reference runs;
+        ``record``: the traced runs also return the reference at their output times)."""
         jobs: List[_Job] = []
-        ideal_jobs: Dict[str, Tuple[Any, Any]] = {}
-        windows = []
         need_reference = any(o.body is not None for o in self.outputs)
+        # Run settings by window and grid: they do not depend on the mechanism but for its film
+        # monitors, which the study's own replace (one run_settings call a window, not a sample).
+        made: Dict[Tuple[float, float, float, bool], Dict[str, Any]] = {}
         for k in range(start, stop):
             params = {name: float(v[k]) for name, v in points.items()}
             m = self.built(params)
             t0, t1, period = self._window(params)
             if check_assembly:
                 self._check_first_assembly(m, t0)  # the pose at t = 0, then the drivers followed to the window's start
+            if need_reference and self.reference == "nominal":
+                self._check_bodies(m)
             tracing = k < keep
-            t_ref, refine = reference_grid(t0, t1, period, points_per_cycle if tracing else None)
-            grid = output_grid(t0, t1, period, points_per_cycle) if tracing else np.array([t0, t1])
-            outputs = (list(trace_outputs) if trace_outputs is not None else None) if tracing else ["states"]
-            s = m.run_settings(float(grid[-1]), t_out=grid, outputs=outputs, **self.run_options)
+            key = (t0, t1, period, tracing)
+            if key not in made:
+                grid = output_grid(t0, t1, period, points_per_cycle) if tracing else np.array([t0, t1])
+                outputs = (list(trace_outputs) if trace_outputs is not None else None) if tracing else ["states"]
+                made[key] = m.run_settings(float(grid[-1]), t_out=grid, outputs=outputs, **self.run_options)
+            s = dict(made[key])
             contacts = m.contacts() if any(o.quantity == "film_thickness" for o in self.outputs) else {}
             clearances = [float(contacts[o.joint]["clearance"]) if o.quantity == "film_thickness" and o.joint in contacts else 0.0 for o in self.outputs]
-            job = _Job(k, m, s, period, clearances, refine=refine)
             if need_reference:
-                key, desc, ref_settings = m.reference_job(t_ref, **self.run_options)
-                job.ideal_key = key
-                ideal_jobs.setdefault(key, (desc, ref_settings))
-            jobs.append(job)
-            windows.append(t0)
-        references = self._references(ideal_jobs) if ideal_jobs else {}
-        kept: List[_Job] = []
-        for job, t0 in zip(jobs, windows):
-            reference = references[job.ideal_key] if job.ideal_key is not None else None
-            if isinstance(reference, str):
-                errors[job.k] = reference
-                continue
-            job.ideal = reference
-            job.settings["monitors"] = self._monitors(job, t0, reference)
-            kept.append(job)
-        return kept, errors
+                s["reference"] = reference_grid(t0, t1, period, points_per_cycle if tracing else None, record=tracing and record)
+            s["monitors"] = self._monitors(m, t0, period, clearances)
+            jobs.append(_Job(k, m, s, clearances))
+        return jobs
 
     def evaluate(self, points: Mapping[str, Any], *, keep_traces: int = 0, what: str = "runs") -> Tuple[Evaluation, List[Any]]:
         """Run the model at ``points`` (``{input name: (N,) array}``; missing inputs at their
@@ -503,12 +507,22 @@ class Study(ReliabilityModel, Modes):
         return np.min(self.limit_states(u, on_failure), axis=1)
 
     # ------------------------------------------------------------------ methods
-    def monte_carlo(self, n: int, seed: Optional[int] = 0, executor: Any = None, on_failure: str = "fail", *, keep_traces: int = 0, confidence: float = 0.95) -> MonteCarloEstimate:
+    def monte_carlo(
+        self, n: int, seed: Optional[int] = 0, executor: Any = None, on_failure: str = "fail", *, keep_traces: int = 0, confidence: float = 0.95,
+        checkpoint: Any = None, timeout: Optional[float] = None,
+    ) -> MonteCarloEstimate:  # fmt: skip
         """Crude Monte Carlo with ``n`` samples (memory: a few numbers per sample; the full
         results of the first ``keep_traces`` samples on request). Each input has its own random
         stream seeded by ``(seed, name)``. ``on_failure``: ``"fail"`` (default: a failed run
         counts as an exceedance), ``"exclude"`` (left out; ``bounds`` brackets p_f) or
-        ``"raise"``. A series system's p_f and each output's (``modes``) come from the same runs."""
+        ``"raise"``. A series system's p_f and each output's (``modes``) come from the same runs.
+
+        ``checkpoint``: a directory where finished chunks of samples are saved; the same call
+        resumes from it, running only the samples missing (bit for bit the uninterrupted answer).
+        Runs lost to an ``executor``'s machinery (a dead worker, a broken pool) or a cluster that
+        finishes no chunk for ``timeout`` seconds (default :data:`clearsim.batch.TIMEOUT`, 1 800 s)
+        raise :class:`clearsim.ClusterError` naming the chunks lost and what finished, after
+        every other chunk has finished; samples whose own run fails are counted as usual."""
         check_on_failure(on_failure)
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
             raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
@@ -518,7 +532,7 @@ class Study(ReliabilityModel, Modes):
             u = np.column_stack([input_stream(seed, name).standard_normal(int(n)) for name in self.random_names]) if self.random_names else np.zeros((int(n), 0))
             inputs = self.values(u)
             runs0 = self.n_runs
-            ev, traces = self.run_samples(inputs, keep_traces=keep_traces, what="Monte Carlo samples")
+            ev, traces = self.run_samples(inputs, keep_traces=keep_traces, what="Monte Carlo samples", checkpoint=checkpoint, timeout=timeout)
         finally:
             self.executor = saved
         _check_failures(ev, on_failure)

@@ -181,6 +181,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     cov = 0.1                        # importance sampling's target coefficient of variation
     seed = 0
     # bin_width = 18.0               # deg: FOSM's crank-angle bins (methods = [..., "fosm"])
+    # reference = "nominal"          # errors against the nominal design's motion (tolerances
+                                     #   count) or "own_ideal" (default: each sample's ideal twin)
     # sobol_method = "saltelli"      # or "pce"; step = 0.05: FORM's gradient step in u
     # [[study.output]]               # several outputs (a series system) instead of the one
     # body = "slider"                #   above: body/component or joint, quantity, limit and

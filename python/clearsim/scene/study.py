@@ -7,7 +7,9 @@ system), and the methods to run.
 
     [study]                            # clearsim reliability scene.toml
     body = "slider9"                   # the output: a body coordinate's error against the
-    component = "y"                    #   ideal mechanism (x | y | theta) ...
+    component = "y"                    #   reference motion (x | y | theta) ...
+    # point = [0.05, 0.0]              # ... or a point's on the body (body frame [m];
+                                       #   component x | y | magnitude)
     # joint = "B"                      # ... or a clearance joint's quantity
     quantity = "displacement"          # displacement | velocity | acceleration;
                                        #   joint: eccentricity | force | contact_force | film_force
@@ -15,6 +17,9 @@ system), and the methods to run.
     cycles = 1.0                       # analysed crank turns after skip_cycles turns
     skip_cycles = 0.0
     # omega = -15.708                  # rad/s (default: the first constant-speed driver)
+    # reference = "nominal"            # errors against: own_ideal (default: each sample's ideal
+                                       #   twin, what the clearances add) | nominal (the nominal
+                                       #   design's ideal motion: every tolerance counts)
     methods = ["form", "importance_sampling", "sobol"]
                                        # of monte_carlo, form, importance_sampling, subset, sobol,
                                        #   fosm, ak_mcs, ak_is (active-learning Kriging)
@@ -71,14 +76,14 @@ from ..reliability.life import MAX_BLOCKS
 from ..reliability.outputs import BODY_QUANTITIES, JOINT_QUANTITIES, SIDES, Limit, Modes, Output
 from ..reliability.sobol import SOBOL_METHODS
 from ..reliability.study import Study
-from ..schema import COMPONENTS
+from ..schema import COMPONENTS, POINT_MONITOR_COMPONENTS, REFERENCES
 
 # Extension point: a method is a name here (and in report.METHOD_RUNNERS); a method with
 # settings of its own reads them from a sub-table [study.<name>] listed in STUDY_KEYS.
 METHODS = ("monte_carlo", "form", "importance_sampling", "subset", "sobol", "fosm", "ak_mcs", "ak_is")
-OUTPUT_KEYS = ("body", "component", "joint", "quantity", "limit", "side")
+OUTPUT_KEYS = ("body", "component", "point", "joint", "quantity", "limit", "side")
 #: The keys of [study] (the loader checks them before parse_study reads the table).
-STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step", "max_runs", "life")
+STUDY_KEYS = (*OUTPUT_KEYS, "cycles", "skip_cycles", "omega", "methods", "samples", "cov", "seed", "bin_width", "input", "tolerance", "output", "sobol_method", "step", "max_runs", "life", "reference")
 INPUT_KEYS = ("path", "parameter", "distribution", "mean", "std", "low", "high")
 TOLERANCE_KEYS = ("input", "reliability", "bracket")
 LIFE_KEYS = ("cycles", "samples", "reliability", "max_growth", "max_jump", "settle", "max_blocks")
@@ -123,13 +128,15 @@ class StudySettings(Modes):
     allowable: Optional[List[Tuple[float, float]]] = None
     #: Runs start here [s] (``[simulation].t0``; [reliability] only); crank angles count from t = 0 all the same (docs/physics.md §6).
     t0: float = 0.0
+    #: What body and point errors are measured against (:data:`clearsim.schema.REFERENCES`).
+    reference: str = "own_ideal"
 
 
 def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
     """One output and its limit from the keys of ``t`` (``[study]`` or a ``[[study.output]]``)."""
     joint = t.string("joint", None, choices=mech.clearance_joint_names) if "joint" in t else None
     if joint is not None:
-        if "body" in t or "component" in t:
+        if "body" in t or "component" in t or "point" in t:
             raise t.error("joint", f"invalid {where}: give either joint or body (with component), not both")
         quantity = t.string("quantity", choices=JOINT_QUANTITIES)
         output = Output(joint=joint, quantity=quantity)
@@ -137,7 +144,9 @@ def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
         if "body" not in t:
             raise t.error(None, f"missing key 'body' (with component) or 'joint' in {where}: the analysed output")
         body = t.string("body", choices=mech.body_names)
-        output = Output(body=body, component=t.string("component", choices=COMPONENTS), quantity=t.string("quantity", choices=BODY_QUANTITIES))
+        point = tuple(t.numbers("point", length=2)) if "point" in t else None
+        component = t.string("component", choices=POINT_MONITOR_COMPONENTS if point is not None else COMPONENTS)
+        output = Output(body=body, component=component, quantity=t.string("quantity", choices=BODY_QUANTITIES), point=point)
     side = t.string("side", "below" if output.quantity == "film_thickness" else "above", choices=SIDES)
     if "limit" not in t:
         what = "largest acceptable" if side == "above" else "smallest acceptable"
@@ -253,7 +262,7 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
     return StudySettings(
         outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
         methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", BIN_WIDTH), tolerance=tol,
-        max_runs=max_runs, life=life,
+        max_runs=max_runs, life=life, reference=t.string("reference", "own_ideal", choices=REFERENCES),
     )  # fmt: skip
 
 
@@ -289,7 +298,7 @@ def study_of(s: StudySettings, mech: Any, sim: Any, progress: bool = True, rebui
     outputs: Any = s.outputs if len(s.outputs) > 1 else s.outputs[0]
     limits: Any = s.limits if len(s.limits) > 1 else s.limits[0]
     inputs: Dict[str, Any] = dict(s.inputs) or {NOMINAL: 0.0}
-    study = Study(build, inputs, outputs, limits, omega=s.omega, cycles=s.cycles, skip_cycles=s.skip_cycles, bin_width=s.bin_width, progress=progress, **opts)
+    study = Study(build, inputs, outputs, limits, omega=s.omega, cycles=s.cycles, skip_cycles=s.skip_cycles, bin_width=s.bin_width, reference=s.reference, progress=progress, **opts)
     # Run options Study's signature does not take: rk4's fixed step, the step bounds, the start time.
     study.run_options.update({k: v for k, v in (("step", sim.step), ("h_max", sim.h_max), ("h_min", sim.h_min)) if v is not None})
     if s.t0 != 0.0:

@@ -1,13 +1,15 @@
 //! Running extremes of one output between the output samples, so that a reliability answer
 //! does not depend on how densely the user stores results (docs/reliability: "continuous in
-//! time"). The integrator hands every accepted step to [`Monitor::observe`] through
-//! `MechanismSystem::step_accepted`; the monitor samples the step's dense output at a few interior
-//! points and keeps, per time bin, the largest and smallest |error| and the time integrals of
-//! |error| and error², plus the overall peak and the first time |error| exceeds a limit.
+//! time"). The integrator hands every accepted step to the run's observers
+//! (rust/simulate/observe.rs), which sample the step's dense output at a few interior points and
+//! feed each monitor its error there; the monitor keeps, per time bin, the largest and smallest
+//! |error| and the time integrals of |error| and error², plus the overall peak and the first time
+//! |error| exceeds a limit.
 //!
-//! The error is the monitored coordinate's displacement, velocity or acceleration minus a
-//! reference (the ideal mechanism's response, a cubic Hermite curve through its values and rates
-//! on a fine grid), or the raw value when there is no reference.
+//! What is watched is the monitor's [`Target`] (target.rs: a body coordinate, a point on a body,
+//! a clearance joint); its error is the target's displacement, velocity or acceleration minus the
+//! same function of its reference's state (reference.rs: the ideal run of the sample's own
+//! mechanism or of the nominal design), or the value itself when it has none.
 //!
 //! With [`MonitorSpec::exact`] the signed extremes are located on the quantity itself, not only
 //! at the samples: every step whose samples come near the running maximum (or minimum) is
@@ -15,8 +17,16 @@
 //! from a KKT solve there, as the stored outputs are), so the extremes are at least every value
 //! the run could store at any output time, whatever the output grid (`Result.extremes`).
 
-/// What is monitored: a derivative of a body coordinate, or a quantity of a clearance joint
-/// (then [`MonitorSpec::coordinate`] is the joint's index).
+pub mod reference;
+pub mod target;
+
+use std::sync::Arc;
+
+pub use reference::{ReferenceGrid, ReferenceOf, ReferenceRun, References};
+pub use target::{Kinematics, PointComponent, Target};
+
+/// What is monitored: a derivative of a body target (a coordinate or a point), or a quantity of
+/// a clearance joint.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(rename_all = "snake_case"))]
 pub enum Quantity {
@@ -49,63 +59,91 @@ impl Quantity {
     }
 }
 
-/// A smooth reference curve: values and their time derivatives at increasing knots, evaluated by
-/// cubic Hermite interpolation (held constant outside the knots).
-#[derive(Debug, Clone, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(deny_unknown_fields))]
-pub struct Reference {
-    pub t: Vec<f64>,
-    pub value: Vec<f64>,
-    pub rate: Vec<f64>,
-}
-
-impl Reference {
-    pub fn eval(&self, t: f64) -> f64 {
-        let n = self.t.len();
-        if n == 0 {
-            return 0.0;
-        }
-        if t <= self.t[0] {
-            return self.value[0];
-        }
-        if t >= self.t[n - 1] {
-            return self.value[n - 1];
-        }
-        let k = self.t.partition_point(|&x| x <= t).clamp(1, n - 1) - 1;
-        let h = self.t[k + 1] - self.t[k];
-        let s = (t - self.t[k]) / h;
-        let (s2, s3) = (s * s, s * s * s);
-        (2.0 * s3 - 3.0 * s2 + 1.0) * self.value[k]
-            + (s3 - 2.0 * s2 + s) * h * self.rate[k]
-            + (-2.0 * s3 + 3.0 * s2) * self.value[k + 1]
-            + (s3 - s2) * h * self.rate[k + 1]
-    }
-}
-
-/// What to monitor (`RunSettings::monitor`).
+/// What to monitor (`RunSettings::monitors`).
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(deny_unknown_fields))]
+#[cfg_attr(feature = "serde", derive(serde::Deserialize), serde(try_from = "MonitorSpecDesc"))]
 pub struct MonitorSpec {
-    /// Index of the coordinate in q (3 per body: x, y, θ), or of the clearance joint for a
-    /// joint quantity.
-    pub coordinate: usize,
+    /// What is watched: a body coordinate, a point on a body or a clearance joint.
+    pub target: Target,
     pub quantity: Quantity,
-    #[cfg_attr(feature = "serde", serde(default))]
-    pub reference: Option<Reference>,
+    /// What the error is measured against (body targets only; `None`: the value itself).
+    pub reference: Option<ReferenceOf>,
     /// Start of the analysed window \[s\] and the width \[s\] and number of its bins.
     pub t_start: f64,
     pub bin_width: f64,
-    #[cfg_attr(feature = "serde", serde(default = "one"))]
     pub bins: usize,
     /// |error| above this is an exceedance (first passage); `None`: not tracked.
-    #[cfg_attr(feature = "serde", serde(default))]
     pub limit: Option<f64>,
     /// Dense-output samples per accepted step (the step's end included; ≥ 1).
-    #[cfg_attr(feature = "serde", serde(default = "eight"))]
     pub samples_per_step: usize,
     /// Locate the signed extremes on the exact quantity between the samples (module doc).
-    #[cfg_attr(feature = "serde", serde(default))]
     pub exact: bool,
+}
+
+/// A monitor as the settings give it: `coordinate` (a body coordinate, 3 per body: x, y, θ; or
+/// a clearance joint's index for a joint quantity), or `body` with `point` (body frame \[m\])
+/// and `component` (x, y or magnitude).
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MonitorSpecDesc {
+    #[serde(default)]
+    coordinate: Option<usize>,
+    #[serde(default)]
+    body: Option<usize>,
+    #[serde(default)]
+    point: Option<[f64; 2]>,
+    #[serde(default)]
+    component: Option<PointComponent>,
+    quantity: Quantity,
+    #[serde(default)]
+    reference: Option<ReferenceOf>,
+    t_start: f64,
+    bin_width: f64,
+    #[serde(default = "one")]
+    bins: usize,
+    #[serde(default)]
+    limit: Option<f64>,
+    #[serde(default = "eight")]
+    samples_per_step: usize,
+    #[serde(default)]
+    exact: bool,
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<MonitorSpecDesc> for MonitorSpec {
+    type Error = String;
+
+    fn try_from(d: MonitorSpecDesc) -> Result<Self, String> {
+        let target = match (d.coordinate, d.body, d.point) {
+            (Some(c), None, None) if d.component.is_none() => {
+                if d.quantity.of_joint() {
+                    Target::Joint(c)
+                } else {
+                    Target::Coordinate(c)
+                }
+            }
+            (None, Some(body), Some(at)) => {
+                let Some(component) = d.component else { return Err("a point needs its component: x, y or magnitude".into()) };
+                if d.quantity.of_joint() {
+                    return Err(format!("a point's quantity is its displacement, velocity or acceleration, not {:?}", d.quantity));
+                }
+                Target::Point { body, at, component }
+            }
+            _ => return Err("give coordinate, or body with point and component".into()),
+        };
+        Ok(MonitorSpec {
+            target,
+            quantity: d.quantity,
+            reference: d.reference,
+            t_start: d.t_start,
+            bin_width: d.bin_width,
+            bins: d.bins,
+            limit: d.limit,
+            samples_per_step: d.samples_per_step,
+            exact: d.exact,
+        })
+    }
 }
 
 #[cfg(feature = "serde")]
@@ -119,19 +157,18 @@ fn eight() -> usize {
 }
 
 impl MonitorSpec {
-    /// Checks what serde cannot: the reference's three columns agree and its knots increase,
+    /// Checks what serde cannot: a point's position is finite, a joint quantity has no reference,
     /// the window and bins make sense. Errors name `monitors[i].<field>`.
     pub fn validate(&self, i: usize) -> crate::error::Result<()> {
         use crate::error::Error;
         let field = |f: &str| format!("monitors[{i}].{f}");
-        if let Some(r) = &self.reference {
-            if r.value.len() != r.t.len() || r.rate.len() != r.t.len() {
-                let lens = format!("t: {}, value: {}, rate: {}", r.t.len(), r.value.len(), r.rate.len());
-                return Err(Error::invalid(field("reference"), lens, "t, value and rate must have the same length"));
+        if let Target::Point { at, .. } = self.target {
+            if !(at[0].is_finite() && at[1].is_finite()) {
+                return Err(Error::invalid(field("point"), format!("({}, {})", at[0], at[1]), "must be finite [m, body frame]"));
             }
-            if r.t.windows(2).any(|w| !(w[1] > w[0])) || r.t.iter().chain(&r.value).chain(&r.rate).any(|v| !v.is_finite()) {
-                return Err(Error::invalid(field("reference.t"), "[…]", "must be finite and increase strictly"));
-            }
+        }
+        if let (Target::Joint(_), Some(of)) = (self.target, self.reference) {
+            return Err(Error::invalid(field("reference"), of.name(), "a clearance joint's quantity is measured against no reference"));
         }
         if !self.t_start.is_finite() {
             return Err(Error::invalid(field("t_start"), self.t_start, "must be finite"));
@@ -178,6 +215,10 @@ pub struct MonitorResult {
 /// step worth searching: the interior samples of an acceleration are differences of the dense
 /// velocity, close to the KKT value but not equal to it.
 const SEARCH_SLACK: f64 = 0.05;
+/// How near (in bins) to a bin's edge a time's bin is found by division rather than by the
+/// product with the inverse width (whose error is a few ulps of the bin number, ≤ 1e-9 below
+/// 2^20 bins).
+const BIN_EDGE: f64 = 1e-9;
 /// Golden-section iterations: the bracket (one sample interval) shrinks to 0.618^40 ≈ 4e-9 of
 /// itself, so the extremum's value is found to round-off (the quantity is flat there).
 const GOLDEN_ITERATIONS: usize = 40;
@@ -186,15 +227,39 @@ const GOLDEN_ITERATIONS: usize = 40;
 #[derive(Debug, Clone)]
 pub struct Monitor {
     pub spec: MonitorSpec,
+    /// The run its error is measured against (present exactly when the spec names one).
+    reference: Option<Arc<ReferenceRun>>,
     pub result: MonitorResult,
     last: Option<(f64, f64)>,
+    /// The bin of the last sample.
+    last_bin: Option<usize>,
+    /// 1 / bin width \[1/s\].
+    per_width: f64,
     /// With [`MonitorSpec::exact`]: (t, signed error) of the current step's samples, the
     /// previous step's end first.
     step: Vec<(f64, f64)>,
 }
 
 impl Monitor {
-    pub fn new(spec: MonitorSpec) -> Self {
+    /// The monitor of `spec` (monitor number `i` of the run), with the reference run it names
+    /// taken from `references`: a monitor measured against a reference it was not given is an
+    /// error, so no monitor is ever measured against nothing by mistake.
+    pub fn new(i: usize, spec: MonitorSpec, references: &References) -> crate::error::Result<Self> {
+        let reference = match spec.reference {
+            None => None,
+            Some(of) => match references.get(of) {
+                Some(run) => Some(Arc::clone(run)),
+                None => {
+                    let why = "the run was given no such reference run (runs measured against one go through the batch, rust/batch.rs, which makes it)";
+                    return Err(crate::error::Error::invalid(format!("monitors[{i}].reference"), of.name(), why));
+                }
+            },
+        };
+        Ok(Self::with_reference(spec, reference))
+    }
+
+    /// The monitor of `spec` measured against `reference` (or nothing).
+    fn with_reference(spec: MonitorSpec, reference: Option<Arc<ReferenceRun>>) -> Self {
         let b = spec.bins;
         let result = MonitorResult {
             peak: 0.0,
@@ -210,10 +275,21 @@ impl Monitor {
             min: f64::INFINITY,
             t_min: f64::NAN,
         };
-        Monitor { spec, result, last: None, step: Vec::new() }
+        let per_width = 1.0 / spec.bin_width;
+        Monitor { spec, reference, result, last: None, last_bin: None, per_width, step: Vec::new() }
     }
 
     fn bin(&self, t: f64) -> Option<usize> {
+        // (t − t_start) × (1 / width) is within 3 ulps of the quotient: away from the bins' edges
+        // its whole part is the quotient's (cheaper than the division, which decides at the edges).
+        let y = (t - self.spec.t_start) * self.per_width;
+        if y >= 0.0 && y < self.spec.bins as f64 && self.spec.bins <= 1 << 20 {
+            let k = y as usize;
+            let frac = y - k as f64;
+            if frac > BIN_EDGE && frac < 1.0 - BIN_EDGE {
+                return Some(k);
+            }
+        }
         let x = (t - self.spec.t_start) / self.spec.bin_width;
         if x < 0.0 {
             return None;
@@ -229,17 +305,34 @@ impl Monitor {
         }
     }
 
-    /// The error of a value of the monitored quantity at time `t` (value − reference).
-    pub fn error(&self, t: f64, value: f64) -> f64 {
-        value - self.spec.reference.as_ref().map_or(0.0, |r| r.eval(t))
+    /// The error of a body target at time `t` with the run's state `sample` (target.rs): against
+    /// the reference's state at `t`, or the value itself without a reference.
+    #[inline]
+    pub fn error<S: Kinematics>(&self, t: f64, sample: &S) -> f64 {
+        match &self.reference {
+            Some(r) => self.spec.target.error(self.spec.quantity, sample, Some(&r.at(t))),
+            None => self.spec.target.error::<S, S>(self.spec.quantity, sample, None),
+        }
     }
 
-    /// The monitored quantity's value `value` at time `t` (samples come in increasing time).
-    pub fn observe(&mut self, t: f64, value: f64) {
-        let e = self.error(t, value);
+    /// The error `e` at time `t` (samples come in increasing time).
+    pub fn observe(&mut self, t: f64, e: f64) {
         let a = e.abs();
-        let mid = self.last.and_then(|(t0, _)| if t0 >= self.spec.t_start { self.bin(0.5 * (t0 + t)) } else { None });
-        if let Some(k) = self.bin(t) {
+        let now = self.bin(t);
+        // The bin of the segment's midpoint: the bin of both its ends when they share one (the
+        // bin is monotone in time).
+        let mid = match self.last {
+            Some((t0, _)) if t0 >= self.spec.t_start => {
+                if now.is_some() && self.last_bin == now {
+                    now
+                } else {
+                    self.bin(0.5 * (t0 + t))
+                }
+            }
+            _ => None,
+        };
+        self.last_bin = now;
+        if let Some(k) = now {
             let r = &mut self.result;
             if self.spec.exact {
                 self.step.push((t, e));
@@ -370,7 +463,7 @@ mod tests {
 
     fn spec(limit: Option<f64>) -> MonitorSpec {
         MonitorSpec {
-            coordinate: 0,
+            target: Target::Coordinate(0),
             quantity: Quantity::Displacement,
             reference: None,
             t_start: 0.0,
@@ -386,7 +479,7 @@ mod tests {
     /// per-bin ∫|e| = 1/(2π) and ∫e² = 1/8.
     #[test]
     fn extremes_and_integrals_of_a_sine() {
-        let mut m = Monitor::new(spec(Some(0.5)));
+        let mut m = Monitor::with_reference(spec(Some(0.5)), None);
         let n = 20_000;
         for i in 0..=n {
             let t = i as f64 / n as f64;
@@ -409,7 +502,7 @@ mod tests {
     fn exact_extremes_between_coarse_samples() {
         let (t, v) = golden_section(0.0, 1.0, |t: f64| Ok::<f64, ()>(1.0 - (t - 0.3).powi(2))).unwrap();
         assert!((t - 0.3).abs() < 1e-7 && (v - 1.0).abs() < 1e-14, "{t} {v}");
-        let mut m = Monitor::new(MonitorSpec { exact: true, bins: 1, bin_width: 1.5, ..spec(None) });
+        let mut m = Monitor::with_reference(MonitorSpec { exact: true, bins: 1, bin_width: 1.5, ..spec(None) }, None);
         let f = |t: f64| (2.0 * std::f64::consts::PI * t).cos();
         m.observe(0.0, f(0.0));
         m.end_step();
@@ -432,15 +525,31 @@ mod tests {
         assert!((r.max - 1.0).abs() < 1e-14 && (r.t_max - 1.0).abs() < 1e-7 || r.t_max == 0.0, "{} at {}", r.max, r.t_max);
     }
 
-    /// The Hermite reference reproduces a cubic exactly.
+    /// The bins found by the product agree with those found by division, edges included.
     #[test]
-    fn hermite_reference_is_exact_for_a_cubic() {
-        let f = |t: f64| 2.0 * t * t * t - t * t + 3.0;
-        let df = |t: f64| 6.0 * t * t - 2.0 * t;
-        let t: Vec<f64> = vec![0.0, 0.3, 1.0, 1.7];
-        let r = Reference { value: t.iter().map(|&x| f(x)).collect(), rate: t.iter().map(|&x| df(x)).collect(), t };
-        for x in [0.05, 0.29, 0.31, 0.9, 1.5] {
-            assert!((r.eval(x) - f(x)).abs() < 1e-12);
+    fn bins_by_product_are_the_quotients() {
+        let m = Monitor::with_reference(MonitorSpec { t_start: 0.013, bin_width: 0.0006, bins: 20, ..spec(None) }, None);
+        let exact = |t: f64| {
+            let x = (t - 0.013) / 0.0006;
+            (x >= 0.0).then(|| (x as usize).min(19)).filter(|_| x <= 20.0 * (1.0 + 1e-12))
+        };
+        for i in 0..200_000 {
+            let t = 0.0129 + i as f64 * 1.3e-7;
+            assert_eq!(m.bin(t), exact(t), "t = {t}");
         }
+        for k in 0..=20 {
+            let edge = 0.013 + k as f64 * 0.0006;
+            for t in [edge, f64::from_bits(edge.to_bits() - 1), f64::from_bits(edge.to_bits() + 1)] {
+                assert_eq!(m.bin(t), exact(t), "t = {t}");
+            }
+        }
+    }
+
+    /// A monitor that names a reference is built only with it.
+    #[test]
+    fn a_monitor_without_its_reference_is_refused() {
+        let spec = MonitorSpec { reference: Some(ReferenceOf::OwnIdeal), ..spec(None) };
+        let err = Monitor::new(3, spec, &References::default()).unwrap_err().to_string();
+        assert!(err.starts_with("invalid monitors[3].reference = own_ideal"), "{err}");
     }
 }
