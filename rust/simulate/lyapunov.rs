@@ -272,6 +272,7 @@ mod tests {
                 wear_mark: None,
                 sections: None,
                 lyapunov: Some(spec),
+                reference: None,
             };
             let out = super::super::simulate(&model, &rs, None).unwrap();
             let book = out.lyapunov.unwrap();

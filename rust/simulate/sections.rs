@@ -99,6 +99,7 @@ mod tests {
             wear_mark: None,
             sections: Some(SectionSpec { period: 0.7, phase: std::f64::consts::FRAC_PI_2 }),
             lyapunov: None,
+            reference: None,
         };
         rs.validate().unwrap();
         simulate(&model, &rs, None).unwrap()

@@ -510,8 +510,9 @@ def test_run_settings_enter_the_core_through_serde_and_bad_ones_are_named():
     assert e.field == "outputs.states" and "expected a boolean" in str(e)
     e = error(dict(good, monitors=[dict(spec, quantity="speed")]))
     assert e.field == "monitors[0].quantity"
-    bad_ref = {"t": np.array([0.0, 1.0]), "value": np.array([0.0]), "rate": np.zeros(2)}
-    e = error(dict(good, monitors=[dict(spec, reference=bad_ref)]))
-    assert e.field == "monitors[0].reference" and "same length" in str(e)
+    e = error(dict(good, monitors=[dict(spec, reference="nominall")]))  # a reference is named, not shipped
+    assert e.field == "monitors[0].reference" and "nominal" in str(e)
+    e = error(dict(good, monitors=[dict(spec, reference={"t": np.array([0.0, 1.0])})]))
+    assert e.field == "monitors[0].reference" and "expected a string" in str(e)
     e = error(dict(good, monitors=[dict(spec, bins=0)]))
     assert e.field == "monitors[0].bins"
