@@ -48,6 +48,10 @@ def test_a_study_warns_once_and_clearsim_monte_carlo_too():
                              body="slider", component="x", allowable={"acceleration": (0.0, 1e9)}, progress=False)  # fmt: skip
 
 
-def test_a_peak_is_at_the_start_within_one_percent_of_the_window():
-    assert at_window_start(1.0, 1.0, 0.1) and at_window_start(1.001, 1.0, 0.1)
-    assert not at_window_start(1.0011, 1.0, 0.1) and not at_window_start(1.05, 1.0, 0.1)
+def test_a_jolt_is_a_peak_at_the_start_that_stands_out():
+    """Within 1 % of the window's length of its start, and twice every later time bin's extreme;
+    an error that merely falls through the window (or a window of one bin) is not one."""
+    jolt, falling = ([5.0, 2.0, 1.0], [-1.0, -1.0, 0.0]), ([5.0, 4.0, 3.0], [0.0, 0.0, 0.0])
+    assert at_window_start(1.0, 1.0, 0.1, *jolt) and at_window_start(1.001, 1.0, 0.1, *jolt)
+    assert not at_window_start(1.0011, 1.0, 0.1, *jolt) and not at_window_start(1.05, 1.0, 0.1, *jolt)
+    assert not at_window_start(1.0, 1.0, 0.1, *falling) and not at_window_start(1.0, 1.0, 0.1, [5.0], [0.0])

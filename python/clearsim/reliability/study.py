@@ -426,7 +426,7 @@ class Study(ReliabilityModel, Modes):
                         first[k, i] = float(mon["first_passage"])
                         spec = job.settings["monitors"][i]
                         t_start = spec["t_start"]
-                        at_start[k, i] = lim.side == "above" and at_window_start(float(mon["t_peak"]), t_start, spec["bin_width"] * spec["bins"])
+                        at_start[k, i] = lim.side == "above" and at_window_start(float(mon["t_peak"]), t_start, spec["bin_width"] * spec["bins"], mon["bin_max"], mon["bin_min"])
                     if monitors is not None:
                         monitors[k] = mons
                     if k < keep_traces:
