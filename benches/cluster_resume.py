@@ -53,7 +53,7 @@ def main() -> None:
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 1024
     t = time.perf_counter()
     local = study().monte_carlo(n, seed=1)
-    print(f"local: {time.perf_counter() - t:.1f} s")
+    print(f"local: {time.perf_counter() - t:.1f} s", flush=True)
     with dask.config.set({"distributed.scheduler.allowed-failures": 0}):
         with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, Client(cluster) as client:
             executor = client.get_executor()
@@ -74,9 +74,12 @@ def main() -> None:
                     print("no chunk was lost (the workers were killed too late)")
                 except clearsim.ClusterError as err:
                     lost = sum(b - a for a, b, _ in err.lost)
-                    print(f"killed run: {time.perf_counter() - t:.1f} s, ClusterError: {len(err.lost)} chunks ({lost} samples) lost, {err.finished} finished and saved")
-                    print(f"  {str(err)[:300]}")
-                client.wait_for_workers(2)
+                    print(f"killed run: {time.perf_counter() - t:.1f} s, ClusterError: {len(err.lost)} chunks ({lost} samples) lost, {err.finished} finished and saved", flush=True)
+                    print(f"  {str(err)[:300]}", flush=True)
+                try:
+                    client.wait_for_workers(2, timeout=60)
+                except Exception:  # noqa: BLE001 — a nanny that did not bring its worker back: resume on the others
+                    print(f"resuming on {len(client.scheduler_info()['workers'])} worker(s)", flush=True)
                 again = Counting(executor)
                 t = time.perf_counter()
                 resumed = study().monte_carlo(n, seed=1, executor=again, checkpoint=where)
