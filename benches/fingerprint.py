@@ -43,11 +43,13 @@ STAT_KEYS = ("steps", "rejected_steps", "steps_to_switch", "rhs_evaluations", "j
 
 
 def digest(value: Any, h: "hashlib._Hash", path: str = "") -> None:
-    """Feed every number below ``value`` into ``h`` (keys sorted; wall times and the integrator's
-    name, which the raw result carries since the core resolves ``"auto"``, left out)."""
+    """Feed every number below ``value`` into ``h`` (keys sorted; wall times, the integrator's
+    name, which the raw result carries since the core resolves ``"auto"``, and the count of
+    force-law evaluations, a cost that a refactoring may lower without changing a number
+    (``benches/perf_fingerprint.py`` keeps it), left out)."""
     if isinstance(value, dict):
         for key in sorted(value):
-            if "wall" in str(key) or key == "integrator":
+            if "wall" in str(key) or key in ("integrator", "force_evaluations"):
                 continue
             h.update(str(key).encode())
             digest(value[key], h, f"{path}.{key}")

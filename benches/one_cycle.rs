@@ -6,11 +6,12 @@
 //! valgrind --tool=cachegrind --cache-sim=no <binary> nine_bar_lubricated radau
 //! ```
 //!
-//! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`) and a method, `rk45`
-//! (default), `dop853` or `radau`; a third, `monitored`, adds what a Study sample carries: a
-//! monitor of the last body's x displacement measured against the model's own ideal twin, made
-//! by the batch (rust/batch.rs), 8 points a step (the reference run is then in the count: run
-//! `monitored-bare` for it alone, i.e. the same reference without the monitor's sampling). Prints the statistics of the run and the wall time; divide
+//! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`), a method, `rk45`
+//! (default), `dop853` or `radau`, and optionally a mode: `bearings` or `film_monitors` (below),
+//! or `monitored`, what a Study sample carries: a monitor of the last body's x displacement
+//! measured against the model's own ideal twin, made by the batch (rust/batch.rs), 8 points a
+//! step (the reference run is then in the count: run `monitored-bare` for it alone, i.e. the
+//! same reference without the monitor's sampling). Prints the statistics of the run and the wall time; divide
 //! cachegrind's `I refs` by the right-hand sides for instructions per right-hand side. The
 //! settings are the benches' (`common::bench_run`): rtol 1e-6, atol 1e-9, 1 000 outputs. A chaotic
 //! model (the dry nine-bar) takes a different number of steps after any change of round-off:
@@ -39,21 +40,34 @@ fn main() {
     };
     let model = common::model(name);
     let mut rs = common::bench_run(method, common::cycle(name), 1000);
+    // A third argument adds what a run may ask for: `bearings` (the bearing summary, as
+    // `simulate(..., bearings=True)` and `clearsim run` ask), `film_monitors` (exact monitors of
+    // the film thickness and power loss, what every lubricated run paid for before issue 37),
+    // `monitored` / `monitored-bare` (a Study sample's monitor and its reference run).
     let mode = args.get(2).map_or("", String::as_str);
-    if mode.starts_with("monitored") {
-        let t_end = common::cycle(name);
-        rs.reference = Some(ReferenceGrid { t_start: 0.0, t_end, intervals: 7200, record: false });
-        rs.monitors.push(MonitorSpec {
-            target: Target::Coordinate(3 * (model.n_bodies() - 1)),
-            quantity: Quantity::Displacement,
-            reference: Some(ReferenceOf::OwnIdeal),
-            t_start: 0.0,
-            bin_width: t_end / 20.0,
-            bins: 20,
-            limit: Some(1e-3),
-            samples_per_step: if mode == "monitored-bare" { 1 } else { 8 },
-            exact: false,
-        });
+    match mode {
+        "" => {}
+        "bearings" => rs.bearings = true,
+        "film_monitors" => rs.monitors = common::film_monitors(&model, rs.t0, rs.t_end),
+        "monitored" | "monitored-bare" => {
+            let t_end = common::cycle(name);
+            rs.reference = Some(ReferenceGrid { t_start: 0.0, t_end, intervals: 7200, record: false });
+            rs.monitors.push(MonitorSpec {
+                target: Target::Coordinate(3 * (model.n_bodies() - 1)),
+                quantity: Quantity::Displacement,
+                reference: Some(ReferenceOf::OwnIdeal),
+                t_start: 0.0,
+                bin_width: t_end / 20.0,
+                bins: 20,
+                limit: Some(1e-3),
+                samples_per_step: if mode == "monitored-bare" { 1 } else { 8 },
+                exact: false,
+            });
+        }
+        other => {
+            eprintln!("unknown mode {other:?}: bearings, film_monitors, monitored or monitored-bare");
+            std::process::exit(2);
+        }
     }
     let start = std::time::Instant::now();
     let out = if mode.starts_with("monitored") {

@@ -9,7 +9,8 @@ error norm), so the speed-up at equal tolerance is the ratio of the costs of one
 
 The script prints, per model, both costs, the speed-up they allow, and the right-hand-side cost
 clearsim would need for a 100× speed-up (``scipy step / 600``). Writes
-``docs/scipy_step_cost.csv``. Usage: ``python benches/scipy_step_cost.py`` (about 20 s).
+``docs/scipy_step_cost.csv``. Usage: ``python benches/scipy_step_cost.py`` (about 20 s). Times are
+CPU times (``benches/scipy_speedup.py`` says why); the equal-error comparison is that bench's.
 """
 
 from __future__ import annotations
@@ -32,17 +33,18 @@ STAGES = 6  # right-hand sides per Dormand–Prince step attempt (FSAL)
 
 
 def best_of(fn, repeat=3):
-    """Smallest wall time [s] of ``repeat`` calls of ``fn`` (and the last return value)."""
+    """Smallest CPU time [s] of ``repeat`` calls of ``fn`` (and the last return value): on a
+    shared machine wall time swings with the load, the process's CPU time far less."""
     best, out = float("inf"), None
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         out = fn()
-        best = min(best, time.perf_counter() - t0)
+        best = min(best, time.process_time() - t0)
     return best, out
 
 
 def rhs_call_cost(m, y0, t, calls=20_000):
-    """Wall time [µs] of one ``m.rhs`` call from Python."""
+    """CPU time [µs] of one ``m.rhs`` call from Python."""
     def loop():
         for _ in range(calls):
             m.rhs(t, y0)

@@ -91,6 +91,8 @@ pub fn reference_settings(rs: &RunSettings, grid: &ReferenceGrid) -> RunSettings
         monitors: Vec::new(),
         reference: None,
         wear_mark: None,
+        bearings: false,
+        bearings_from: None,
         sections: None,
         lyapunov: None,
     }
@@ -224,7 +226,7 @@ fn body_names(d: &MechanismDesc) -> Vec<String> {
 /// The settings of a sample that its reference run depends on ([`reference_settings`] without
 /// the grid expanded).
 fn reference_settings_key(rs: &RunSettings) -> RunSettings {
-    RunSettings { t_out: Vec::new(), monitors: Vec::new(), reference: None, wear_mark: None, channels: Channels::default(), sections: None, lyapunov: None, ..rs.clone() }
+    RunSettings { t_out: Vec::new(), monitors: Vec::new(), reference: None, wear_mark: None, bearings: false, bearings_from: None, channels: Channels::default(), sections: None, lyapunov: None, ..rs.clone() }
 }
 
 /// A hash of the structure and every value of an ideal description and its run: fed from their

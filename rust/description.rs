@@ -287,8 +287,9 @@ pub enum TableArgument {
     Angle { body: usize },
 }
 
-/// A piecewise-linear function y(x) (x strictly increasing), held at its end values outside
-/// [x₀, x_last]; with a `period` the argument is first wrapped into [x₀, x₀ + period).
+/// A tabulated function y(x) (x strictly increasing), held at its end values outside
+/// [x₀, x_last]; with a `period` the argument is first wrapped into [x₀, x₀ + period) and the
+/// last point is joined to the first one period on (rust/table.rs).
 #[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Table {
@@ -296,6 +297,27 @@ pub struct Table {
     pub y: Vec<f64>,
     #[cfg_attr(feature = "serde", serde(default))]
     pub period: Option<f64>,
+    /// Between the points: straight lines (default) or a C² cubic spline.
+    #[cfg_attr(feature = "serde", serde(default, skip_serializing_if = "Interpolation::is_linear"))]
+    pub interpolation: Interpolation,
+}
+
+/// How a [`Table`] runs between its points (rust/table.rs).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Interpolation {
+    /// Straight lines: every point is a corner, and a time table's corners end integration steps.
+    #[default]
+    Linear,
+    /// A C² cubic spline (not-a-knot; periodic with a period): no corners inside the table.
+    Cubic,
+}
+
+impl Interpolation {
+    pub fn is_linear(&self) -> bool {
+        *self == Interpolation::Linear
+    }
 }
 
 /// A scalar load: constant, or a table of time or of a body's angle.

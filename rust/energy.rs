@@ -6,7 +6,6 @@
 //! step's midpoint from the dense output), not from the stored outputs, so the work does not
 //! depend on the output grid.
 
-use crate::clearance::ImpactMemory;
 use crate::model::Model;
 use crate::system::Workspace;
 
@@ -76,7 +75,7 @@ impl EnergyBook {
     /// KKT): loads, motors, drivers (−λ Φq q̇ of each driving row), dampers, and the clearance
     /// joints (their generalised forces times q̇), split into friction (w_dry F_t times the
     /// slip speed) and the rest (normal contact and film).
-    pub fn powers(&mut self, model: &Model, ws: &Workspace, memory: &[ImpactMemory], t: f64, qd: &[f64]) -> Powers {
+    pub fn powers(&mut self, model: &Model, ws: &Workspace, t: f64, qd: &[f64]) -> Powers {
         let mut p = [0.0; 6];
         for f in &model.forces {
             p[f.work_column()] += f.power(t, &ws.kin);
@@ -90,7 +89,7 @@ impl EnergyBook {
             r += m;
         }
         for (j, joint) in model.clearance.iter().enumerate() {
-            let f = joint.force(&ws.joint_kin[j], &memory[j]);
+            let f = ws.joint_force[j]; // as evaluated, at the state's oil temperature
             self.g.fill(0.0);
             joint.apply(&ws.kin, &ws.joint_kin[j], &f, &mut self.g);
             let total = self.g.iter().zip(qd).map(|(g, v)| g * v).sum::<f64>();

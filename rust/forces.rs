@@ -1,104 +1,19 @@
 //! Force elements and loads (docs/physics.md §10): translational and rotational
 //! spring-dampers, applied forces and torques (constant or tabulated in time or a body's
-//! angle) and motors with a linear speed–torque line. Compiled from
+//! angle: rust/table.rs) and motors with a linear speed–torque line. Compiled from
 //! [`crate::description::ForceDesc`]; a model without force elements carries an empty list and
 //! runs none of this code.
 
 use crate::constraints::{BodyKin, V2};
-use crate::description::{Harmonic, Profile, Table, TableArgument};
-
-/// A piecewise-linear table y(x), x strictly increasing, held at its end values outside
-/// [x₀, x_last]; with a period, x is first wrapped into [x₀, x₀ + period).
-#[derive(Debug, Clone, PartialEq)]
-pub struct PiecewiseLinear {
-    x: Vec<f64>,
-    y: Vec<f64>,
-    period: Option<f64>,
-}
-
-impl PiecewiseLinear {
-    pub fn new(t: &Table) -> Self {
-        PiecewiseLinear { x: t.x.clone(), y: t.y.clone(), period: t.period }
-    }
-
-    #[inline]
-    fn wrap(&self, x: f64) -> f64 {
-        match self.period {
-            Some(p) => self.x[0] + (x - self.x[0]).rem_euclid(p),
-            None => x,
-        }
-    }
-
-    /// y(x).
-    #[inline]
-    pub fn eval(&self, x: f64) -> f64 {
-        let x = self.wrap(x);
-        let n = self.x.len();
-        if x <= self.x[0] {
-            return self.y[0];
-        }
-        if x >= self.x[n - 1] {
-            return self.y[n - 1];
-        }
-        let i = self.x.partition_point(|&xi| xi <= x); // x[i-1] <= x < x[i]
-        let (x0, x1, y0, y1) = (self.x[i - 1], self.x[i], self.y[i - 1], self.y[i]);
-        y0 + (y1 - y0) * (x - x0) / (x1 - x0)
-    }
-
-    /// The first breakpoint (a corner of y, repeated every period) strictly inside (a, b).
-    pub fn first_break_in(&self, a: f64, b: f64) -> Option<f64> {
-        let (x0, n) = (self.x[0], self.x.len());
-        match self.period {
-            None => self.x.iter().copied().find(|&x| x > a && x < b),
-            Some(p) => {
-                let base = x0 + ((a - x0) / p).floor() * p; // the period [base, base + p) holding a
-                let mut shift = base - x0;
-                while x0 + shift < b {
-                    if let Some(x) = self.x.iter().map(|x| x + shift).find(|&x| x > a && x < b) {
-                        return Some(x);
-                    }
-                    if self.x[n - 1] + shift >= b {
-                        return None;
-                    }
-                    shift += p;
-                }
-                None
-            }
-        }
-    }
-
-    /// ∫₀ˣ y(u) du (no period): the potential energy of a tabulated spring at deflection x.
-    pub fn integral_from_zero(&self, x: f64) -> f64 {
-        let prim = |x: f64| -> f64 {
-            // ∫ from x[0] to x, with the end values held outside the table.
-            let n = self.x.len();
-            let mut s = 0.0;
-            if x <= self.x[0] {
-                return self.y[0] * (x - self.x[0]);
-            }
-            for i in 1..n {
-                let (a, b) = (self.x[i - 1], self.x[i].min(x));
-                if b <= a {
-                    break;
-                }
-                let (ya, yb) = (self.y[i - 1], self.eval(b));
-                s += 0.5 * (ya + yb) * (b - a);
-            }
-            if x > self.x[n - 1] {
-                s += self.y[n - 1] * (x - self.x[n - 1]);
-            }
-            s
-        };
-        prim(x) - prim(0.0)
-    }
-}
+use crate::description::{Harmonic, Profile, TableArgument};
+use crate::table::Tabulated;
 
 /// A scalar load, constant, tabulated or harmonic in time.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Magnitude {
     Constant(f64),
-    OfTime(PiecewiseLinear),
-    OfAngle(u32, PiecewiseLinear),
+    OfTime(Tabulated),
+    OfAngle(u32, Tabulated),
     /// offset + amplitude · cos(ω t + phase): smooth, so no step ends anywhere for it.
     Harmonic(Harmonic),
 }
@@ -116,8 +31,8 @@ impl Magnitude {
     pub fn new(p: &Profile) -> Self {
         match p {
             Profile::Constant { value } => Magnitude::Constant(*value),
-            Profile::Table { argument: TableArgument::Time, table } => Magnitude::OfTime(PiecewiseLinear::new(table)),
-            Profile::Table { argument: TableArgument::Angle { body }, table } => Magnitude::OfAngle(*body as u32, PiecewiseLinear::new(table)),
+            Profile::Table { argument: TableArgument::Time, table } => Magnitude::OfTime(Tabulated::new(table)),
+            Profile::Table { argument: TableArgument::Angle { body }, table } => Magnitude::OfAngle(*body as u32, Tabulated::new(table)),
             Profile::Harmonic(h) => Magnitude::Harmonic(*h),
         }
     }
@@ -137,7 +52,7 @@ impl Magnitude {
 #[derive(Debug, Clone, PartialEq)]
 pub enum ForceElement {
     /// Tension F = k (ℓ − ℓ₀) + c ℓ̇ (or table(ℓ − ℓ₀) + c ℓ̇) along the line from a to b (§10.1).
-    SpringDamper { a: Option<u32>, sa: V2, b: Option<u32>, sb: V2, stiffness: f64, damping: f64, free_length: f64, table: Option<PiecewiseLinear> },
+    SpringDamper { a: Option<u32>, sa: V2, b: Option<u32>, sb: V2, stiffness: f64, damping: f64, free_length: f64, table: Option<Tabulated> },
     /// Torque on b T = −k (θ_b − θ_a − φ₀) − c (θ̇_b − θ̇_a), −T on a (§10.2).
     RotationalSpringDamper { a: Option<u32>, b: Option<u32>, stiffness: f64, damping: f64, free_angle: f64 },
     /// (F_x, F_y) at body point s, components in the global or the body frame (§10.3).
@@ -316,44 +231,6 @@ impl ForceElement {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn tab(x: &[f64], y: &[f64], period: Option<f64>) -> PiecewiseLinear {
-        PiecewiseLinear::new(&Table { x: x.to_vec(), y: y.to_vec(), period })
-    }
-
-    #[test]
-    fn table_interpolates_holds_and_wraps() {
-        let t = tab(&[0.0, 1.0, 3.0], &[0.0, 10.0, 30.0], None);
-        assert_eq!(t.eval(0.5), 5.0);
-        assert_eq!(t.eval(2.0), 20.0);
-        assert_eq!(t.eval(-1.0), 0.0);
-        assert_eq!(t.eval(7.0), 30.0);
-        let p = tab(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0], Some(2.0));
-        assert!((p.eval(2.5) - 0.5).abs() < 1e-15);
-        assert!((p.eval(-0.5) - 0.5).abs() < 1e-15);
-    }
-
-    #[test]
-    fn breakpoints_inside_an_interval_repeat_with_the_period() {
-        let t = tab(&[0.0, 1.0, 3.0], &[0.0, 10.0, 30.0], None);
-        assert_eq!(t.first_break_in(0.0, 2.0), Some(1.0));
-        assert_eq!(t.first_break_in(1.0, 2.0), None);
-        assert_eq!(t.first_break_in(3.0, 9.0), None);
-        let p = tab(&[0.0, 0.5, 1.0], &[0.0, 1.0, 0.0], Some(2.0));
-        assert_eq!(p.first_break_in(1.2, 2.7), Some(2.0));
-        assert_eq!(p.first_break_in(2.0, 2.4), None);
-        assert_eq!(p.first_break_in(-1.9, -1.2), Some(-1.5));
-    }
-
-    #[test]
-    fn table_integral_is_the_area_under_a_linear_spring() {
-        // F = 3 δ tabulated on [-1, 2]: energy 1.5 δ² inside, end force held outside.
-        let t = tab(&[-1.0, 2.0], &[-3.0, 6.0], None);
-        for d in [-0.7, 0.0, 0.4, 1.9] {
-            assert!((t.integral_from_zero(d) - 1.5 * d * d).abs() < 1e-12, "{d}");
-        }
-        assert!((t.integral_from_zero(3.0) - (1.5 * 4.0 + 6.0)).abs() < 1e-12);
-    }
 
     #[test]
     fn spring_force_pulls_points_together_and_its_power_is_minus_the_energy_rate() {

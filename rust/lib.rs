@@ -26,6 +26,7 @@ pub mod record;
 pub mod settings;
 pub mod simulate;
 pub mod system;
+pub mod table;
 
 #[cfg(feature = "python")]
 mod python;

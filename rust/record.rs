@@ -141,7 +141,7 @@ impl Recording {
                     f.state as f64,
                 ]);
                 let (w_b, w_j) = crate::clearance::body_rates(joint, &y[n..2 * n]);
-                self.joints.extend_from_slice(&joint.readings(k, f, mem, w_b, w_j).columns());
+                self.joints.extend_from_slice(&joint.readings(k, f, &joint.memory_at(mem, y), w_b, w_j).columns());
             }
         }
         if ch.violation {

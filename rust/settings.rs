@@ -37,6 +37,14 @@ pub struct RunSettings {
     /// A time \[s\] in [t0, t_end] at which the wear books are also read
     /// ([`crate::clearance::wear::WearBook::at_mark`]): what wears after it is the difference.
     pub wear_mark: Option<f64>,
+    /// Track the bearing summary of every lubricated joint along the steps (minimum film,
+    /// peak and mean power loss: [`crate::simulate::BearingSummary`]); off unless asked, as
+    /// it costs a force evaluation per joint and step where the method has none to reuse.
+    pub bearings: bool,
+    /// The start \[s\] of the bearing summary's window, in [t0, t_end) (`None`: t0; the
+    /// window ends at t_end): its books start at the state there, from the dense output of the
+    /// step that holds it (`simulate(extremes_from=)`, the window of the extremes too).
+    pub bearings_from: Option<f64>,
     /// Stroboscopic samples at exact times ([`SectionSpec`]; `None`: none recorded).
     pub sections: Option<SectionSpec>,
     /// A shadow trajectory for the largest Lyapunov exponent ([`LyapunovSpec`]; `None`: none).
@@ -179,6 +187,11 @@ impl RunSettings {
         if let Some(m) = self.wear_mark {
             if !(m >= self.t0 && m <= self.t_end) {
                 return Err(Error::invalid("wear_mark", num(m), format!("must lie in [t0, t_end] = [{}, {}]", num(self.t0), num(self.t_end))));
+            }
+        }
+        if let Some(w) = self.bearings_from {
+            if !(w >= self.t0 && w < self.t_end) {
+                return Err(Error::invalid("bearings_from", num(w), format!("must lie in [t0, t_end) = [{}, {}) s", num(self.t0), num(self.t_end))));
             }
         }
         if self.ode.max_steps == 0 {
@@ -344,6 +357,12 @@ pub struct RunSettingsDesc {
     /// A time \[s\] at which the wear books are also read (the output's `*_at_mark`).
     #[serde(default)]
     pub wear_mark: Option<f64>,
+    /// [`RunSettings::bearings`].
+    #[serde(default)]
+    pub bearings: bool,
+    /// [`RunSettings::bearings_from`] \[s\].
+    #[serde(default)]
+    pub bearings_from: Option<f64>,
     #[serde(default)]
     pub sections: Option<SectionSpec>,
     #[serde(default)]
@@ -387,6 +406,8 @@ impl RunSettingsDesc {
             monitors: self.monitors,
             reference: self.reference,
             wear_mark: self.wear_mark,
+            bearings: self.bearings,
+            bearings_from: self.bearings_from,
             sections: self.sections,
             lyapunov: self.lyapunov,
         };

@@ -1,5 +1,6 @@
 //! The right-hand side ẏ = f(t, y) of a compiled model (docs/physics.md §1): y = (q, q̇), q̈ from the
-//! Baumgarte-stabilised KKT solve with gravity and clearance-joint forces.
+//! Baumgarte-stabilised KKT solve with gravity and clearance-joint forces; with heat models
+//! y = (q, q̇, T…) and Ṫ from each joint's heat balance (rust/clearance/thermal.rs, §4).
 
 use crate::clearance::{ImpactMemory, JointForce, JointKinematics};
 use crate::constraints::{BodyKin, JacRow};
@@ -23,6 +24,9 @@ pub struct Workspace {
     pub lambda: Vec<f64>,
     pub joint_kin: Vec<JointKinematics>,
     pub joint_force: Vec<JointForce>,
+    /// dT/dt \[K/s\] of each oil temperature in the state (rust/clearance/thermal.rs); empty
+    /// without heat models.
+    pub heat_rate: Vec<f64>,
     kkt: KktSolver,
     /// Scratch of [`Workspace::unit_force_response`]: its multipliers.
     unit_lambda: Vec<f64>,
@@ -63,9 +67,10 @@ impl Workspace {
             lambda: vec![0.0; rows],
             joint_kin: vec![JointKinematics::default(); model.clearance.len()],
             joint_force: vec![JointForce::default(); model.clearance.len()],
+            heat_rate: vec![0.0; model.heat_states()],
             kkt: KktSolver::new(vec![1.0; 3 * nb], &[]),
             unit_lambda: vec![0.0; rows],
-            last: Evaluated { t: f64::NAN, y: vec![0.0; 6 * nb], memory: vec![ImpactMemory::default(); model.clearance.len()] },
+            last: Evaluated { t: f64::NAN, y: vec![0.0; model.state_dim()], memory: vec![ImpactMemory::default(); model.clearance.len()] },
         };
         // The Jacobian's sparsity (which bodies each row touches) is fixed: take it from any pose.
         let n = 3 * nb;
@@ -120,7 +125,8 @@ impl Workspace {
         self.last.t = f64::NAN;
     }
 
-    /// Full evaluation at (t, q, q̇): constraints, forces, KKT. Leaves q̈ in `qdd`. Returns at
+    /// Full evaluation at y = (q, q̇, T…): constraints, forces, KKT, heat balances. Leaves q̈ in
+    /// `qdd` and Ṫ in `heat_rate`. Returns at
     /// once if the workspace holds the same evaluation from [`Workspace::evaluate_and_keep`]
     /// (same t, y and impact memory: an evaluation is a function of these alone).
     pub fn evaluate(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
@@ -164,12 +170,46 @@ impl Workspace {
         }
         for (j, joint) in model.clearance.iter().enumerate() {
             let k = joint.kinematics(&self.kin);
-            let f = joint.force(&k, &memory[j]);
+            let f = match joint.heat() {
+                None => joint.force(&k, &memory[j]),
+                Some(h) => {
+                    if !h.holds_at(y[h.state]) {
+                        return Err(Error::NonFinite { t, detail: h.out_of_range(&joint.name, y[h.state]) });
+                    }
+                    joint.force(&k, &h.memory_at(&memory[j], y[h.state]))
+                }
+            };
             joint.apply(&self.kin, &k, &f, &mut self.force);
             self.joint_kin[j] = k;
             self.joint_force[j] = f;
         }
+        if !self.heat_rate.is_empty() {
+            self.heat_balances(model, memory, y);
+        }
         self.solve_kkt(t)
+    }
+
+    /// Ṫ of every oil temperature from its joint's power loss at the forces just evaluated
+    /// (rust/clearance/thermal.rs).
+    fn heat_balances(&mut self, model: &Model, memory: &[ImpactMemory], y: &[f64]) {
+        let n = 3 * model.n_bodies();
+        let mut s = 0;
+        for (j, joint) in model.clearance.iter().enumerate() {
+            let Some(h) = joint.heat() else { continue };
+            let temp = y[h.state];
+            let (w_b, w_j) = crate::clearance::body_rates(joint, &y[n..2 * n]);
+            let p = joint.readings(&self.joint_kin[j], &self.joint_force[j], &h.memory_at(&memory[j], temp), w_b, w_j).power_loss;
+            self.heat_rate[s] = h.rate(temp, p);
+            s += 1;
+        }
+    }
+
+    /// ẏ of the last evaluation at `y`: (q̇, q̈, Ṫ…).
+    pub fn derivative(&self, y: &[f64], dy: &mut [f64]) {
+        let n = self.qdd.len();
+        dy[..n].copy_from_slice(&y[n..2 * n]);
+        dy[n..2 * n].copy_from_slice(&self.qdd);
+        dy[2 * n..].copy_from_slice(&self.heat_rate);
     }
 
     /// ‖Φ‖₂ and ‖Φ̇‖₂ of the last evaluation.

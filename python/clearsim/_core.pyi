@@ -104,6 +104,13 @@ class RunSettings(TypedDict):
     # A time [s] in [t0, t_end] at which the wear books are also read: each result's "wear"
     # entry then has bearing_at_mark, journal_at_mark [m] and volume_at_mark [m³].
     wear_mark: NotRequired[float]
+    # Track the bearing summary of every lubricated joint along the steps (rust/simulate/bearings.rs):
+    # the result's "bearings" then lists per clearance joint None (dry) or min_film_thickness [m],
+    # t_min_film [s], peak_power_loss [W], t_peak_power_loss [s], mean_power_loss [W], energy_loss [J],
+    # window_start and window_end [s] (the window they cover).
+    bearings: NotRequired[bool]
+    # The start [s] of the bearing summary's window, in [t0, t_end) (absent: t0).
+    bearings_from: NotRequired[float]
     sections: NotRequired[Sections]
     lyapunov: NotRequired[Lyapunov]
 
@@ -119,7 +126,9 @@ class CompiledModel:
         """What integrator="auto" picks for this model: "radau" when a clearance joint is
         lubricated, else "rk45" (rust/settings.rs, default_method)."""
     @property
-    def state_dim(self) -> int: ...
+    def state_dim(self) -> int:
+        """Length of y = (q, q̇, T…): 6 per body, then one oil temperature per clearance joint
+        with a heat model, in joint order (rust/clearance/thermal.rs)."""
     @property
     def constraint_rows(self) -> int: ...
     @property

@@ -1,37 +1,23 @@
 """What a bearing engineer reads off a clearance joint: film thickness, friction torque and power
-loss over a run (the core's joint columns, rust/clearance/readings.rs) and their summary (minimum
-film thickness, peak and mean power, tracked at every integration step by the core's monitors).
+loss over a run (the core's joint columns, rust/clearance/readings.rs) and, when the run asks for
+it (``simulate(..., bearings=True)``), their summary: minimum film thickness, peak and mean power
+loss, tracked at every integration step by the core (rust/simulate/bearings.rs).
 
 :class:`JointReadings` holds the methods of :class:`clearsim.Result` for them (docs/physics.md §4,
-"Film thickness, friction and power"); :func:`film_monitors` the monitors a run is given so that
-:func:`bearing_summary` does not depend on the output grid.
+"Film thickness, friction and power").
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional
 
 import numpy as np
 
 from .errors import InputError, check_choice
 
-#: The summary's tracked quantities of every lubricated joint (rust/monitor.rs, ``Quantity``).
-FILM_MONITORED = ("film_thickness", "power_loss")
 #: Parts of :meth:`JointReadings.friction_torque` and the joint column each reads.
 TORQUE_PARTS = {"total": "friction_torque", "couette": "couette_torque", "poiseuille": "poiseuille_torque"}
-
-
-def film_monitors(description: Dict[str, Any], joint_names: Sequence[str], t0: float, t_end: float) -> List[Dict[str, Any]]:
-    """Exact monitors (rust/monitor.rs) of the film thickness and power loss of every lubricated
-    revolute clearance joint over [t0, t_end] [s]: their minimum, peak and time integral."""
-    span = {"t_start": t0, "bin_width": t_end - t0, "exact": True, "samples_per_step": 4}
-    out: List[Dict[str, Any]] = []
-    for cj in description.get("clearance_joints", []):
-        if cj["model"].get("kind") == "lubricated" and cj["name"] in joint_names:
-            j = list(joint_names).index(cj["name"])
-            out += [{"coordinate": j, "quantity": q, **span} for q in FILM_MONITORED]
-    return out
 
 
 class JointReadings:
@@ -43,7 +29,6 @@ class JointReadings:
     body_names: List[str]
     t: np.ndarray
     _raw: Dict[str, Any]
-    monitor_specs: List[Dict[str, Any]]
     description: Optional[Dict[str, Any]]
 
     def _joint_cols(self, joint: str, cols: List[str]) -> np.ndarray:  # pragma: no cover - Result's
@@ -106,15 +91,6 @@ class JointReadings:
                 return bool(cj.get("model", {}).get("thermal"))
         return False
 
-    def _tracked(self, j: int, quantity: str) -> Optional[Dict[str, Any]]:
-        """The exact monitor of clearance joint ``j``'s ``quantity``, with its window
-        (``window``: [t_start, t_end] [s])."""
-        results = self._raw.get("monitors") or []
-        for spec, found in zip(self.monitor_specs, results):
-            if spec.get("exact") and spec["coordinate"] == j and spec["quantity"] == quantity and not spec.get("reference"):
-                return {**found, "window": (float(spec["t_start"]), float(spec["t_start"]) + float(spec["bin_width"]))}
-        return None
-
     def driver_angle(self, t: float) -> Optional[float]:
         """The first driver's body angle [deg] at ``t`` [s], interpolated between the stored
         outputs (``None`` without a driver or stored states)."""
@@ -125,32 +101,55 @@ class JointReadings:
         b = int(drivers[0]["body"])
         return float(np.degrees(np.interp(t, self.t, q[:, 3 * b + 2])))
 
+    def _lubricated(self) -> List[str]:
+        """Names of the lubricated clearance joints (a dry one has no film)."""
+        return [cj["name"] for cj in (self.description or {}).get("clearance_joints", []) if cj["model"].get("kind") == "lubricated"]
+
+    @property
+    def bearings_tracked(self) -> bool:
+        """Whether the run tracked the bearing summary (``simulate(..., bearings=True)``)."""
+        return self._raw.get("bearings") is not None
+
     def bearing_summary(self) -> Dict[str, Dict[str, Any]]:
         """Per lubricated joint (a dry one has no film: it is left out even when ``extremes``
         tracks its gap, whose negative minimum is its penetration): ``min_film_thickness`` [m] with ``t_min_film`` [s] and
-        ``min_film_crank_angle_deg`` (the first driver's angle then, if any), ``peak_power_loss``
-        and ``mean_power_loss`` [W], tracked at every integration step (independent of
-        ``dt_out``) over ``window_start`` to ``window_end`` [s]: the run, or from
-        ``simulate(extremes_from=)`` on (the window of :meth:`Result.extremes` too); with ``roughness`` σ also ``lambda`` = min film / σ (below ~3 the
-        asperities carry load: mixed lubrication); with a heat model (``thermal``) also
-        ``temperature_start`` and ``temperature_end`` [K], the oil temperature at the run's
-        first and last output (the state itself there: independent of ``dt_out``)."""
+        ``min_film_crank_angle_deg`` (the first driver's angle then, if any), located between the
+        integration steps on the run's dense output; ``peak_power_loss`` [W] (with
+        ``t_peak_power_loss`` [s]) and ``mean_power_loss`` [W] from the power loss at every
+        integration step's end — all independent of ``dt_out``; with ``roughness`` σ also
+        ``lambda`` = min film / σ (below ~3 the asperities carry load: mixed lubrication); with a
+        heat model (``thermal``) also ``temperature_start`` and ``temperature_end`` [K], the oil
+        temperature at the run's first and last output (the state itself there: independent of
+        ``dt_out``). All over one window, which ``window_start`` and ``window_end`` [s] name: the
+        run, or from ``simulate(extremes_from=)`` on (the window of :meth:`Result.extremes` too).
+
+        Tracked only when the run asks for it, ``simulate(..., bearings=True)`` (``clearsim run``
+        does): a mechanism with a lubricated joint run without it raises an :class:`InputError`
+        saying so. A mechanism without one gives ``{}``."""
+        lubricated = self._lubricated() if self.description is not None else []
+        tracked = self._raw.get("bearings")
+        if tracked is None:
+            if lubricated:
+                raise InputError(
+                    f"invalid bearings: this run did not track the bearing summary of {', '.join(repr(n) for n in lubricated)} "
+                    "(pass bearings=True to simulate; it costs a force evaluation per joint and step, so runs do not pay for it unasked)",
+                    field="bearings", value=False,
+                )
+            return {}
         out: Dict[str, Dict[str, Any]] = {}
         models = {cj["name"]: cj["model"] for cj in (self.description or {}).get("clearance_joints", [])}
         for j, name in enumerate(self.joint_names):
-            if self.description is not None and models.get(name, {}).get("kind") != "lubricated":
+            found = tracked[j] if j < len(tracked) else None
+            if found is None:
                 continue  # a dry joint has no film (its gap's minimum, the penetration, is in Result.extremes)
-            h, p = self._tracked(j, "film_thickness"), self._tracked(j, "power_loss")
-            if h is None or p is None:
-                continue
-            time = float(np.sum(p["bin_time"]))
             entry: Dict[str, Any] = {
-                "window_start": p["window"][0],
-                "window_end": p["window"][1],
-                "min_film_thickness": float(h["min"]),
-                "t_min_film": float(h["t_min"]),
-                "peak_power_loss": float(p["max"]),
-                "mean_power_loss": float(np.sum(p["bin_abs"]) / time) if time > 0 else math.nan,
+                "window_start": float(found["window_start"]),
+                "window_end": float(found["window_end"]),
+                "min_film_thickness": float(found["min_film_thickness"]),
+                "t_min_film": float(found["t_min_film"]),
+                "peak_power_loss": float(found["peak_power_loss"]),
+                "t_peak_power_loss": float(found["t_peak_power_loss"]),
+                "mean_power_loss": float(found["mean_power_loss"]),
             }
             angle = self.driver_angle(entry["t_min_film"])
             if angle is not None:
@@ -190,4 +189,4 @@ def summary_markdown(bearings: Optional[Dict[str, Dict[str, Any]]]) -> List[str]
     return lines
 
 
-__all__ = ["JointReadings", "film_monitors", "summary_markdown", "FILM_MONITORED"]
+__all__ = ["JointReadings", "summary_markdown"]

@@ -99,13 +99,13 @@ class Mechanism(Running):
         new = self.__class__.__new__(self.__class__)
         memo[id(self)] = new
         for key, value in self.__dict__.items():
-            setattr(new, key, None if key == "_compiled" else copy.deepcopy(value, memo))
+            setattr(new, key, None if key in ("_compiled", "_pose_checked_for") else copy.deepcopy(value, memo))
         return new
 
     def __getstate__(self) -> Dict[str, Any]:
         # Pickling keeps the description; the compiled Rust model is rebuilt on demand.
         state = dict(self.__dict__)
-        state["_compiled"] = None
+        state["_compiled"] = state["_pose_checked_for"] = None
         return state
 
     def __setstate__(self, state: Dict[str, Any]) -> None:

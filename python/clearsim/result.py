@@ -97,7 +97,10 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         ``steps_to_switch`` (steps redone so as to end where a contact starts or ends or
         the friction ramp turns),
         ``rhs_evaluations``, ``jacobians`` (Newton / Jacobian matrices built by the stiff
-        methods), ``min_step``, ``max_step`` [s], ``t_reached`` [s], ``wall_time`` [s].
+        methods), ``force_evaluations`` (evaluations of the clearance joints' force laws by every
+        part of the run: right-hand sides, Newton matrices, outputs, tracked readings; a count of
+        work for ``benches/perf_fingerprint.py``), ``min_step``, ``max_step`` [s],
+        ``t_reached`` [s], ``wall_time`` [s].
     impacts:
         Number of impacts located per clearance joint.
     failure:
@@ -114,7 +117,8 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         self.failure = raw.get("error")
         self.q0: np.ndarray = raw["q0"]
         self.qd0: np.ndarray = raw["qd0"]
-        #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate.
+        #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate (the
+        #: compiled mechanism's own, shared by its runs: read it, do not change it).
         self.description: Optional[Dict[str, Any]] = None
         #: The monitors the run was given (its settings' ``monitors``); set by Mechanism.simulate.
         self.monitor_specs: List[Dict[str, Any]] = []
@@ -126,7 +130,8 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"
         steps = f"{self.stats.get('integrator', '?')} in {self.stats.get('steps', 0)} steps"
-        films = "".join(f", {j}: h_min {b['min_film_thickness'] * 1e6:.3g} µm, mean loss {b['mean_power_loss']:.3g} W" for j, b in self.bearing_summary().items())
+        bearings = self.bearing_summary() if self.bearings_tracked else {}
+        films = "".join(f", {j}: h_min {b['min_film_thickness'] * 1e6:.3g} µm, mean loss {b['mean_power_loss']:.3g} W" for j, b in bearings.items())
         return f"<clearsim.Result {len(self.t)} outputs, t ∈ [{self.t[0] if len(self.t) else 0:g}, {self.t[-1] if len(self.t) else 0:g}] s, {steps}{films}, {status}>"
 
     def _repr_html_(self) -> str:
@@ -456,7 +461,8 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         out["impacts"] = dict(self.impacts)
         if "violation" in self._raw and len(self.t):
             out["max_constraint_violation"] = float(np.max(self.constraint_violation))
-        bearings = self.bearing_summary()
+        # The bearing summary when the run tracked it (simulate(..., bearings=True)).
+        bearings = self.bearing_summary() if self.bearings_tracked else {}
         if bearings:
             out["bearings"] = bearings
         reactions = self.reaction_summary()

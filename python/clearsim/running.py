@@ -17,7 +17,6 @@ from .batch import run_descriptions
 from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
 from .joints import MICROMETRE_FILM_RATIO
 from .dynamics.readings import section_spec
-from .joint_readings import film_monitors
 from .points import PointsLike, tracked_points
 from .result import Result, extreme_monitors
 from .schema import ATOL, COMPONENTS, DEFAULT_OUTPUTS, H_MIN, INTEGRATORS, MAX_STEPS, OUTPUTS, RTOL
@@ -42,6 +41,7 @@ class RunOptions(TypedDict, total=False):
     max_seconds: Optional[float]  # [s] of wall time
     extremes: Union[bool, Sequence[Any]]  # bodies, clearance joints and (body, (x, y)) points (Result.extremes)
     extremes_from: Optional[float]  # [s] start of the extremes' window (default t0)
+    bearings: bool  # track the bearing summary (Result.bearing_summary)
     sections: Union[None, float, Tuple[float, float]]  # Poincaré sections: period [s] or (period [s], phase [rad])
 
 #: Most outputs a dt_out grid may ask for (each holds every stored channel; the core's
@@ -123,6 +123,10 @@ class Running:
     """What a :class:`clearsim.Mechanism` does with its description: compile, run, check."""
 
     _compiled: Any
+    #: The description the compiled model was built from (given to its results, which share it:
+    #: a run copies no description) and the compiled model whose pose given was checked last.
+    _compiled_description: Optional[Dict[str, Any]] = None
+    _pose_checked_for: Any = None
     if TYPE_CHECKING:  # provided by Mechanism (mechanism.py, the class that mixes this in)
         _bodies: List[Dict[str, Any]]
         _clearance: List[Dict[str, Any]]
@@ -138,16 +142,20 @@ class Running:
     def compile(self) -> "_core.CompiledModel":
         """The compiled Rust model (cached until the mechanism changes)."""
         if self._compiled is None:
-            self._compiled = _core.compile(self.description())
+            desc = self.description()
+            self._compiled = _core.compile(desc)
+            self._compiled_description = desc
         return self._compiled
 
     @property
     def state_dim(self) -> int:
-        """Length of the state y = (q, q̇): 6 per body."""
-        return 6 * len(self._bodies)
+        """Length of the state y = (q, q̇, T…): 6 per body (q, then q̇), then the oil
+        temperature [K] of each clearance joint with a heat model (``Lubricated(thermal=...)``),
+        in the order of :attr:`clearance_joint_names` (docs/physics.md §4, *Heat*)."""
+        return int(self.compile().state_dim)
 
     def state_index(self, body: str, component: str, velocity: bool = False) -> int:
-        """Index in the state y = (q, q̇) of ``body``'s pose ``component`` (``"x"``, ``"y"`` [m]
+        """Index in the state y = (q, q̇, T…) of ``body``'s pose ``component`` (``"x"``, ``"y"`` [m]
         or ``"theta"`` [rad]; with ``velocity=True`` its rate, m/s or rad/s). In
         ``m.rhs(t, y)`` the same index gives its rate (position) or acceleration (velocity)."""
         b = self._body("body", body, allow_ground=False)
@@ -171,22 +179,28 @@ class Running:
         return fig
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
-        """Consistent state y0 = (q0, q̇0) at ``t0`` [s]: the pose given (the pose at t = 0, the
-        drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
-        branch (docs/physics.md §1); :class:`clearsim.AssemblyError` names a dead centre on the
-        way."""
+        """Consistent state y0 = (q0, q̇0, T0…) at ``t0`` [s]: the pose given (the pose at t = 0,
+        the drivers' reference time) assembled, then followed along the drivers to ``t0`` on its
+        branch (docs/physics.md §1), and the oil temperatures at their ``initial`` values
+        (:attr:`state_dim`); :class:`clearsim.AssemblyError` names a dead centre on the way."""
         return self.compile().initial_state(float(t0))
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """ẏ = f(t, y), for driving clearsim's model with an external integrator such as
         ``scipy.integrate.solve_ivp(m.rhs, ...)``. State layout: q = (x, y, θ) per body in
-        name order (:attr:`body_names`; not the order added), then q̇ likewise (:meth:`state_index`). No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
+        name order (:attr:`body_names`; not the order added), then q̇ likewise (:meth:`state_index`),
+        then the oil temperature T [K] of each clearance joint with a heat model, in the order of
+        :attr:`clearance_joint_names` (its rate dT/dt [K/s] from the joint's heat balance;
+        :attr:`state_dim`).
+        No impact memory: δ̇⁽⁻⁾ is the current approach speed."""
         return self.compile().rhs(float(t), np.ascontiguousarray(y, dtype=float))
 
     def jacobian(self, t: float, y: np.ndarray) -> np.ndarray:
         """The stiff part of ∂f/∂y at (t, y) as a dense (n, n) array, ``[[0, I], [W_q, W_v]]``:
         the clearance joints' force derivatives mapped through the constrained mobility (the
-        Newton matrix clearsim's ``"radau"`` uses). The non-stiff remainder (pose dependence of
+        Newton matrix clearsim's ``"radau"`` uses); with heat models, bordered by the oil
+        temperatures' rows and columns ``[[0, I, 0], [W_q, W_v, A_T], [G_q, G_v, G_T]]`` (the
+        film's change with T through μ(T), the heat balance's change with the motion and T). The non-stiff remainder (pose dependence of
         the constraints, Baumgarte terms) is left out, which implicit methods tolerate:
         ``solve_ivp(m.rhs, ..., method="Radau", jac=m.jacobian)``. Units: 1/s² and 1/s."""
         return self.compile().jacobian(float(t), np.ascontiguousarray(y, dtype=float))
@@ -217,6 +231,7 @@ class Running:
         max_seconds: Optional[float] = None,
         extremes: Union[bool, Sequence[Any]] = False,
         extremes_from: Optional[float] = None,
+        bearings: bool = False,
         sections: Union[None, float, Tuple[float, float]] = None,
     ) -> Dict[str, Any]:
         """The settings dict of a run (see :meth:`simulate`).
@@ -270,11 +285,12 @@ class Running:
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end)
         elif extremes_from is not None and not t_end > start:
             raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
+        if bearings:
+            settings["bearings"] = True
+            if start > t0:
+                settings["bearings_from"] = start
         if sections is not None:
             settings["sections"] = section_spec(sections)
-        films = film_monitors(self.description(), self.clearance_joint_names, start, t_end)
-        if films:
-            settings["monitors"] = settings.get("monitors", []) + films
         return settings
 
     def simulate(self, t_end: float, progress: bool = True, **kwargs: Unpack[RunOptions]) -> Result:
@@ -319,6 +335,13 @@ class Running:
             :meth:`Result.bearing_summary` too, which says it): independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
+        bearings:
+            Track the bearing summary of every lubricated joint (:meth:`Result.bearing_summary`:
+            minimum film thickness located between the steps, peak and mean power loss at every
+            step's end; independent of ``dt_out``), over the run or from ``extremes_from`` on
+            (the summary's ``window_start``, ``window_end``). Off by default: it costs one force evaluation
+            per joint and step where the method has none to reuse (RK45 and RADAU5 have one: 0.6–1.8 %
+            more instructions per step; docs/performance.md, "What a run pays for").
         sections:
             Poincaré sections: ``period`` [s] or ``(period, phase)`` (phase [rad], default 0):
             the stored channels at the exact times t_k = (k + phase/2π) · period in [t0, t_end]
@@ -455,19 +478,27 @@ class Running:
 
     def _checked_assembly(self, t0: float = 0.0) -> None:
         """:meth:`check_assembly` before a run from ``t0``: the pose given is checked at t = 0,
-        whatever ``t0``; an assembly that fails altogether is left to the run, whose error carries
-        the diagnosis and an empty partial result."""
+        whatever ``t0``, once per compiled model (the check depends on the mechanism alone: the
+        runs after the first repeat neither its assembly nor its warnings); an assembly that fails
+        altogether is left to the run, whose error carries the diagnosis and an empty partial
+        result."""
+        compiled = self.compile()
+        if self._pose_checked_for is compiled:
+            return
         try:
-            q0 = np.asarray(self.compile().initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
+            q0 = np.asarray(compiled.initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
         except ClearsimError:
             return
         self._check_shift(q0)
+        self._pose_checked_for = compiled
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         if settings is not None and "sections" in settings:
             raw["section_settings"] = settings["sections"]
         res = Result(raw, self.body_names, self.clearance_joint_names)
-        res.description = self.description()
+        # The compiled model's description when there is one (shared, not copied per run).
+        compiled_desc = self._compiled_description if self._compiled is not None else None
+        res.description = compiled_desc if compiled_desc is not None else self.description()
         res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []
         err = raw.get("error")
         if err is not None:

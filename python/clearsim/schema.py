@@ -29,6 +29,9 @@ POINT_MONITOR_COMPONENTS: Tuple[str, str, str] = ("x", "y", "magnitude")
 REFERENCES: Tuple[str, str] = ("own_ideal", "nominal")
 #: The integrators of :meth:`clearsim.Mechanism.simulate` (``"auto"`` picks one per mechanism).
 INTEGRATORS: Tuple[str, ...] = ("auto", "rk45", "rk4", "dop853", "radau", "rodas4")
+#: How a load table runs between its points (the core's ``Interpolation``): straight lines, or
+#: a C² cubic spline whose points do not end integration steps (:mod:`clearsim.forces`).
+INTERPOLATIONS: Tuple[str, ...] = ("linear", "cubic")
 #: The channels a run can store, and those it stores by default.
 OUTPUTS: Tuple[str, ...] = ("states", "accelerations", "reactions", "joints", "violation", "energy")
 DEFAULT_OUTPUTS: Tuple[str, ...] = ("states", "accelerations", "joints", "violation")
@@ -118,6 +121,7 @@ __all__ = [
     "COMPONENTS",
     "DEFAULT_OUTPUTS",
     "INTEGRATORS",
+    "INTERPOLATIONS",
     "JOINT_COLUMNS",
     "JOINT_COLUMN_UNITS",
     "JOINT_QUANTITIES",

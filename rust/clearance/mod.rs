@@ -68,6 +68,19 @@ pub fn max_penetration(clearance: f64, journal_radius: f64) -> f64 {
     clearance.max(0.05 * journal_radius)
 }
 
+thread_local! {
+    /// Evaluations of [`ClearanceJoint::force`] on this thread ([`force_evaluations`]).
+    static FORCE_EVALUATIONS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// How many times a clearance joint's force law ([`ClearanceJoint::force`]) has been evaluated
+/// on this thread: a run's difference of it is its `force_evaluations`, a count of the work its
+/// right-hand sides, Newton matrices, outputs and observers did (the performance fingerprint,
+/// `benches/perf_fingerprint.py`, catches work added where no step or right-hand side shows it).
+pub fn force_evaluations() -> u64 {
+    FORCE_EVALUATIONS.with(std::cell::Cell::get)
+}
+
 /// Parameters of the film part of a lubricated joint.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Film {
@@ -186,6 +199,7 @@ impl ClearanceJoint {
     /// Evaluate the force law. `memory` supplies δ̇⁽⁻⁾ of the current impact.
     #[inline]
     pub fn force(&self, k: &JointKinematics, memory: &ImpactMemory) -> JointForce {
+        FORCE_EVALUATIONS.with(|c| c.set(c.get() + 1));
         let mut out = JointForce::default();
         // Penetration beyond the worn surfaces (the offset is 0 unless wear is fed back).
         let delta = k.delta - memory.wear_offset;

@@ -13,7 +13,8 @@ use crate::clearance::{max_penetration, ClearanceJoint, Film};
 use crate::constraints::{BodyKin, CompiledAngleLaw, Constraint, V2};
 use crate::description::*;
 use crate::error::{Error, Result};
-use crate::forces::{ForceElement, Magnitude, PiecewiseLinear};
+use crate::forces::{ForceElement, Magnitude};
+use crate::table::Tabulated;
 use crate::laws::contact::{stiffness_internal, stiffness_paper_printed, ContactLaw};
 use crate::laws::film::BearingGeometry;
 use crate::laws::friction::ModifiedCoulomb;
@@ -108,6 +109,11 @@ impl Model {
             model.assembly.push((format!("clearance joint '{}' (held centred in its guide)", p.name), guide));
         }
         model.forces = compile_forces(&model, desc)?;
+        // The oil temperatures follow (q, q̇) in the state, in joint order (rust/clearance/thermal.rs).
+        let heats = model.clearance.iter_mut().filter_map(|c| c.film.as_mut().and_then(|f| f.heat.as_mut()));
+        for (state, h) in (6 * nb..).zip(heats) {
+            h.state = state;
+        }
         Ok(model)
     }
 }
@@ -149,7 +155,7 @@ fn heat(l: &LubricatedDesc) -> Option<crate::clearance::thermal::Heat> {
         ViscosityDesc::Constant(_) => None,
     };
     let thermal = crate::laws::viscosity::Thermal { ambient: th.ambient, heat_capacity: th.heat_capacity, heat_transfer: th.heat_transfer, initial: th.initial.unwrap_or(th.ambient) };
-    Some(crate::clearance::thermal::Heat { vogel, thermal })
+    Some(crate::clearance::thermal::Heat { vogel, thermal, state: usize::MAX }) // numbered in `Model::compile`
 }
 
 /// The film's viscosity at the start: the constant, or Vogel's law at the initial temperature.
@@ -241,7 +247,7 @@ fn compile_forces(model: &Model, desc: &MechanismDesc) -> Result<Vec<ForceElemen
                 stiffness: *stiffness,
                 damping: *damping,
                 free_length: free_length.unwrap_or_else(|| at(body_b).point((*point_b).into()).sub(at(body_a).point((*point_a).into())).norm()),
-                table: force_table.as_ref().map(PiecewiseLinear::new),
+                table: force_table.as_ref().map(Tabulated::new),
             },
             ForceDesc::RotationalSpringDamper { body_a, body_b, stiffness, damping, free_angle, .. } => ForceElement::RotationalSpringDamper {
                 a: idx(body_a),

@@ -386,6 +386,16 @@ fn validate_table(f: &str, t: &Table) -> Result<()> {
         if span > p * (1.0 + 1e-12) {
             return Err(Error::invalid(format!("{f}.period"), num(p), format!("must cover the table's span x_last − x₀ = {}", num(span))));
         }
+        // A periodic spline through a last point one period after the first is the first point
+        // again: it must carry its value (a linear table may jump there).
+        let (n, scale) = (t.y.len(), t.y.iter().fold(0.0f64, |a, v| a.max(v.abs())));
+        if t.interpolation == crate::description::Interpolation::Cubic && crate::table::closes_itself(t) && (t.y[n - 1] - t.y[0]).abs() > 1e-9 * scale {
+            return Err(Error::invalid(
+                format!("{f}.y[{}]", n - 1),
+                num(t.y[n - 1]),
+                format!("a periodic cubic table's point at x₀ + period repeats its first, y[0] = {} (or leave the point out)", num(t.y[0])),
+            ));
+        }
     }
     Ok(())
 }

@@ -10,8 +10,9 @@
 //! - `explicit_rk.rs`: the RK4, DOPRI5 and DOP853 steppers, with `tableau.rs` (Butcher tableaus
 //!   with their sources) and `dense.rs` (their continuous extensions).
 //! - `rodas4.rs`: the RODAS4 stepper; `radau.rs`: the RADAU5 stepper, with `radau_newton.rs`
-//!   (its two Newton matrices: build, factorise, solve); `lu.rs`: the real and complex LU both
-//!   use.
+//!   (its two Newton matrices: build, factorise, solve) and `border.rs` (their rows and columns
+//!   of first-order states after (q, v): a heated joint's oil temperature); `lu.rs`: the real and
+//!   complex LU both use.
 //! - `controller.rs`: error norms, step-size control (PI, predictive, the Newton limit) and the
 //!   initial step.
 
@@ -19,6 +20,7 @@ use crate::error::Error;
 use driver::drive;
 use method::Span;
 
+mod border;
 pub mod controller;
 pub mod dense;
 mod driver;

@@ -38,12 +38,24 @@ pub trait OdeSystem {
     /// Called at every requested output time with the (interpolated) state.
     fn output(&mut self, t: f64, y: &[f64]) -> Result<(), Error>;
     /// For a second-order system, `y = (q, v)` and `f = (v, a(t, q, v))` with `q`, `v` of length
-    /// `m = dim/2`: write an approximation of `∂a/∂q` and `∂a/∂v` (each `m × m`, column-major)
+    /// `m = dim/2` (or `y = (q, v, z)`: [`OdeSystem::first_order_states`]): write an approximation of `∂a/∂q` and `∂a/∂v` (each `m × m`, column-major)
     /// and return `Ok(true)`. Used for the Newton matrices of RADAU5, whose simplified Newton
     /// iteration converges with any good approximation of the stiff part. The default,
     /// `Ok(false)`, makes it difference the whole `f` instead.
     fn acceleration_jacobian(&mut self, _t: f64, _y: &[f64], _a_q: &mut [f64], _a_v: &mut [f64]) -> Result<bool, Error> {
         Ok(false)
+    }
+    /// `k`: the state is `y = (q, v, z)` with `k` first-order states `z` after the second-order
+    /// part (a heated joint's oil temperature). [`OdeSystem::acceleration_jacobian`] then covers
+    /// `q`, `v` of length `m = (dim − k)/2` and [`OdeSystem::border_jacobian`] the rest. Default 0.
+    fn first_order_states(&self) -> usize {
+        0
+    }
+    /// The Jacobian's border for the states `z` ([`OdeSystem::first_order_states`]), asked right
+    /// after [`OdeSystem::acceleration_jacobian`] at the same `(t, y)`: `a_z = ∂a/∂z` (`m × k`,
+    /// column-major) and `z_y = ∂ż/∂y` (`k × dim`, row-major).
+    fn border_jacobian(&mut self, _t: f64, _y: &[f64], _a_z: &mut [f64], _z_y: &mut [f64]) -> Result<(), Error> {
+        Ok(())
     }
     /// Forward-difference step for component `j` of `y` when the implicit methods difference
     /// `f`. Default (Hairer): `√(ε_mach · max(1e-5, |y_j|))`. A system whose `f` varies on a

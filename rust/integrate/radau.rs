@@ -267,8 +267,9 @@ impl Radau5Stepper {
             }
             let mut eval = || -> Result<(), Error> {
                 for s in 0..3 {
-                    for i in 0..n {
-                        ytmp[i] = y[i] + z[s * n + i];
+                    // Zipped slices of length n: no bounds checks in RADAU5's innermost loops.
+                    for ((yt, &yi), &zi) in ytmp[..n].iter_mut().zip(&y[..n]).zip(&z[s * n..(s + 1) * n]) {
+                        *yt = yi + zi;
                     }
                     let ts = if s == 2 { t1 } else { t + k.c[s] * hs };
                     sys.rhs(ts, ytmp, &mut fz[s * n..(s + 1) * n])?;
@@ -287,21 +288,21 @@ impl Radau5Stepper {
             {
                 let (r1, rest) = fz.split_at_mut(n);
                 let (r2, r3) = rest.split_at_mut(n);
-                for i in 0..n {
-                    let (f1, f2, f3) = (r1[i], r2[i], r3[i]);
+                let r3 = &mut r3[..n];
+                let (wa, wb, wc) = (&w[..n], &w[n..2 * n], &w[2 * n..3 * n]);
+                for (((((r1, r2), r3), &w1), &w2), &w3) in r1.iter_mut().zip(r2.iter_mut()).zip(r3.iter_mut()).zip(wa).zip(wb).zip(wc) {
+                    let (f1, f2, f3) = (*r1, *r2, *r3);
                     let a1 = k.ti[0][0] * f1 + k.ti[0][1] * f2 + k.ti[0][2] * f3;
                     let a2 = k.ti[1][0] * f1 + k.ti[1][1] * f2 + k.ti[1][2] * f3;
                     let a3 = k.ti[2][0] * f1 + k.ti[2][1] * f2 + k.ti[2][2] * f3;
-                    let (w1, w2, w3) = (w[i], w[n + i], w[2 * n + i]);
-                    r1[i] = a1 - fac1 * w1;
-                    r2[i] = a2 - alphn * w2 + betan * w3;
-                    r3[i] = a3 - alphn * w3 - betan * w2;
+                    *r1 = a1 - fac1 * w1;
+                    *r2 = a2 - alphn * w2 + betan * w3;
+                    *r3 = a3 - alphn * w3 - betan * w2;
                 }
                 newton.solve_real(r1);
                 newton.solve_complex(r2, r3);
-                for i in 0..n {
-                    let s = scal[i];
-                    dyno += (r1[i] / s).powi(2) + (r2[i] / s).powi(2) + (r3[i] / s).powi(2);
+                for (((&x1, &x2), &x3), &s) in r1.iter().zip(r2.iter()).zip(r3.iter()).zip(&scal[..n]) {
+                    dyno += (x1 / s).powi(2) + (x2 / s).powi(2) + (x3 / s).powi(2);
                 }
             }
             let dyno = (dyno / (3 * n).max(1) as f64).sqrt();

@@ -1,11 +1,13 @@
 //! RADAU5's two Newton matrices `σ₁I − W` and `σ₂I − W` (Hairer–Wanner IV.8.16–19): `W` built
 //! from the system's second-order hook [`OdeSystem::acceleration_jacobian`] or by forward
 //! differences of `f`, both matrices factorised for a step size, and the solves with them, in
-//! full form or in the half-size structured form of a second-order system ([`NewtonSystems`]).
-//! The LU factorisations are `lu.rs`'s; the iteration that uses the solves is `radau.rs`'s.
+//! full form or in the half-size structured form of a second-order system ([`NewtonSystems`]),
+//! with first-order states after (q, v) as a border (`border.rs`). The LU factorisations are
+//! `lu.rs`'s; the iteration that uses the solves is `radau.rs`'s.
 
 use faer::Mat;
 
+use super::border::Border;
 use super::lu::{ComplexLu, Lu};
 use super::method::Stats;
 use super::ode::OdeSystem;
@@ -20,8 +22,11 @@ use crate::error::Error;
 /// active coordinates `C`, and `x_j = (b_j + Σ_c G_jc x_c)/σ` for the others, so only a
 /// `|C| × |C|` matrix is factorised (and `2|C|` for the complex one).
 pub(super) struct NewtonSystems {
-    /// `m = n/2` for a second-order system with the structured hook, else `None`.
+    /// `m = (n − k)/2` for a second-order system with the structured hook, else `None`.
     pub(super) half: Option<usize>,
+    /// Structured form with `k` first-order states after (q, v)
+    /// ([`OdeSystem::first_order_states`]): their rows and columns (`border.rs`).
+    border: Option<Border>,
     jac: Mat<f64>,
     w_q: Vec<f64>,
     w_v: Vec<f64>,
@@ -49,20 +54,27 @@ pub(super) struct NewtonSystems {
 impl NewtonSystems {
     pub(super) fn new<S: OdeSystem>(sys: &mut S, t: f64, y: &[f64]) -> Result<Self, Error> {
         let n = y.len();
-        let m = n / 2;
+        let extra = sys.first_order_states().min(n);
+        let m = (n - extra) / 2;
         let mut w_q = vec![0.0; m * m];
         let mut w_v = vec![0.0; m * m];
-        let structured = n.is_multiple_of(2) && n > 0 && sys.acceleration_jacobian(t, y, &mut w_q, &mut w_v)?;
-        Ok(Self::with_matrices(n, structured, w_q, w_v))
+        let structured = (n - extra).is_multiple_of(2) && m > 0 && sys.acceleration_jacobian(t, y, &mut w_q, &mut w_v)?;
+        let mut ns = Self::with_matrices(n, extra, structured, w_q, w_v);
+        if let Some(b) = ns.border.as_mut() {
+            sys.border_jacobian(t, y, &mut b.a_z, &mut b.g_y)?;
+        }
+        Ok(ns)
     }
 
-    /// The storage for a state of size `n`, in structured form with `W_q`, `W_v` (`m × m`,
-    /// column-major, `m = n/2`) or in full form.
-    fn with_matrices(n: usize, structured: bool, w_q: Vec<f64>, w_v: Vec<f64>) -> Self {
-        let m = n / 2;
+    /// The storage for a state of size `n` with `extra` first-order states after (q, v), in
+    /// structured form with `W_q`, `W_v` (`m × m`, column-major, `m = (n − extra)/2`) or in full
+    /// form.
+    fn with_matrices(n: usize, extra: usize, structured: bool, w_q: Vec<f64>, w_v: Vec<f64>) -> Self {
+        let m = (n - extra) / 2;
         let k = if structured { m } else { n };
         let mut ns = NewtonSystems {
             half: structured.then_some(m),
+            border: (structured && extra > 0).then(|| Border::new(m, extra)),
             jac: if structured { Mat::zeros(0, 0) } else { Mat::zeros(n, n) },
             w_q,
             w_v,
@@ -92,6 +104,9 @@ impl NewtonSystems {
         stats.jacobians += 1;
         if self.half.is_some() && !differenced {
             sys.acceleration_jacobian(t, y, &mut self.w_q, &mut self.w_v)?;
+            if let Some(b) = self.border.as_mut() {
+                sys.border_jacobian(t, y, &mut b.a_z, &mut b.g_y)?;
+            }
             self.find_active();
             return Ok(());
         }
@@ -109,10 +124,24 @@ impl NewtonSystems {
                     }
                 }
                 Some(m) => {
-                    // Rows m.. of column j: ∂q̈/∂q_j (j < m) or ∂q̈/∂q̇_{j−m}.
-                    let col = if j < m { &mut self.w_q[j * m..(j + 1) * m] } else { &mut self.w_v[(j - m) * m..(j - m + 1) * m] };
+                    // Rows m..2m of column j: ∂q̈/∂q_j (j < m), ∂q̈/∂q̇_{j−m} (j < 2m) or, in
+                    // the border, ∂q̈/∂z_{j−2m}; and the border's rows ∂ż/∂y_j.
+                    let col = if j < m {
+                        &mut self.w_q[j * m..(j + 1) * m]
+                    } else if j < 2 * m {
+                        &mut self.w_v[(j - m) * m..(j - m + 1) * m]
+                    } else if let Some(b) = self.border.as_mut() {
+                        &mut b.a_z[(j - 2 * m) * m..(j - 2 * m + 1) * m]
+                    } else {
+                        &mut []
+                    };
                     for (i, c) in col.iter_mut().enumerate() {
                         *c = (self.df[m + i] - f0[m + i]) / delta;
+                    }
+                    if let Some(b) = self.border.as_mut() {
+                        for (r, i) in (2 * m..n).enumerate() {
+                            b.g_y[r * n + j] = (self.df[i] - f0[i]) / delta;
+                        }
                     }
                 }
             }
@@ -140,6 +169,38 @@ impl NewtonSystems {
 
     /// Factorise both systems for `σ₁ = sigma` and `σ₂ = a + ib`.
     pub(super) fn factor(&mut self, sigma: f64, a: f64, b: f64) {
+        self.factor_core(sigma, a, b);
+        if let Some(mut border) = self.border.take() {
+            border.factor_real(sigma, |x| self.solve_real_core(x));
+            border.factor_complex(a, b, |xr, xi| self.solve_complex_core(xr, xi));
+            self.border = Some(border);
+        }
+    }
+
+    /// `x ← (σ₁ I − W)⁻¹ x`.
+    pub(super) fn solve_real(&mut self, x: &mut [f64]) {
+        match self.border.take() {
+            None => self.solve_real_core(x),
+            Some(mut border) => {
+                border.solve_real(x, |v| self.solve_real_core(v));
+                self.border = Some(border);
+            }
+        }
+    }
+
+    /// `(xr + i xi) ← (σ₂ I − W)⁻¹ (xr + i xi)`.
+    pub(super) fn solve_complex(&mut self, xr: &mut [f64], xi: &mut [f64]) {
+        match self.border.take() {
+            None => self.solve_complex_core(xr, xi),
+            Some(mut border) => {
+                border.solve_complex(xr, xi, |vr, vi| self.solve_complex_core(vr, vi));
+                self.border = Some(border);
+            }
+        }
+    }
+
+    /// [`Self::factor`] without the border: the full matrix, or the (q, v) core.
+    fn factor_core(&mut self, sigma: f64, a: f64, b: f64) {
         let den = a * a + b * b;
         (self.sigma, self.a, self.b, self.p, self.q) = (sigma, a, b, a / den, -b / den);
         let (p, q) = (self.p, self.q);
@@ -186,8 +247,8 @@ impl NewtonSystems {
         }
     }
 
-    /// `x ← (σ₁ I − W)⁻¹ x`.
-    pub(super) fn solve_real(&mut self, x: &mut [f64]) {
+    /// [`Self::solve_real`] on the full state, or on the (q, v) core (`x` 2m long).
+    fn solve_real_core(&mut self, x: &mut [f64]) {
         let Some(m) = self.half else {
             self.real.solve(x);
             return;
@@ -230,8 +291,8 @@ impl NewtonSystems {
         }
     }
 
-    /// `(xr + i xi) ← (σ₂ I − W)⁻¹ (xr + i xi)`.
-    pub(super) fn solve_complex(&mut self, xr: &mut [f64], xi: &mut [f64]) {
+    /// [`Self::solve_complex`] on the full state, or on the (q, v) core (2m long).
+    fn solve_complex_core(&mut self, xr: &mut [f64], xi: &mut [f64]) {
         let Some(m) = self.half else {
             self.complex.solve(xr, xi);
             return;
@@ -319,7 +380,7 @@ mod tests {
                 w_q[c * m..(c + 1) * m].fill(0.0);
                 w_v[c * m..(c + 1) * m].fill(0.0);
             }
-            let mut ns = NewtonSystems::with_matrices(2 * m, true, w_q.clone(), w_v.clone());
+            let mut ns = NewtonSystems::with_matrices(2 * m, 0, true, w_q.clone(), w_v.clone());
             assert_eq!(ns.active.len(), m - zero_cols.len());
             let n = 2 * m;
             // W x for the full matrix.

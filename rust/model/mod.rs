@@ -53,9 +53,26 @@ impl Model {
         self.body_names.len()
     }
 
-    /// Length of the state (q, q̇).
+    /// Length of the state y = (q, q̇, T…): 3 coordinates and 3 rates per body, then the oil
+    /// temperature of each clearance joint with a heat model, in joint order
+    /// (rust/clearance/thermal.rs).
     pub fn state_dim(&self) -> usize {
-        6 * self.n_bodies()
+        6 * self.n_bodies() + self.heat_states()
+    }
+
+    /// Number of oil temperatures in the state (0 without heat models).
+    pub fn heat_states(&self) -> usize {
+        self.clearance.iter().filter(|c| c.heat().is_some()).count()
+    }
+
+    /// The state y at the start of a run from the assembled (q, q̇): the oil temperatures at
+    /// their initial values.
+    pub fn initial_state(&self, q: &[f64], qd: &[f64]) -> Vec<f64> {
+        let mut y = Vec::with_capacity(self.state_dim());
+        y.extend_from_slice(q);
+        y.extend_from_slice(qd);
+        y.extend(self.clearance.iter().filter_map(|c| c.heat()).map(|h| h.thermal.initial));
+        y
     }
 
     /// Degrees of freedom left after the constraints (clearance joints add 2 each).

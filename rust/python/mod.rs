@@ -284,12 +284,35 @@ fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, 
         }
         d.set_item("wear", wear)?;
     }
+    if !out.bearings.is_empty() {
+        // Per clearance joint: the bearing summary (RunSettings::bearings), None for a dry joint.
+        let bearings = PyList::empty(py);
+        for b in &out.bearings {
+            match b {
+                None => bearings.append(py.None())?,
+                Some(b) => {
+                    let bd = PyDict::new(py);
+                    bd.set_item("window_start", b.window_start)?;
+                    bd.set_item("window_end", b.window_end)?;
+                    bd.set_item("min_film_thickness", b.min_film_thickness)?;
+                    bd.set_item("t_min_film", b.t_min_film)?;
+                    bd.set_item("peak_power_loss", b.peak_power_loss)?;
+                    bd.set_item("t_peak_power_loss", b.t_peak_power_loss)?;
+                    bd.set_item("mean_power_loss", b.mean_power_loss())?;
+                    bd.set_item("energy_loss", b.energy_loss)?;
+                    bearings.append(bd)?;
+                }
+            }
+        }
+        d.set_item("bearings", bearings)?;
+    }
     let s = PyDict::new(py);
     s.set_item("steps", out.stats.steps_accepted)?;
     s.set_item("rejected_steps", out.stats.steps_rejected)?;
     s.set_item("steps_to_switch", out.stats.steps_to_switch)?;
     s.set_item("rhs_evaluations", out.stats.rhs_evals)?;
     s.set_item("jacobians", out.stats.jacobians)?;
+    s.set_item("force_evaluations", out.force_evaluations)?;
     s.set_item("min_step", out.stats.h_min_used)?;
     s.set_item("max_step", out.stats.h_max_used)?;
     s.set_item("t_reached", out.stats.t_reached)?;
@@ -382,7 +405,8 @@ impl CompiledModel {
         crate::settings::default_method(&self.model).name()
     }
 
-    /// Length of the state y = (q, q̇).
+    /// Length of the state y = (q, q̇, T…): 6 per body, then one oil temperature per clearance
+    /// joint with a heat model (rust/clearance/thermal.rs).
     #[getter]
     fn state_dim(&self) -> usize {
         self.model.state_dim()
@@ -406,11 +430,11 @@ impl CompiledModel {
         self.model.clearance.iter().map(|c| c.contact.stiffness).collect()
     }
 
-    /// Consistent initial state y0 at t0 (kinematic assembly).
+    /// Consistent initial state y0 at t0 (kinematic assembly; the oil temperatures at their
+    /// initial values).
     fn initial_state<'py>(&self, py: Python<'py>, t0: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let (mut q, qd) = crate::assembly::assemble(&self.model, t0).map_err(|e| to_pyerr(py, &e))?;
-        q.extend(qd);
-        Ok(PyArray1::from_vec(py, q))
+        let (q, qd) = crate::assembly::assemble(&self.model, t0).map_err(|e| to_pyerr(py, &e))?;
+        Ok(PyArray1::from_vec(py, self.model.initial_state(&q, &qd)))
     }
 
     /// ẏ = f(t, y) for external integrators (no impact memory: δ̇⁽⁻⁾ is the current approach
@@ -421,23 +445,25 @@ impl CompiledModel {
         let mut guard = self.rhs_ws.lock().map_err(|_| PyRuntimeError::new_err("workspace poisoned"))?;
         let (ws, mem) = &mut *guard;
         ws.evaluate(&self.model, mem, t, &y).map_err(|e| to_pyerr(py, &e))?;
-        let n = dim / 2;
         let mut dy = vec![0.0; dim];
-        dy[..n].copy_from_slice(&y[n..]);
-        dy[n..].copy_from_slice(&ws.qdd);
+        ws.derivative(&y, &mut dy);
         Ok(PyArray1::from_vec(py, dy))
     }
 
-    /// The stiff part of ∂f/∂y at (t, y), dense (dim × dim): `[[0, I], [W_q, W_v]]` with the
-    /// clearance joints' force derivatives mapped through the constrained mobility (RADAU5's
-    /// Newton matrix; no impact memory, as `rhs`).
+    /// The stiff part of ∂f/∂y at (t, y), dense (dim × dim): `[[0, I, 0], [W_q, W_v, A_T],
+    /// [G_q, G_v, G_T]]` with the clearance joints' force derivatives mapped through the
+    /// constrained mobility and, with heat models, the rows and columns of the oil temperatures
+    /// (RADAU5's Newton matrix; no impact memory, as `rhs`).
     fn jacobian<'py>(&self, py: Python<'py>, t: f64, y: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let y = self.state_vector(py, &y)?;
         let dim = y.len();
-        let m = dim / 2;
         let mut sys = MechanismSystem::new(&self.model, Channels::default(), 0, None);
+        let k = sys.first_order_states();
+        let m = (dim - k) / 2;
         let (mut w_q, mut w_v) = (vec![0.0; m * m], vec![0.0; m * m]);
         sys.acceleration_jacobian(t, &y, &mut w_q, &mut w_v).map_err(|e| to_pyerr(py, &e))?;
+        let (mut a_z, mut z_y) = (vec![0.0; m * k], vec![0.0; k * dim]);
+        sys.border_jacobian(t, &y, &mut a_z, &mut z_y).map_err(|e| to_pyerr(py, &e))?;
         let mut rows = vec![vec![0.0; dim]; dim];
         for i in 0..m {
             rows[i][m + i] = 1.0;
@@ -445,6 +471,12 @@ impl CompiledModel {
                 rows[m + i][j] = w_q[i + j * m];
                 rows[m + i][m + j] = w_v[i + j * m];
             }
+            for c in 0..k {
+                rows[m + i][2 * m + c] = a_z[i + c * m];
+            }
+        }
+        for r in 0..k {
+            rows[2 * m + r].copy_from_slice(&z_y[r * dim..(r + 1) * dim]);
         }
         PyArray2::from_vec2(py, &rows).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }

@@ -2,11 +2,13 @@
 //! [`OdeSystem`] ([`MechanismSystem`]: right-hand side, outputs, the step bookkeeping), and
 //! what a failed run keeps. The system's other roles live beside it: `observe.rs` (monitors,
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
-//! `newton.rs` (the implicit methods' Jacobian), `diagnosis.rs` (where a failed run stood),
-//! `sections.rs` (Poincaré sections at exact times), `lyapunov.rs` (a shadow run for the largest
-//! Lyapunov exponent).
+//! `newton.rs` (the implicit methods' Jacobian), `heat.rs` (its rows and columns of the oil
+//! temperatures), `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at
+//! exact times), `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
 
+mod bearings;
 mod diagnosis;
+mod heat;
 pub mod lyapunov;
 mod newton;
 mod observe;
@@ -16,7 +18,6 @@ mod switching;
 use std::time::Instant;
 
 use crate::assembly::assemble;
-use crate::clearance::thermal::HeatBook;
 use crate::clearance::wear::WearBook;
 use crate::clearance::{ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
@@ -31,6 +32,7 @@ use crate::system::Workspace;
 use lyapunov::{LyapunovBook, Shadow};
 use sections::Sections;
 
+pub use bearings::BearingSummary;
 pub use crate::settings::RunSettings;
 
 /// Polled between steps (about every 64 accepted steps) with the time reached \[s\]; returning
@@ -60,6 +62,13 @@ pub struct RunOutput {
     pub monitors: Vec<MonitorResult>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
+    /// Evaluations of the clearance joints' force laws over the run, by every caller (a count
+    /// of work for the performance fingerprint; [`crate::clearance::force_evaluations`]).
+    pub force_evaluations: u64,
+    /// The bearing summary per clearance joint when the run asked for it
+    /// ([`RunSettings::bearings`]; `None` for a dry joint, or when the run stopped before the
+    /// window's start [`RunSettings::bearings_from`]), else empty.
+    pub bearings: Vec<Option<BearingSummary>>,
     /// The references the monitors were measured against, at the output times (only with
     /// [`crate::monitor::ReferenceGrid::record`]: for error traces).
     pub references: Vec<ReferenceStates>,
@@ -74,6 +83,11 @@ pub struct RunOutput {
 pub struct MechanismSystem<'a> {
     pub model: &'a Model,
     pub ws: Workspace,
+    /// The outputs' own workspace, so that evaluating them leaves `ws` holding what the steps
+    /// evaluated last: an implicit method's f(t1, y1), kept by the observers that evaluate it
+    /// first (`Workspace::evaluate_and_keep`), is then not computed twice. Built at the first
+    /// output that needs it.
+    output_ws: Option<Workspace>,
     pub memory: Vec<ImpactMemory>,
     /// The memory as it was during the step last accepted (what its outputs are evaluated with).
     step_memory: Vec<ImpactMemory>,
@@ -101,14 +115,21 @@ pub struct MechanismSystem<'a> {
     pub wear: Vec<Option<WearBook>>,
     /// [`RunSettings::wear_mark`].
     pub wear_mark: Option<f64>,
-    /// The oil temperature of each lubricated joint that models it (rust/clearance/thermal.rs).
-    pub heat: Vec<Option<HeatBook>>,
+
+    // bearings.rs
+    /// The bearing summary of each lubricated joint, when the run asks for it (else empty).
+    bearings: Vec<Option<bearings::BearingBook>>,
+    /// The start \[s\] of the bearing summary's window while its books wait for it (`None`
+    /// once they started: [`RunSettings::bearings_from`]).
+    bearings_from: Option<f64>,
 
     // switching.rs
     /// Each clearance joint's kinematics at the last and the next sample of a step
     /// ([`OdeSystem::switching_point`]).
     switch_prev: Vec<(f64, JointKinematics)>,
     switch_next: Vec<JointKinematics>,
+    /// Each clearance joint's kinematics at the step's end.
+    switch_end: Vec<JointKinematics>,
     /// The state components the clearance joints' kinematics read (q and q̇ of their bodies):
     /// all that the switch search takes from the dense output.
     switch_components: Vec<usize>,
@@ -130,6 +151,8 @@ pub struct MechanismSystem<'a> {
     /// The generalised force of one stiff item at the pose and at a probed pose.
     g_base: Vec<f64>,
     g_probe: Vec<f64>,
+    /// The state whose mobility columns `mobility` holds (heat.rs reuses them for the border).
+    mobility_at: Vec<f64>,
 }
 
 impl<'a> MechanismSystem<'a> {
@@ -137,6 +160,7 @@ impl<'a> MechanismSystem<'a> {
         MechanismSystem {
             model,
             ws: Workspace::new(model),
+            output_ws: None,
             memory: vec![ImpactMemory::default(); model.clearance.len()],
             step_memory: vec![ImpactMemory::default(); model.clearance.len()],
             recording: Recording::new(channels, capacity, model),
@@ -149,11 +173,13 @@ impl<'a> MechanismSystem<'a> {
             energy: channels.energy.then(|| EnergyBook::new(model)),
             wear: model.clearance.iter().enumerate().map(|(j, c)| c.wear.map(|law| WearBook::new(law, c, &model.initial_wear[j]))).collect(),
             wear_mark: None,
-            heat: model.clearance.iter().map(|c| c.film.and_then(|f| f.heat).map(HeatBook::new)).collect(),
+            bearings: Vec::new(),
+            bearings_from: None,
             accepted: 0,
             scratch: vec![0.0; model.state_dim()],
             switch_prev: vec![(0.0, JointKinematics::default()); model.clearance.len()],
             switch_next: vec![JointKinematics::default(); model.clearance.len()],
+            switch_end: vec![JointKinematics::default(); model.clearance.len()],
             switch_components: {
                 let n = 3 * model.n_bodies();
                 let mut bodies: Vec<usize> = model.clearance.iter().flat_map(|c| [c.bearing, c.journal]).flatten().map(|b| b as usize).collect();
@@ -166,6 +192,7 @@ impl<'a> MechanismSystem<'a> {
             mobility_done: vec![false; 3 * model.n_bodies()],
             g_base: vec![0.0; 3 * model.n_bodies()],
             g_probe: vec![0.0; 3 * model.n_bodies()],
+            mobility_at: Vec::new(),
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
             gap_resolution: 0.0,
@@ -193,10 +220,8 @@ impl OdeSystem for MechanismSystem<'_> {
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<()> {
-        let n = 3 * self.model.n_bodies();
         self.ws.evaluate(self.model, &self.memory, t, y)?;
-        dy[..n].copy_from_slice(&y[n..2 * n]);
-        dy[n..2 * n].copy_from_slice(&self.ws.qdd);
+        self.ws.derivative(y, dy);
         Ok(())
     }
 
@@ -212,9 +237,6 @@ impl OdeSystem for MechanismSystem<'_> {
         self.step_memory.copy_from_slice(&self.memory);
         self.observe_accepted_step(t0, t1, y1, dense)?;
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
-        // A viscosity that followed the oil temperature changed f(t1, y1): an explicit method's
-        // last stage is stale (rust/clearance/thermal.rs).
-        let heated = self.memory.iter().zip(&self.step_memory).any(|(a, b)| a.viscosity != b.viscosity);
         if self.sections.is_some() {
             self.record_sections(t1, dense)?;
         }
@@ -238,12 +260,27 @@ impl OdeSystem for MechanismSystem<'_> {
                 }
             }
         }
-        Ok(changed || heated)
+        Ok(changed)
     }
 
     /// See newton.rs.
     fn acceleration_jacobian(&mut self, t: f64, y: &[f64], a_q: &mut [f64], a_v: &mut [f64]) -> Result<bool> {
-        self.stiff_jacobian(t, y, a_q, a_v)
+        let done = self.stiff_jacobian(t, y, a_q, a_v)?;
+        if !self.ws.heat_rate.is_empty() {
+            // The border (heat.rs) asked next at this state reuses the mobility columns.
+            self.mobility_at.clear();
+            self.mobility_at.extend_from_slice(y);
+        }
+        Ok(done)
+    }
+
+    fn first_order_states(&self) -> usize {
+        self.ws.heat_rate.len()
+    }
+
+    /// See heat.rs.
+    fn border_jacobian(&mut self, t: f64, y: &[f64], a_z: &mut [f64], z_y: &mut [f64]) -> Result<()> {
+        self.heat_jacobian(t, y, a_z, z_y)
     }
 
     fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
@@ -251,17 +288,18 @@ impl OdeSystem for MechanismSystem<'_> {
     }
 
     fn output(&mut self, t: f64, y: &[f64]) -> Result<()> {
+        let ws = self.output_ws.get_or_insert_with(|| Workspace::new(self.model));
         if self.recording.needs_evaluation() {
             // Outputs lie inside the step just accepted: the memory it was integrated with.
-            self.ws.evaluate(self.model, &self.step_memory, t, y)?;
+            ws.evaluate(self.model, &self.step_memory, t, y)?;
         }
-        self.recording.push(t, y, &self.ws, &self.step_memory);
-        if self.heat.iter().any(Option::is_some) {
-            let temps = self.heat.iter().map(|b| b.as_ref().map_or(f64::NAN, |b| b.temperature_at(t)));
+        self.recording.push(t, y, ws, &self.step_memory);
+        if !self.ws.heat_rate.is_empty() {
+            let temps = self.model.clearance.iter().map(|c| c.heat().map_or(f64::NAN, |h| y[h.state]));
             self.recording.temperature.extend(temps);
         }
         if let Some(book) = &self.energy {
-            let e = EnergyBook::stored(self.model, &self.ws);
+            let e = EnergyBook::stored(self.model, ws);
             self.recording.energy.extend_from_slice(&e);
             self.recording.energy.extend_from_slice(&book.work_at(t));
         }
@@ -282,6 +320,7 @@ pub fn simulate(model: &Model, rs: &RunSettings, stop: Option<StopCheck<'_>>) ->
 /// an `Err` before the run.
 pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &References, stop: Option<StopCheck<'_>>) -> Result<RunOutput> {
     rs.validate_for(model)?;
+    let evaluations_before = crate::clearance::force_evaluations();
     for run in [&references.own_ideal, &references.nominal].into_iter().flatten() {
         crate::monitor::reference::check_bodies(run, &model.body_names)?;
     }
@@ -304,14 +343,15 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
+                bearings: Vec::new(),
                 references: Vec::new(),
                 sections: None,
                 lyapunov: None,
             })
         }
     };
-    let mut y0 = q0.clone();
-    y0.extend_from_slice(&qd0);
+    let y0 = model.initial_state(&q0, &qd0);
     let t_out: Vec<f64> = rs.t_out.iter().copied().filter(|t| *t >= rs.t0 && *t <= rs.t_end).collect();
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
@@ -323,7 +363,13 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
     sys.energy_start(rs.t0, &y0)?;
     sys.wear_mark = rs.wear_mark;
     sys.wear_start(rs.t0, &y0);
-    sys.heat_start(rs.t0);
+    if rs.bearings {
+        sys.bearings = vec![None; model.clearance.len()];
+        match rs.bearings_from.filter(|w| *w > rs.t0) {
+            Some(w) => sys.bearings_from = Some(w),
+            None => sys.bearings_start(rs.t0, &y0),
+        }
+    }
     if let Some(spec) = &rs.sections {
         sys.sections = Some(Sections::new(spec, rs.t0, rs.t_end, rs.channels, model));
         sys.sections_start(rs.t0, &y0)?;
@@ -371,6 +417,8 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
         wear: sys.wear,
+        force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
+        bearings: sys.bearings.iter().map(|b| b.map(|b| b.summary)).collect(),
         sections: sys.sections.map(|s| s.recording),
         lyapunov: sys.shadow.map(|s| s.book),
     })

@@ -47,7 +47,7 @@ impl MechanismSystem<'_> {
                 }
             }
             if let Stiff::Joint(j) = item {
-                if let Some(d) = model.clearance[j].force_derivatives(&self.ws.kin, &self.memory[j]) {
+                if let Some(d) = model.clearance[j].force_derivatives(&self.ws.kin, &model.clearance[j].memory_at(&self.memory[j], y)) {
                     for (slot, b) in bodies.iter().enumerate() {
                         let Some(b) = b.map(|b| b as usize) else { continue };
                         for comp in 0..6 {
@@ -69,7 +69,7 @@ impl MechanismSystem<'_> {
                     continue;
                 }
             }
-            self.stiff_force(item, t, &bodies, false);
+            self.stiff_force(item, t, y, &bodies, false);
             for &b in bodies.iter().flatten() {
                 let b = b as usize;
                 let saved = self.ws.kin[b];
@@ -81,7 +81,7 @@ impl MechanismSystem<'_> {
                     let delta = x[comp] - keep; // the step actually taken (exact in floating point)
                     self.ws.kin[b] = BodyKin::new(&x[..3], &x[3..]);
                     x[comp] = keep;
-                    self.stiff_force(item, t, &bodies, true);
+                    self.stiff_force(item, t, y, &bodies, true);
                     self.ws.kin[b] = saved;
                     let target = if comp < 3 { &mut *a_q } else { &mut *a_v };
                     let col = &mut target[(3 * b + comp % 3) * m..(3 * b + comp % 3 + 1) * m];
@@ -107,6 +107,9 @@ impl MechanismSystem<'_> {
     pub(super) fn jacobian_difference_step(&self, j: usize, y: &[f64]) -> f64 {
         let m = 3 * self.model.n_bodies();
         let generic = (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt();
+        if j >= 2 * m {
+            return generic; // an oil temperature (heat.rs): no body's clearance scale
+        }
         let (b, comp) = ((j % m) / 3, (j % m) % 3 + if j >= m { 3 } else { 0 });
         let x = [y[3 * b], y[3 * b + 1], y[3 * b + 2], y[m + 3 * b], y[m + 3 * b + 1], y[m + 3 * b + 2]];
         let mut step = generic;
@@ -151,11 +154,15 @@ impl MechanismSystem<'_> {
         steps
     }
 
-    /// The generalised force of one stiff item on its bodies, into `g_probe` (`probe`) or `g_base`.
-    fn stiff_force(&mut self, item: Stiff, t: f64, bodies: &[Option<u32>; 2], probe: bool) {
+    /// The generalised force of one stiff item on its bodies (the state `y` giving a joint's oil
+    /// temperature), into `g_probe` (`probe`) or `g_base`.
+    fn stiff_force(&mut self, item: Stiff, t: f64, y: &[f64], bodies: &[Option<u32>; 2], probe: bool) {
         let g = if probe { &mut self.g_probe } else { &mut self.g_base };
         match item {
-            Stiff::Joint(j) => joint_generalised_force(&self.model.clearance[j], &self.ws.kin, &self.memory[j], g),
+            Stiff::Joint(j) => {
+                let joint = &self.model.clearance[j];
+                joint_generalised_force(joint, &self.ws.kin, &joint.memory_at(&self.memory[j], y), g)
+            }
             Stiff::Force(i) => {
                 for &b in bodies.iter().flatten() {
                     g[3 * b as usize..3 * b as usize + 3].fill(0.0);
@@ -168,7 +175,7 @@ impl MechanismSystem<'_> {
 
 /// The generalised forces of one clearance joint on its two bodies, written to their entries
 /// of `g` (the other entries are left alone).
-fn joint_generalised_force(joint: &ClearanceJoint, kin: &[BodyKin], memory: &ImpactMemory, g: &mut [f64]) {
+pub(super) fn joint_generalised_force(joint: &ClearanceJoint, kin: &[BodyKin], memory: &ImpactMemory, g: &mut [f64]) {
     for &b in [joint.bearing, joint.journal].iter().flatten() {
         g[3 * b as usize..3 * b as usize + 3].fill(0.0);
     }

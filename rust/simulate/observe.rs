@@ -1,12 +1,12 @@
 //! What a run observes along its accepted steps besides the recorded samples: the monitors'
 //! extremes between the output times (rust/monitor/), the work integrals of the energy balance
-//! (rust/energy.rs, docs/physics.md §10.5), the wear books (rust/clearance/wear.rs, §12) and the
-//! oil temperatures (rust/clearance/thermal.rs, §4).
+//! (rust/energy.rs, docs/physics.md §10.5) and the wear books (rust/clearance/wear.rs, §12).
+//! A joint's forces are evaluated at the state's oil temperature ([`ClearanceJoint::memory_at`]).
 
 use super::MechanismSystem;
 use crate::clearance::wear::WearRate;
 use crate::energy::Powers;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::integrate::DenseOutput;
 use crate::monitor::target::State;
 use crate::monitor::{golden_section, Kinematics, Quantity, Target};
@@ -66,14 +66,15 @@ impl MechanismSystem<'_> {
             return k.eps;
         }
         let joint = &self.model.clearance[c];
-        let f = joint.force(&k, &self.memory[c]);
+        let memory = joint.memory_at(&self.memory[c], y);
+        let f = joint.force(&k, &memory);
         match quantity {
             Quantity::Force => f.total.norm(),
             Quantity::ContactForce => f.normal,
             Quantity::FilmForce => f.film_xi.hypot(f.film_eta),
             _ => {
                 let (w_b, w_j) = crate::clearance::body_rates(joint, &y[nq..2 * nq]);
-                let r = joint.readings(&k, &f, &self.memory[c], w_b, w_j);
+                let r = joint.readings(&k, &f, &memory, w_b, w_j);
                 match quantity {
                     Quantity::FilmThickness => r.film_thickness,
                     Quantity::FrictionTorque => r.torque_journal,
@@ -93,7 +94,7 @@ impl MechanismSystem<'_> {
         self.ws.evaluate(self.model, &self.memory, t, y)?;
         let n = 3 * self.model.n_bodies();
         let mut book = self.energy.take().unwrap_or_default();
-        let p = book.powers(self.model, &self.ws, &self.memory, t, &y[n..2 * n]);
+        let p = book.powers(self.model, &self.ws, t, &y[n..2 * n]);
         self.energy = Some(book);
         Ok(p)
     }
@@ -103,7 +104,7 @@ impl MechanismSystem<'_> {
         let joint = &self.model.clearance[j];
         let Some(law) = joint.wear else { return WearRate::default() };
         let k = self.joint_kinematics(j, y);
-        let f = joint.force(&k, &self.memory[j]);
+        let f = joint.force(&k, &joint.memory_at(&self.memory[j], y));
         let th = |b: Option<u32>| b.map_or(0.0, |i| y[3 * i as usize + 2]);
         WearRate::new(&law, &k, &f, th(joint.bearing), th(joint.journal))
     }
@@ -134,59 +135,6 @@ impl MechanismSystem<'_> {
                 }
             }
         }
-    }
-
-    /// Joint `j`'s power loss \[W\] at state `y` with its current memory (no KKT solve).
-    fn power_loss(&self, j: usize, y: &[f64]) -> f64 {
-        let joint = &self.model.clearance[j];
-        let k = self.joint_kinematics(j, y);
-        let f = joint.force(&k, &self.memory[j]);
-        let nq = 3 * self.model.n_bodies();
-        let (w_b, w_j) = crate::clearance::body_rates(joint, &y[nq..2 * nq]);
-        joint.readings(&k, &f, &self.memory[j], w_b, w_j).power_loss
-    }
-
-    /// Start the oil temperatures at the initial state (docs/physics.md §4, *Heat*).
-    pub fn heat_start(&mut self, t: f64) {
-        for (b, m) in self.heat.iter_mut().zip(self.memory.iter_mut()) {
-            if let Some(b) = b.as_mut() {
-                b.start(t);
-                m.viscosity = b.viscosity().unwrap_or(0.0);
-            }
-        }
-    }
-
-    /// Advance the oil temperatures over the accepted step (t0, t1] with its mean power loss,
-    /// integrated at the viscosity the step used, then set the viscosity of the next step
-    /// (rust/clearance/thermal.rs).
-    fn heat_step(&mut self, t0: f64, t1: f64, y1: &[f64], dense: &dyn DenseOutput) -> Result<()> {
-        let (mut s, mut s0) = (std::mem::take(&mut self.scratch), std::mem::take(&mut self.scratch2));
-        s0.resize(s.len(), 0.0);
-        dense.eval(0.5 * (t0 + t1), &mut s);
-        dense.eval(t0, &mut s0);
-        let mut result = Ok(());
-        for j in 0..self.heat.len() {
-            if self.heat[j].is_none() {
-                continue;
-            }
-            // All three at the step's viscosity (the last step's end ran at the one before).
-            let (start, mid, end) = (self.power_loss(j, &s0), self.power_loss(j, &s), self.power_loss(j, y1));
-            let Some(b) = self.heat[j].as_mut() else { continue };
-            match b.step(t0, t1, start, mid, end) {
-                Ok(_) => self.memory[j].viscosity = b.viscosity().unwrap_or(0.0),
-                Err(temp) => {
-                    let c = b.heat.vogel.map_or(f64::NAN, |v| v.c);
-                    let name = &self.model.clearance[j].name;
-                    result = Err(Error::NonFinite {
-                        t: t1,
-                        detail: format!("; clearance joint '{name}': oil temperature {temp} K at or below the Vogel law's c = {c} K (thermal)"),
-                    });
-                }
-            }
-        }
-        self.scratch = s;
-        self.scratch2 = s0;
-        result
     }
 
     /// Start the work integrals at the initial state.
@@ -369,9 +317,10 @@ impl MechanismSystem<'_> {
         if !self.monitors.is_empty() {
             self.observe_step(t0, t1, y1, dense)?;
         }
-        // The oil temperatures last: the step's monitors read the viscosity it was integrated with.
-        if self.heat.iter().any(Option::is_some) {
-            self.heat_step(t0, t1, y1, dense)?;
+        // The bearing summary when asked (bearings.rs): after the monitors, whose KKT solve at
+        // t1 it may reuse.
+        if !self.bearings.is_empty() {
+            self.bearings_step(t1, y1, dense)?;
         }
         Ok(())
     }

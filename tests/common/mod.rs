@@ -39,9 +39,31 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
         monitors: Vec::new(),
         reference: None,
         wear_mark: None,
+        bearings: false,
+        bearings_from: None,
         sections: None,
         lyapunov: None,
     }
+}
+
+/// Exact monitors of the film thickness and power loss of every lubricated clearance joint over
+/// [t0, t_end] (4 samples a step): what `clearsim` ran on every lubricated run before the bearing
+/// summary was asked for (issue 37), kept to measure what exact monitors cost.
+pub fn film_monitors(model: &Model, t0: f64, t_end: f64) -> Vec<clearsim::monitor::MonitorSpec> {
+    use clearsim::monitor::{MonitorSpec, Quantity, Target};
+    let spec = |j, quantity| MonitorSpec {
+        target: Target::Joint(j),
+        quantity,
+        reference: None,
+        t_start: t0,
+        bin_width: t_end - t0,
+        bins: 1,
+        limit: None,
+        samples_per_step: 4,
+        exact: true,
+    };
+    let lubricated = model.clearance.iter().enumerate().filter(|(_, c)| c.film.is_some()).map(|(j, _)| j);
+    lubricated.flat_map(|j| [spec(j, Quantity::FilmThickness), spec(j, Quantity::PowerLoss)]).collect()
 }
 
 /// The description in `tests/data/<name>.json`, read the way the Python layer hands it over.

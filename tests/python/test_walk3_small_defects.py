@@ -13,12 +13,12 @@ PUMP = Path(__file__).resolve().parents[1] / "data" / "scenes" / "beam_pump.toml
 
 
 def test_a_dry_joint_is_not_a_bearing_with_a_film():
-    """The pump (lubricated crank pin A, dry saddle O4) run with ``extremes=True``: the bearing
+    """The pump (lubricated crank pin A, dry saddle O4) run with ``extremes=True, bearings=True``: the bearing
     summary, the summary and the repr list A only, whose film is positive; O4's gap minimum (its
     penetration, negative) stays in ``extremes``. Before: ``bearings`` listed O4 with
     ``min_film_thickness`` −9.0 µm and the repr printed "O4: h_min -9.01 µm"."""
     m = clearsim.load_scene(PUMP)
-    res = m.simulate(0.05, dt_out=1e-3, extremes=True, progress=False)
+    res = m.simulate(0.05, dt_out=1e-3, extremes=True, bearings=True, progress=False)
     assert list(res.bearing_summary()) == ["A"] and list(res.summary()["bearings"]) == ["A"]
     assert res.bearing_summary()["A"]["min_film_thickness"] > 0.0
     assert "O4: h_min" not in repr(res) and "A: h_min" in repr(res)

@@ -109,6 +109,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     value = [-50.0, 0.0]             # N (fx, fy), constant, or a table in time or a driver's angle:
     # value = { driver = "crank-drive", angle = [0.0, 2.6, 2.8, 3.1], fx = [0.0, 0.0, -400.0, 0.0], period = 6.283185307179586 }
     # value = { t = [0.0, 0.01], fy = [0.0, 100.0] }
+    #   (interpolation = "cubic": a C² spline through the points, which then end no steps)
     # value = [{ amplitude = 20.0, omega = 30.0, phase = 0.0, offset = 0.0 }, 0.0]
     #                                # a component offset + amplitude cos(omega t + phase) [N, rad/s]
     # frame = "body"                 # components turn with the body (default "global")

@@ -12,6 +12,7 @@ from ..errors import InputError
 from ..forces import Harmonic
 from ..joints import Archard, Dry, Lubricated, Thermal, Vogel
 from ..mechanism import Mechanism
+from ..schema import INTERPOLATIONS
 from .toml_reader import REQUIRED, Source, Table, dotted_key
 
 _FORCE_KEYS = {
@@ -169,11 +170,13 @@ class _Builder:
                 for k, v in enumerate(value)
             )
         if isinstance(value, dict):
-            sub = t.table(key, ("t", "driver", "angle", "period", *columns))
+            sub = t.table(key, ("t", "driver", "angle", "period", "interpolation", *columns))
             assert sub is not None
             out: Dict[str, Any] = {k: sub.numbers(k) for k in ("t", "angle", *columns) if k in sub}
             if "driver" in sub:
                 out["driver"] = sub.string("driver")
+            if "interpolation" in sub:
+                out["interpolation"] = sub.string("interpolation", choices=INTERPOLATIONS)
             if "period" in sub:
                 out["period"] = sub.number("period")
             return out

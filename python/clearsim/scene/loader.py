@@ -116,7 +116,8 @@ class Scene:
 
     def run(self, ideal: Optional[bool] = None, progress: bool = False) -> SceneRun:
         """Run the scene: the ideal mechanism first (if ``ideal``, default from ``[outputs]``,
-        or if ``[reliability]`` names a body), then the mechanism; errors; the FOSM reliability
+        or if ``[reliability]`` names a body), then the mechanism (with its bearing summary,
+        ``bearings=True``, which the run's summary prints); errors; the FOSM reliability
         of ``[reliability]`` from the monitored nominal run (:func:`~clearsim.scene.alias.scene_fosm`).
 
         A :class:`SimulationError` of the clearance run is kept in ``SceneRun.failure`` with
@@ -132,7 +133,8 @@ class Scene:
         desc = self.path.stem if self.path is not None else "clearsim"
         for label, mech in _progress(jobs, progress, desc=desc):
             try:
-                results[label] = mech.simulate(self.simulation.t_end, progress=progress, **self.simulation.kwargs())
+                # The run's summary prints the bearing summary (clearsim run): ask for it.
+                results[label] = mech.simulate(self.simulation.t_end, progress=progress, bearings=label != "ideal", **self.simulation.kwargs())
             except SimulationError as err:
                 if label == "ideal" or err.result is None:
                     raise
