@@ -7,7 +7,7 @@
 //! ```
 //!
 //! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`), a method, `rk45`
-//! (default), `dop853` or `radau`, and optionally a mode: `bearings` or `film_monitors` (below),
+//! (default), `dop853`, `radau` or `rodas4`, and optionally a mode: `bearings` or `film_monitors` (below),
 //! or `monitored`, what a Study sample carries: a monitor of the last body's x displacement
 //! measured against the model's own ideal twin, made by the batch (rust/batch.rs), 8 points a
 //! step (the reference run is then in the count: run `monitored-bare` for it alone, i.e. the
@@ -33,8 +33,9 @@ fn main() {
         "rk45" => Method::Rk45,
         "dop853" => Method::Dop853,
         "radau" => Method::Radau,
+        "rodas4" => Method::Rodas4,
         other => {
-            eprintln!("unknown method {other:?}: rk45, dop853 or radau");
+            eprintln!("unknown method {other:?}: rk45, dop853, radau or rodas4");
             std::process::exit(2);
         }
     };

@@ -152,6 +152,19 @@ impl Workspace {
     }
 
     fn evaluate_afresh(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
+        self.eval_loads(model, memory, t, y)?;
+        if !self.heat_rate.is_empty() {
+            self.heat_balances(model, memory, y);
+        }
+        self.solve_kkt(t)
+    }
+
+    /// The KKT system's parts at (t, q, q̇) without solving it: constraints and their Jacobian
+    /// rows, `c` and the generalised forces `force` (what [`Workspace::evaluate`] solves for q̈;
+    /// the implicit methods difference them for their Newton matrices).
+    #[inline(always)] // into evaluate: outlined, a right-hand side took ~350 more instructions
+    /// Fails where a heated joint's oil temperature leaves its viscosity law's range.
+    pub fn eval_loads(&mut self, model: &Model, memory: &[ImpactMemory], t: f64, y: &[f64]) -> Result<()> {
         let n = 3 * model.n_bodies();
         let (q, qd) = (&y[..n], &y[n..2 * n]);
         self.eval_constraints(model, t, q, qd);
@@ -183,10 +196,7 @@ impl Workspace {
             self.joint_kin[j] = k;
             self.joint_force[j] = f;
         }
-        if !self.heat_rate.is_empty() {
-            self.heat_balances(model, memory, y);
-        }
-        self.solve_kkt(t)
+        Ok(())
     }
 
     /// Ṫ of every oil temperature from its joint's power loss at the forces just evaluated

@@ -98,11 +98,14 @@ fn large_chain_right_hand_side_allocates_nothing() {
 
 /// Allocations of a whole run (workspace set-up included) of `steps` steps of `method`.
 fn run_allocs(name: &str, method: Method, t_end: f64) -> (usize, usize) {
-    let model = common::model(name);
-    let y0 = common::initial_state(&model);
+    run_model_allocs(&common::model(name), method, t_end)
+}
+
+fn run_model_allocs(model: &clearsim::model::Model, method: Method, t_end: f64) -> (usize, usize) {
+    let y0 = common::initial_state(model);
     let s = Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() };
     let t_out = [t_end];
-    let mut sys = MechanismSystem::new(&model, Channels::default(), t_out.len(), None);
+    let mut sys = MechanismSystem::new(model, Channels::default(), t_out.len(), None);
     let (n, st) = count(|| integrate(&mut sys, method, 0.0, &y0, t_end, &t_out, &s).unwrap());
     (n, st.steps_accepted + st.steps_rejected)
 }
@@ -127,5 +130,20 @@ fn integration_steps_allocate_nothing() {
             assert!(sb > sa + 10, "{name} {method:?}: {sa} vs {sb} steps");
             assert_eq!(a, b, "{name} {method:?}: {sa} steps → {a} allocations, {sb} steps → {b}");
         }
+    }
+}
+
+/// The implicit methods on a large mechanism take the lifted sparse Newton matrices
+/// (rust/integrate/lifted.rs; a 40-link chain with a lubricated joint at every 4th): their
+/// refactorisations allocate nothing per step either.
+#[test]
+fn large_chain_implicit_steps_allocate_nothing() {
+    let model = clearsim::model::Model::compile(&common::lubricated_chain(40, 4)).unwrap();
+    for (method, t) in [(Method::Radau, 0.004), (Method::Rodas4, 0.0005)] {
+        run_model_allocs(&model, method, t);
+        let (a, sa) = run_model_allocs(&model, method, t);
+        let (b, sb) = run_model_allocs(&model, method, 2.0 * t);
+        assert!(sb > sa + 10, "{method:?}: {sa} vs {sb} steps");
+        assert_eq!(a, b, "{method:?}: {sa} steps → {a} allocations, {sb} steps → {b}");
     }
 }

@@ -12,7 +12,8 @@
 //! - `rodas4.rs`: the RODAS4 stepper; `radau.rs`: the RADAU5 stepper, with `radau_newton.rs`
 //!   (its two Newton matrices: build, factorise, solve) and `border.rs` (their rows and columns
 //!   of first-order states after (q, v): a heated joint's oil temperature); `lu.rs`: the real and
-//!   complex LU both use.
+//!   complex dense LU both use; `lifted.rs`: their sparse lifted form for large mechanisms, on
+//!   `sparse_lu.rs`.
 //! - `controller.rs`: error norms, step-size control (PI, predictive, the Newton limit) and the
 //!   initial step.
 
@@ -25,16 +26,18 @@ pub mod controller;
 pub mod dense;
 mod driver;
 mod explicit_rk;
+mod lifted;
 mod lu;
 mod method;
 mod ode;
 mod radau;
 mod radau_newton;
 mod rodas4;
+mod sparse_lu;
 pub mod tableau;
 
 pub use method::{Method, Settings, Stats};
-pub use ode::{DenseOutput, OdeSystem};
+pub use ode::{DenseOutput, LiftedPattern, OdeSystem};
 
 /// Integrate `sys` from `(t0, y0)` to `t_end`, calling `sys.output` at each time of `t_out`
 /// (sorted, inside `[t0, t_end]`; a time equal to `t0` is output from `y0`).

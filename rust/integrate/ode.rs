@@ -45,6 +45,26 @@ pub trait OdeSystem {
     fn acceleration_jacobian(&mut self, _t: f64, _y: &[f64], _a_q: &mut [f64], _a_v: &mut [f64]) -> Result<bool, Error> {
         Ok(false)
     }
+    /// A second-order system whose accelerations solve a sparse linear system
+    /// `A₀ (q̈, λ) = b(t, q, q̇)` (a mechanism: `A₀ = [[M, Φqᵀ], [Φq, 0]]`, `λ` its multipliers)
+    /// can hand the implicit methods its Jacobian in *lifted* form instead of the dense
+    /// `∂q̈/∂(q, q̇)` of [`OdeSystem::acceleration_jacobian`]: `A₀` and `K_x = ∂b/∂x` (`x` = `q` or
+    /// `q̇`, at fixed `(q̈, λ)`), both sparse, with `∂q̈/∂x = [I 0] A₀⁻¹ K_x`. The Newton matrices
+    /// then stay sparse (`lifted.rs`): their cost grows with the mechanism's size, not its cube.
+    /// This returns the pattern both live on, once per run, or `None` (the default: no lifted
+    /// form).
+    fn lifted_pattern(&mut self) -> Option<LiftedPattern> {
+        None
+    }
+    /// The values of `A₀`, `K_q` and `K_v` at `(t, y)` on the pattern of
+    /// [`OdeSystem::lifted_pattern`] (each of its length; entries outside a matrix's own
+    /// pattern zero). With `exact`, `K` is the whole derivative (for RODAS4, whose order needs
+    /// the exact Jacobian, and RADAU5's fallback); without, its stiff part, as in
+    /// [`OdeSystem::acceleration_jacobian`] (the same `∂q̈/∂x` then). Returns the right-hand
+    /// sides it evaluated (counted in the statistics).
+    fn lifted_jacobian(&mut self, _t: f64, _y: &[f64], _exact: bool, _a0: &mut [f64], _k_q: &mut [f64], _k_v: &mut [f64]) -> Result<usize, Error> {
+        Err(Error::invalid("lifted_jacobian", "system", "this system has no lifted Jacobian"))
+    }
     /// `k`: the state is `y = (q, v, z)` with `k` first-order states `z` after the second-order
     /// part (a heated joint's oil temperature). [`OdeSystem::acceleration_jacobian`] then covers
     /// `q`, `v` of length `m = (dim − k)/2` and [`OdeSystem::border_jacobian`] the rest. Default 0.
@@ -63,6 +83,25 @@ pub trait OdeSystem {
     fn difference_step(&self, j: usize, y: &[f64]) -> f64 {
         (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt()
     }
+}
+
+/// The pattern of a second-order system's Jacobian in lifted form
+/// ([`OdeSystem::lifted_pattern`]): a square `(m + c) × (m + c)` pattern, `m` = half the state
+/// (the coordinates `q`), `c` the multipliers, column by column with ascending row indices. It
+/// holds `A₀` and, in its first `m` columns, `K_q` and `K_v` (the Newton matrices in lifted form
+/// are `A₀` less a combination of the two: `lifted.rs`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LiftedPattern {
+    /// `m`: the coordinates; the state is `(q, q̇)`, `2m` long.
+    pub coords: usize,
+    /// `m + c`.
+    pub dim: usize,
+    /// Where each column's entries start in `row` (`dim + 1` entries).
+    pub col_start: Vec<usize>,
+    pub row: Vec<usize>,
+    /// Coordinates whose columns of `K` are structurally non-zero with `exact = false` (the
+    /// stiff part: what the dense structured form would factorise).
+    pub stiff_coords: usize,
 }
 
 /// Continuous extension of one accepted step.

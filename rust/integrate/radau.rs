@@ -352,6 +352,9 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
         self.newton = Some(NewtonSystems::new(sys, t, y)?);
         Ok(())
     }
+    // Not inlined into the driver loop: inlined, the Newton iteration's loops lost their bounds
+    // elision and cost 4 % more instructions on a lubricated cycle (codegen, measured).
+    #[inline(never)]
     fn attempt(&mut self, sys: &mut S, stats: &mut Stats, st: &Settings, t: f64, t1: f64, hs: f64, y: &[f64], ynew: &mut [f64]) -> Result<Trial, Error> {
         let n = y.len();
         let Some(newton) = self.newton.as_mut() else {
@@ -366,7 +369,7 @@ impl<S: OdeSystem> Stepper<S> for Radau5Stepper {
             }
             self.differenced_left = self.differenced_left.saturating_sub(1);
             newton.update(sys, stats, t, y, &self.f0, differenced)?;
-            (self.need_w, self.fails_on_w, self.w_from_hook) = (false, 0, newton.half.is_some() && !differenced);
+            (self.need_w, self.fails_on_w, self.w_from_hook) = (false, 0, newton.structured() && !differenced);
         } else if self.fails_on_w >= 3 && self.w_from_hook {
             newton.update(sys, stats, t, y, &self.f0, true)?;
             (self.fails_on_w, self.w_from_hook, self.differenced_left) = (0, false, DIFFERENCED_SPELL);

@@ -1,13 +1,15 @@
 //! RADAU5's two Newton matrices `σ₁I − W` and `σ₂I − W` (Hairer–Wanner IV.8.16–19): `W` built
 //! from the system's second-order hook [`OdeSystem::acceleration_jacobian`] or by forward
 //! differences of `f`, both matrices factorised for a step size, and the solves with them, in
-//! full form or in the half-size structured form of a second-order system ([`NewtonSystems`]),
-//! with first-order states after (q, v) as a border (`border.rs`). The LU factorisations are
-//! `lu.rs`'s; the iteration that uses the solves is `radau.rs`'s.
+//! full form, in the half-size structured form of a second-order system, or — for a large
+//! mechanism — in the sparse lifted form of `lifted.rs` ([`NewtonSystems`]); first-order states
+//! after (q, v) border the structured and the lifted form alike (`border.rs`). The dense LU
+//! factorisations are `lu.rs`'s; the iteration that uses the solves is `radau.rs`'s.
 
 use faer::Mat;
 
 use super::border::Border;
+use super::lifted::Lifted;
 use super::lu::{ComplexLu, Lu};
 use super::method::Stats;
 use super::ode::OdeSystem;
@@ -21,7 +23,14 @@ use crate::error::Error;
 /// `G = W_v + W_q/σ`, the system `(σI − G) x = b` then splits: `(σI − G)_CC x_C = b_C` on the
 /// active coordinates `C`, and `x_j = (b_j + Σ_c G_jc x_c)/σ` for the others, so only a
 /// `|C| × |C|` matrix is factorised (and `2|C|` for the complex one).
+///
+/// That block is dense, and so is every column of the mobility that builds it: a mechanism with
+/// more than [`LIFTED_ABOVE`] stiff coordinates (a chain with a clearance at every few joints)
+/// takes the lifted form instead (`lifted.rs`), whose cost grows linearly with its size.
 pub(super) struct NewtonSystems {
+    /// The lifted form, when the system offers it and is large enough (`half` and the dense
+    /// storage then unused).
+    lifted: Option<Lifted>,
     /// `m = (n − k)/2` for a second-order system with the structured hook, else `None`.
     pub(super) half: Option<usize>,
     /// Structured form with `k` first-order states after (q, v)
@@ -51,11 +60,34 @@ pub(super) struct NewtonSystems {
     df: Vec<f64>,
 }
 
+/// Stiff coordinates (columns of `W` the structured form factorises) above which the lifted form
+/// is taken, when the system offers it. Measured (instructions, `benches/one_cycle.rs`,
+/// `benches/chain_steps.rs`): the lifted form costs 10 % more on the lubricated nine-bar (12
+/// stiff coordinates) and 18 % more on the slider-crank (6); 5 % more on the 8-link chain of
+/// `chain_steps` (9), 12 % less on its 12-link one (15), 33 % less at 20 links (27).
+pub(super) const LIFTED_ABOVE: usize = 12;
+
 impl NewtonSystems {
+    /// Whether `W` comes from the system's structured hook or lifted form (not differenced).
+    pub(super) fn structured(&self) -> bool {
+        self.half.is_some() || self.lifted.is_some()
+    }
+
     pub(super) fn new<S: OdeSystem>(sys: &mut S, t: f64, y: &[f64]) -> Result<Self, Error> {
         let n = y.len();
         let extra = sys.first_order_states().min(n);
         let m = (n - extra) / 2;
+        if let Some(pattern) = sys.lifted_pattern().filter(|p| p.stiff_coords > LIFTED_ABOVE && 2 * p.coords + extra == n) {
+            let mut ns = Self::with_matrices(0, 0, false, Vec::new(), Vec::new());
+            ns.lifted = Some(Lifted::new(pattern, true));
+            if extra > 0 {
+                // The oil temperatures border the lifted core as they border the dense one.
+                let mut border = Border::new(m, extra);
+                sys.border_jacobian(t, y, &mut border.a_z, &mut border.g_y)?;
+                ns.border = Some(border);
+            }
+            return Ok(ns);
+        }
         let mut w_q = vec![0.0; m * m];
         let mut w_v = vec![0.0; m * m];
         let structured = (n - extra).is_multiple_of(2) && m > 0 && sys.acceleration_jacobian(t, y, &mut w_q, &mut w_v)?;
@@ -73,6 +105,7 @@ impl NewtonSystems {
         let m = (n - extra) / 2;
         let k = if structured { m } else { n };
         let mut ns = NewtonSystems {
+            lifted: None,
             half: structured.then_some(m),
             border: (structured && extra > 0).then(|| Border::new(m, extra)),
             jac: if structured { Mat::zeros(0, 0) } else { Mat::zeros(n, n) },
@@ -102,6 +135,15 @@ impl NewtonSystems {
     /// right-hand sides: every term of `∂q̈/∂(q, q̇)`, not only the clearance forces').
     pub(super) fn update<S: OdeSystem>(&mut self, sys: &mut S, stats: &mut Stats, t: f64, y: &[f64], f0: &[f64], differenced: bool) -> Result<(), Error> {
         stats.jacobians += 1;
+        if let Some(lifted) = self.lifted.as_mut() {
+            // Differenced: the whole K (constraint curvature, Baumgarte terms) in place of its
+            // stiff part, still sparse.
+            stats.rhs_evals += lifted.update(sys, t, y, differenced)?;
+            if let Some(b) = self.border.as_mut() {
+                sys.border_jacobian(t, y, &mut b.a_z, &mut b.g_y)?;
+            }
+            return Ok(());
+        }
         if self.half.is_some() && !differenced {
             sys.acceleration_jacobian(t, y, &mut self.w_q, &mut self.w_v)?;
             if let Some(b) = self.border.as_mut() {
@@ -201,6 +243,11 @@ impl NewtonSystems {
 
     /// [`Self::factor`] without the border: the full matrix, or the (q, v) core.
     fn factor_core(&mut self, sigma: f64, a: f64, b: f64) {
+        if let Some(lifted) = self.lifted.as_mut() {
+            lifted.factor_real(sigma);
+            lifted.factor_complex(a, b);
+            return;
+        }
         let den = a * a + b * b;
         (self.sigma, self.a, self.b, self.p, self.q) = (sigma, a, b, a / den, -b / den);
         let (p, q) = (self.p, self.q);
@@ -249,6 +296,10 @@ impl NewtonSystems {
 
     /// [`Self::solve_real`] on the full state, or on the (q, v) core (`x` 2m long).
     fn solve_real_core(&mut self, x: &mut [f64]) {
+        if let Some(lifted) = self.lifted.as_mut() {
+            lifted.solve_real(x);
+            return;
+        }
         let Some(m) = self.half else {
             self.real.solve(x);
             return;
@@ -293,6 +344,10 @@ impl NewtonSystems {
 
     /// [`Self::solve_complex`] on the full state, or on the (q, v) core (2m long).
     fn solve_complex_core(&mut self, xr: &mut [f64], xi: &mut [f64]) {
+        if let Some(lifted) = self.lifted.as_mut() {
+            lifted.solve_complex(xr, xi);
+            return;
+        }
         let Some(m) = self.half else {
             self.complex.solve(xr, xi);
             return;

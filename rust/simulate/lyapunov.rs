@@ -275,7 +275,6 @@ mod tests {
                 bearings_from: None,
                 sections: None,
                 lyapunov: Some(spec),
-                reference: None,
             };
             let out = super::super::simulate(&model, &rs, None).unwrap();
             let book = out.lyapunov.unwrap();

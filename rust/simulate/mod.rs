@@ -3,12 +3,14 @@
 //! what a failed run keeps. The system's other roles live beside it: `observe.rs` (monitors,
 //! energy, wear along the steps), `switching.rs` (contact and friction switches, impact memory),
 //! `newton.rs` (the implicit methods' Jacobian), `heat.rs` (its rows and columns of the oil
-//! temperatures), `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at
-//! exact times), `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
+//! temperatures), `lifted.rs` (the same in sparse lifted form, for large mechanisms),
+//! `diagnosis.rs` (where a failed run stood), `sections.rs` (Poincaré sections at exact times),
+//! `lyapunov.rs` (a shadow run for the largest Lyapunov exponent).
 
 mod bearings;
 mod diagnosis;
 mod heat;
+mod lifted;
 pub mod lyapunov;
 mod newton;
 mod observe;
@@ -23,7 +25,7 @@ use crate::clearance::{ImpactMemory, JointKinematics};
 use crate::constraints::BodyKin;
 use crate::energy::EnergyBook;
 use crate::error::{Error, Result};
-use crate::integrate::{integrate, DenseOutput, Method, OdeSystem, Stats};
+use crate::integrate::{integrate, DenseOutput, LiftedPattern, Method, OdeSystem, Stats};
 use crate::model::Model;
 use crate::monitor::reference::ReferenceStates;
 use crate::monitor::{Monitor, MonitorResult, References};
@@ -153,6 +155,9 @@ pub struct MechanismSystem<'a> {
     g_probe: Vec<f64>,
     /// The state whose mobility columns `mobility` holds (heat.rs reuses them for the border).
     mobility_at: Vec<f64>,
+    // lifted.rs
+    /// The lifted pattern's layout, built when an implicit method asks for it.
+    lifted: Option<Box<lifted::LiftedLayout>>,
 }
 
 impl<'a> MechanismSystem<'a> {
@@ -192,6 +197,7 @@ impl<'a> MechanismSystem<'a> {
             mobility_done: vec![false; 3 * model.n_bodies()],
             g_base: vec![0.0; 3 * model.n_bodies()],
             g_probe: vec![0.0; 3 * model.n_bodies()],
+            lifted: None,
             mobility_at: Vec::new(),
             last_t: 0.0,
             last_y: vec![0.0; model.state_dim()],
@@ -281,6 +287,15 @@ impl OdeSystem for MechanismSystem<'_> {
     /// See heat.rs.
     fn border_jacobian(&mut self, t: f64, y: &[f64], a_z: &mut [f64], z_y: &mut [f64]) -> Result<()> {
         self.heat_jacobian(t, y, a_z, z_y)
+    }
+
+    /// See lifted.rs.
+    fn lifted_pattern(&mut self) -> Option<LiftedPattern> {
+        self.lifted_pattern_of()
+    }
+
+    fn lifted_jacobian(&mut self, t: f64, y: &[f64], exact: bool, a0: &mut [f64], k_q: &mut [f64], k_v: &mut [f64]) -> Result<usize> {
+        self.lifted_values(t, y, exact, a0, k_q, k_v)
     }
 
     fn difference_step(&self, j: usize, y: &[f64]) -> f64 {

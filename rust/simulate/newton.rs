@@ -20,13 +20,10 @@ impl MechanismSystem<'_> {
         let m = 3 * model.n_bodies();
         a_q.fill(0.0);
         a_v.fill(0.0);
-        // The stiff forces: clearance joints, and springs, rotational springs and motors (their
-        // stiffness and damping); applied loads and torques depend on time only.
-        let springs = model.forces.iter().enumerate().filter(|(_, f)| f.stiff_bodies().is_some()).map(|(i, _)| Stiff::Force(i));
-        let items = (0..model.clearance.len()).map(Stiff::Joint).chain(springs); // no allocation
         if model.clearance.is_empty() && !model.forces.iter().any(|f| f.stiff_bodies().is_some()) {
             return Ok(true);
         }
+        let items = stiff_items(model);
         self.ws.eval_constraints(model, t, &y[..m], &y[m..2 * m]);
         self.ws.factor_kkt(t)?;
         if self.mobility.len() != m * m {
@@ -34,10 +31,7 @@ impl MechanismSystem<'_> {
         }
         self.mobility_done.fill(false);
         for item in items {
-            let bodies = match item {
-                Stiff::Joint(j) => [model.clearance[j].bearing, model.clearance[j].journal],
-                Stiff::Force(i) => model.forces[i].stiff_bodies().unwrap_or([None, None]),
-            };
+            let bodies = self.stiff_item_bodies(item);
             for &b in bodies.iter().flatten() {
                 for k in 3 * b as usize..3 * b as usize + 3 {
                     if !self.mobility_done[k] {
@@ -46,51 +40,19 @@ impl MechanismSystem<'_> {
                     }
                 }
             }
-            if let Stiff::Joint(j) = item {
-                if let Some(d) = model.clearance[j].force_derivatives(&self.ws.kin, &model.clearance[j].memory_at(&self.memory[j], y)) {
-                    for (slot, b) in bodies.iter().enumerate() {
-                        let Some(b) = b.map(|b| b as usize) else { continue };
-                        for comp in 0..6 {
-                            let target = if comp < 3 { &mut *a_q } else { &mut *a_v };
-                            let col = &mut target[(3 * b + comp % 3) * m..(3 * b + comp % 3 + 1) * m];
-                            for (oslot, ob) in bodies.iter().enumerate() {
-                                let Some(ob) = ob.map(|ob| ob as usize) else { continue };
-                                for o in 0..3 {
-                                    let dv = d[3 * oslot + o][6 * slot + comp];
-                                    if dv != 0.0 {
-                                        for (c, s) in col.iter_mut().zip(&self.mobility[(3 * ob + o) * m..(3 * ob + o + 1) * m]) {
-                                            *c += dv * s;
-                                        }
-                                    }
-                                }
-                            }
-                        }
-                    }
-                    continue;
-                }
-            }
-            self.stiff_force(item, t, y, &bodies, false);
-            for &b in bodies.iter().flatten() {
-                let b = b as usize;
-                let saved = self.ws.kin[b];
-                let mut x = [saved.x, saved.y, saved.th, saved.vx, saved.vy, saved.w];
-                let steps = self.jacobian_steps(item, b, &x);
+            let d = self.stiff_block(item, t, y);
+            for (slot, b) in bodies.iter().enumerate() {
+                let Some(b) = b.map(|b| b as usize) else { continue };
                 for comp in 0..6 {
-                    let keep = x[comp];
-                    x[comp] += steps[comp];
-                    let delta = x[comp] - keep; // the step actually taken (exact in floating point)
-                    self.ws.kin[b] = BodyKin::new(&x[..3], &x[3..]);
-                    x[comp] = keep;
-                    self.stiff_force(item, t, y, &bodies, true);
-                    self.ws.kin[b] = saved;
                     let target = if comp < 3 { &mut *a_q } else { &mut *a_v };
                     let col = &mut target[(3 * b + comp % 3) * m..(3 * b + comp % 3 + 1) * m];
-                    for &ob in bodies.iter().flatten() {
-                        for o in 3 * ob as usize..3 * ob as usize + 3 {
-                            let d = (self.g_probe[o] - self.g_base[o]) / delta;
-                            if d != 0.0 {
-                                for (c, s) in col.iter_mut().zip(&self.mobility[o * m..(o + 1) * m]) {
-                                    *c += d * s;
+                    for (oslot, ob) in bodies.iter().enumerate() {
+                        let Some(ob) = ob.map(|ob| ob as usize) else { continue };
+                        for o in 0..3 {
+                            let dv = d[3 * oslot + o][6 * slot + comp];
+                            if dv != 0.0 {
+                                for (c, s) in col.iter_mut().zip(&self.mobility[(3 * ob + o) * m..(3 * ob + o + 1) * m]) {
+                                    *c += dv * s;
                                 }
                             }
                         }
@@ -106,6 +68,15 @@ impl MechanismSystem<'_> {
     /// √ε_mach step, or smaller where a clearance joint of the body needs it.
     pub(super) fn jacobian_difference_step(&self, j: usize, y: &[f64]) -> f64 {
         let m = 3 * self.model.n_bodies();
+        let b = Some(((j % m) / 3) as u32);
+        let joints = self.model.clearance.iter().enumerate().filter(|(_, c)| c.bearing == b || c.journal == b).map(|(i, _)| i);
+        self.difference_step_among(j, y, joints)
+    }
+
+    /// [`MechanismSystem::jacobian_difference_step`] with the clearance joints on component
+    /// `j`'s body given (`joints`).
+    pub(super) fn difference_step_among(&self, j: usize, y: &[f64], joints: impl Iterator<Item = usize>) -> f64 {
+        let m = 3 * self.model.n_bodies();
         let generic = (f64::EPSILON * 1e-5f64.max(y[j].abs())).sqrt();
         if j >= 2 * m {
             return generic; // an oil temperature (heat.rs): no body's clearance scale
@@ -113,10 +84,8 @@ impl MechanismSystem<'_> {
         let (b, comp) = ((j % m) / 3, (j % m) % 3 + if j >= m { 3 } else { 0 });
         let x = [y[3 * b], y[3 * b + 1], y[3 * b + 2], y[m + 3 * b], y[m + 3 * b + 1], y[m + 3 * b + 2]];
         let mut step = generic;
-        for (i, joint) in self.model.clearance.iter().enumerate() {
-            if joint.bearing == Some(b as u32) || joint.journal == Some(b as u32) {
-                step = step.min(self.jacobian_steps(Stiff::Joint(i), b, &x)[comp]);
-            }
+        for i in joints {
+            step = step.min(self.jacobian_steps(Stiff::Joint(i), b, &x)[comp]);
         }
         step
     }
@@ -124,12 +93,66 @@ impl MechanismSystem<'_> {
 
 /// A force whose derivatives enter the implicit methods' Newton matrix.
 #[derive(Clone, Copy)]
-enum Stiff {
+pub(super) enum Stiff {
     Joint(usize),
     Force(usize),
 }
 
+/// The stiff forces of `model`, in order: clearance joints, and springs, rotational springs and
+/// motors (their stiffness and damping); applied loads and torques depend on time only.
+pub(super) fn stiff_items(model: &crate::model::Model) -> impl Iterator<Item = Stiff> + '_ {
+    let springs = model.forces.iter().enumerate().filter(|(_, f)| f.stiff_bodies().is_some()).map(|(i, _)| Stiff::Force(i));
+    (0..model.clearance.len()).map(Stiff::Joint).chain(springs) // no allocation
+}
+
 impl MechanismSystem<'_> {
+    /// The two bodies of a stiff item (`None`: the ground).
+    pub(super) fn stiff_item_bodies(&self, item: Stiff) -> [Option<u32>; 2] {
+        match item {
+            Stiff::Joint(j) => [self.model.clearance[j].bearing, self.model.clearance[j].journal],
+            Stiff::Force(i) => self.model.forces[i].stiff_bodies().unwrap_or([None, None]),
+        }
+    }
+
+    /// The derivatives of one stiff item's generalised forces on its two bodies at the pose of
+    /// the workspace (`ws.kin`): `d[3·oslot + o][6·slot + comp]` = ∂g(body `oslot`, coordinate
+    /// `o`)/∂(body `slot`'s x, y, θ, ẋ, ẏ, θ̇)`[comp]`, zero where a body is the ground. A
+    /// clearance joint's law gives them with an exact chain rule where it can
+    /// ([`ClearanceJoint::force_derivatives`]); otherwise the force is differenced body by body
+    /// (forces, kinematics and moment arms recomputed, impact memory held).
+    pub(super) fn stiff_block(&mut self, item: Stiff, t: f64, y: &[f64]) -> [[f64; 12]; 6] {
+        if let Stiff::Joint(j) = item {
+            if let Some(d) = self.model.clearance[j].force_derivatives(&self.ws.kin, &self.model.clearance[j].memory_at(&self.memory[j], y)) {
+                return d;
+            }
+        }
+        let bodies = self.stiff_item_bodies(item);
+        let mut d = [[0.0; 12]; 6];
+        self.stiff_force(item, t, y, &bodies, false);
+        for (slot, b) in bodies.iter().enumerate() {
+            let Some(b) = b.map(|b| b as usize) else { continue };
+            let saved = self.ws.kin[b];
+            let mut x = [saved.x, saved.y, saved.th, saved.vx, saved.vy, saved.w];
+            let steps = self.jacobian_steps(item, b, &x);
+            for comp in 0..6 {
+                let keep = x[comp];
+                x[comp] += steps[comp];
+                let delta = x[comp] - keep; // the step actually taken (exact in floating point)
+                self.ws.kin[b] = BodyKin::new(&x[..3], &x[3..]);
+                x[comp] = keep;
+                self.stiff_force(item, t, y, &bodies, true);
+                self.ws.kin[b] = saved;
+                for (oslot, ob) in bodies.iter().enumerate() {
+                    let Some(ob) = ob.map(|ob| ob as usize) else { continue };
+                    for o in 0..3 {
+                        d[3 * oslot + o][6 * slot + comp] = (self.g_probe[3 * ob + o] - self.g_base[3 * ob + o]) / delta;
+                    }
+                }
+            }
+        }
+        d
+    }
+
     /// Finite-difference steps in body `b`'s (x, y, θ, ẋ, ẏ, θ̇) for the Newton matrix of `item`.
     /// A clearance joint's force varies on the scale of its clearance c, not of the body's
     /// coordinates: steps of √ε_mach·max(|x|, 1) m would move a µm journal by 1e-8 m, across

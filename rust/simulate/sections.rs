@@ -102,7 +102,6 @@ mod tests {
             bearings_from: None,
             sections: Some(SectionSpec { period: 0.7, phase: std::f64::consts::FRAC_PI_2 }),
             lyapunov: None,
-            reference: None,
         };
         rs.validate().unwrap();
         simulate(&model, &rs, None).unwrap()

@@ -91,7 +91,36 @@ pub fn initial_state(model: &Model) -> Vec<f64> {
 /// given a dry clearance (0.1 mm on a 5 mm pin) instead of an ideal revolute: the scaling model of
 /// `benches/chain.rs` (2 constraint rows per ideal joint).
 pub fn chain(n: usize, clearance_at: &[usize]) -> MechanismDesc {
-    use clearsim::description::{BodyDesc, ClearanceJointDesc, ClearanceModelDesc, DryDesc, JointDesc};
+    use clearsim::description::{ClearanceModelDesc, DryDesc};
+    chain_with(n, |i| clearance_at.contains(&i).then(|| ClearanceModelDesc::Dry(DryDesc::steel())))
+}
+
+/// The chain of [`chain`] with a lubricated clearance joint (long film, 0.1 mm on a 5 mm pin,
+/// 10 mm long, μ = 0.1 Pa s) at every `every`-th joint, the first included: the model of the
+/// implicit methods' per-step cost against size (`benches/chain_steps.rs`).
+pub fn lubricated_chain(n: usize, every: usize) -> MechanismDesc {
+    use clearsim::description::{ClearanceModelDesc, DryDesc, LubricatedDesc, ViscosityDesc};
+    let film = LubricatedDesc {
+        film: Default::default(),
+        supply: Default::default(),
+        viscosity: ViscosityDesc::Constant(0.1),
+        length: 0.01,
+        eps0: 2e-6,
+        m: 0.5,
+        e0: None,
+        eps_max: 0.99,
+        dry: DryDesc::steel(),
+        roughness: None,
+        boundary_friction: None,
+        thermal: None,
+    };
+    chain_with(n, |i| i.is_multiple_of(every).then(|| ClearanceModelDesc::Lubricated(film.clone())))
+}
+
+/// The chain of [`chain`] with joint `i` a clearance joint of the model `clearance(i)` where it
+/// gives one (0.1 mm on a 5 mm pin), else an ideal revolute.
+pub fn chain_with(n: usize, clearance: impl Fn(usize) -> Option<clearsim::description::ClearanceModelDesc>) -> MechanismDesc {
+    use clearsim::description::{BodyDesc, ClearanceJointDesc, JointDesc};
     let (l, angle) = (0.1, -std::f64::consts::FRAC_PI_6);
     let (dx, dy) = (l * angle.cos(), l * angle.sin());
     let bodies = (0..n)
@@ -109,7 +138,7 @@ pub fn chain(n: usize, clearance_at: &[usize]) -> MechanismDesc {
     for i in 0..n {
         let (body_a, point_a) = if i == 0 { (None, [0.0, 0.0]) } else { (Some(i - 1), [l / 2.0, 0.0]) };
         let (body_b, point_b) = (Some(i), [-l / 2.0, 0.0]);
-        if clearance_at.contains(&i) {
+        if let Some(model) = clearance(i) {
             clearance_joints.push(ClearanceJointDesc {
                 name: format!("c{i}"),
                 bearing_body: body_a,
@@ -118,7 +147,7 @@ pub fn chain(n: usize, clearance_at: &[usize]) -> MechanismDesc {
                 journal_point: point_b,
                 journal_radius: 5e-3,
                 clearance: 1e-4,
-                model: ClearanceModelDesc::Dry(DryDesc::steel()),
+                model,
                 initial_eccentricity: [0.0, 0.0],
             });
         } else {

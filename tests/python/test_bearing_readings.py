@@ -263,3 +263,18 @@ def test_roughness_replaces_the_transition_band_and_is_checked() -> None:
     m.clearance_joint("pin2", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=clearsim.Lubricated(length=0.01, film="short", roughness=C / 3))
     with pytest.raises(clearsim.InputError, match=r"clearance joint 'pin2'.roughness.*quarter of the clearance"):
         m.simulate(0.001, progress=False)
+
+
+def test_the_summary_comes_with_a_point_among_the_extremes() -> None:
+    """bearing_summary (and summary()) of a run that also tracks a body point's extremes
+    (``extremes=[("rotor", (x, y))]``) is the same as without it. Before: ``KeyError:
+    'coordinate'``, from repr(res) too (walk 5: the summary looked for its film monitors among the
+    extremes' monitors, and a point's monitor has no coordinate; main's core-tracked summary since)."""
+    m = rotor("finite", 0.04, 1000.0)
+    plain = m.simulate(0.02, dt_out=1e-3, bearings=True, progress=False).bearing_summary()
+    with_point = m.simulate(0.02, dt_out=1e-3, bearings=True, extremes=[("rotor", (0.01, 0.0))], progress=False)
+    assert with_point.bearing_summary() == plain and with_point.summary()["bearings"] == plain
+    assert "pin: h_min" in repr(with_point)  # the Result's repr (a notebook's display) reads it too
+    # the point's own extremes: a point 10 mm from the centroid of a rotor turning at OMEGA
+    speed = with_point.extremes("rotor", "velocity", "magnitude", point=(0.01, 0.0))
+    assert speed.max == pytest.approx(OMEGA * 0.01, rel=1e-3)

@@ -51,6 +51,11 @@ def test_study_inputs_are_set_by_path():
         (('path = "B.clearance"', 'path = "Q.clearance"'), "path", "no element named 'Q'"),
         (('distribution = "normal"\nmean = 0.5e-3\nstd = 0.05e-3\n\n[study.tolerance]', 'distribution = "normal"\nmean = 0.5e-3\nstd = -0.05e-3\n\n[study.tolerance]'), "std", "must not be negative"),
         (('methods = ["form", "importance_sampling", "sobol"]', 'methods = ["form", "guess"]'), "methods", "guess"),
+        # the window and the estimators' settings (walk 5: named without their line before)
+        (("cycles = 1.0", "cycles = 1.0\nskip_cycles = -1.0"), "skip_cycles", "invalid study.skip_cycles = -1.0"),
+        (("cycles = 1.0", "cycles = 0.0"), "cycles", "invalid study.cycles = 0.0"),
+        (("cov = 0.1", "cov = -0.1"), "cov", "invalid study.cov = -0.1"),
+        (("cycles = 1.0", "cycles = 1.0\nbin_width = 0.0"), "bin_width", "invalid study.bin_width = 0.0"),
     ],
 )
 def test_bad_study_tables_are_named(tmp_path, edit, field, words):

@@ -415,3 +415,144 @@ def test_model_path(name, kind, t0, path):
         # the window covers SPAN × 360° = 18°: one bin of 18° (two if it straddles an edge)
         assert 1 <= seen.sum() <= 2 and np.all(bins.reliability[seen] == 1.0)
         assert np.isfinite(bins.fosm.min_reliability)
+
+
+# ---------------------------------------------------------------------- walk 5: a six-bar of our own
+#: tests/data/scenes/feeder_six_bar.toml: a Stephenson III six-bar feeder arm whose finger tip is
+#: the output (a tool point, not a centroid); link lengths and a pivot are [parameters].
+FEEDER = Path(__file__).resolve().parents[1] / "data" / "scenes" / "feeder_six_bar.toml"
+FEEDER_NOMINAL = dict(r2=0.030, r3=0.100, r4=0.080, l5=0.110, l6=0.100, o6x=-0.090, o6y=0.160)
+FEEDER_O4, FEEDER_C, FEEDER_ARM_HALF, FINGER = (0.100, 0.0), (0.0, 0.040), 0.075, (0.075, -0.015)
+FEEDER_OMEGA = 240.0 * 2 * math.pi / 60  # rad/s
+
+
+def _circles(p: Tuple[float, float], rp: float, q: Tuple[float, float], rq: float, side: int) -> Tuple[float, float]:
+    """The intersection of the circles about p (radius rp) and q (rq) on the ``side`` of p → q."""
+    dx, dy = q[0] - p[0], q[1] - p[1]
+    d = math.hypot(dx, dy)
+    a = (rp**2 - rq**2 + d**2) / (2 * d)
+    h = math.sqrt(rp**2 - a**2)
+    return (p[0] + (a * dx - side * h * dy) / d, p[1] + (a * dy + side * h * dx) / d)
+
+
+def feeder_pose(theta: float, r2: float, r3: float, r4: float, l5: float, l6: float, o6x: float, o6y: float) -> Dict[str, Any]:
+    """The six-bar's pins at crank angle ``theta`` [rad] by its loop closure (closed form) and the
+    arm's angle [rad]."""
+    a = (r2 * math.cos(theta), r2 * math.sin(theta))
+    b = _circles(a, r3, FEEDER_O4, r4, +1)
+    ex, ey = (b[0] - a[0]) / r3, (b[1] - a[1]) / r3
+    c = ((a[0] + b[0]) / 2 - FEEDER_C[1] * ey, (a[1] + b[1]) / 2 + FEEDER_C[1] * ex)
+    d = _circles(c, l5, (o6x, o6y), l6, -1)
+    return {"A": a, "B": b, "C": c, "D": d, "arm": math.atan2(d[1] - o6y, d[0] - o6x)}
+
+
+def finger_closed_form(theta: float, **lengths: float) -> np.ndarray:
+    """The finger tip's global position [m] at crank angle ``theta`` with ideal joints."""
+    g = {**FEEDER_NOMINAL, **lengths}
+    phi = feeder_pose(theta, **g)["arm"]
+    x, y = FEEDER_ARM_HALF + FINGER[0], FINGER[1]
+    return np.array([g["o6x"] + x * math.cos(phi) - y * math.sin(phi), g["o6y"] + x * math.sin(phi) + y * math.cos(phi)])
+
+
+def feeder(joints: str = "clearance", cA: float = 15e-6, cD: float = 50e-6, cO6: float = 30e-6, **lengths: float) -> clearsim.Mechanism:
+    """The scene's mechanism written in Python (a build function, its pose from the closed form):
+    the crank pin A lubricated, the arm's pins D and O6 dry; ``joints="ideal"`` pins them all."""
+    g = {**FEEDER_NOMINAL, **lengths}
+    p = feeder_pose(0.0, **g)
+    a, b, c, d, phi = p["A"], p["B"], p["C"], p["D"], p["arm"]
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("crank", mass=0.10, inertia=2.0e-5, ends=((0.0, 0.0), a))
+    m.add_body("coupler", mass=0.25, inertia=2.1e-4, ends=(a, b))
+    m.add_body("rocker", mass=0.12, inertia=6.4e-5, ends=(FEEDER_O4, b))
+    m.add_body("link5", mass=0.10, inertia=1.0e-4, ends=(c, d))
+    arm_centre = (g["o6x"] + FEEDER_ARM_HALF * math.cos(phi), g["o6y"] + FEEDER_ARM_HALF * math.sin(phi))
+    m.add_body("arm", mass=0.30, inertia=5.6e-4, position=arm_centre, angle=phi)
+    m.revolute("ground", (0.0, 0.0), "crank", (-g["r2"] / 2, 0.0), name="O2")
+    m.revolute("ground", FEEDER_O4, "rocker", (-g["r4"] / 2, 0.0), name="O4")
+    m.revolute("coupler", (g["r3"] / 2, 0.0), "rocker", (g["r4"] / 2, 0.0), name="B")
+    m.revolute("coupler", FEEDER_C, "link5", (-g["l5"] / 2, 0.0), name="C")
+    m.driver("crank", omega=FEEDER_OMEGA, name="motor")
+    pins = {"A": ("coupler", (-g["r3"] / 2, 0.0), "crank", (g["r2"] / 2, 0.0)), "D": ("arm", (g["l6"] - FEEDER_ARM_HALF, 0.0), "link5", (g["l5"] / 2, 0.0)),
+            "O6": ("arm", (-FEEDER_ARM_HALF, 0.0), "ground", (g["o6x"], g["o6y"]))}  # fmt: skip
+    if joints == "ideal":
+        for name, (body_a, point_a, body_b, point_b) in pins.items():
+            m.revolute(body_a, point_a, body_b, point_b, name=name)
+    else:
+        dry = clearsim.Dry(restitution=0.7, friction=0.12)
+        m.clearance_joint("A", *pins["A"], journal_radius=6e-3, clearance=cA, model=clearsim.Lubricated(viscosity=0.05, length=10e-3))
+        m.clearance_joint("D", *pins["D"], journal_radius=4e-3, clearance=cD, model=dry)
+        m.clearance_joint("O6", *pins["O6"], journal_radius=6e-3, clearance=cO6, model=dry)
+    angle = [0.0, 0.5, 0.7, 2.3, 2.5, 2 * math.pi]
+    m.force("arm", FINGER, {"driver": "motor", "angle": angle, "fx": [0.0, 0.0, -40.0, -40.0, 0.0, 0.0], "period": 2 * math.pi}, name="product")
+    return m
+
+
+def test_the_feeder_six_bar_walk(tmp_path, capsys):
+    """Walk 5: a mechanism of our own (a Stephenson III six-bar feeder: lubricated crank pin, dry
+    arm pins, link lengths and a pivot as [parameters], the finger tip as the output point) through
+    a build function and its scene, both studied against the nominal design, and both commands.
+
+    The ideal finger follows the six-bar's loop closure (closed form); a Study sample's peak
+    finger error against the nominal design is its own run against the nominal ideal run (a
+    second method); with ideal joints and a random l5 it is the closed form's
+    max |P(l5) − P(l5₀)|; the scene and the build function are the same mechanism."""
+    from clearsim.scene.study import scene_study
+
+    turn = 2 * math.pi / FEEDER_OMEGA
+    grid = dict(dt_out=turn / 400, progress=False, rtol=1e-9, atol=1e-12)
+    ideal = feeder("ideal").simulate(0.25 * turn, **grid)
+    closed = np.array([finger_closed_form(FEEDER_OMEGA * t) for t in ideal.t])
+    np.testing.assert_allclose(ideal.point("arm", FINGER), closed, rtol=0, atol=1e-9)
+    # the scene is the same mechanism: its [parameters] and rounded pose assemble to the same run
+    scene = load_scene_file(FEEDER)
+    short = dict(dt_out=turn / 400, progress=False, rtol=1e-7, atol=1e-10)
+    by_scene = scene.mechanism.simulate(0.05 * turn, **short)
+    by_build = feeder().simulate(0.05 * turn, extremes=[("arm", FINGER)], bearings=True, **short)
+    np.testing.assert_allclose(by_scene.point("arm", FINGER), by_build.point("arm", FINGER), rtol=0, atol=1e-9)
+    # the finger's peak speed, tracked at every step, and the crank pin's film beside it
+    # (bearing_summary raised KeyError: 'coordinate' when a point was tracked)
+    speed = np.hypot(*by_build.point("arm", FINGER, "velocity").T)
+    assert speed.max() <= by_build.extremes("arm", "velocity", "magnitude", point=FINGER).max <= speed.max() * 1.01
+    assert 0 < by_build.bearing_summary()["A"]["min_film_thickness"] < 15e-6
+
+    # a random connecting link, ideal joints, against the nominal design: the closed form
+    window = dict(skip_cycles=0.25, cycles=0.125, rtol=1e-7, atol=1e-10, progress=False)
+    out = Output(body="arm", point=FINGER, component="magnitude", quantity="displacement")
+    study = Study(lambda l5: feeder("ideal", l5=l5), {"l5": Normal(0.110, 0.1e-3)}, out, 0.2e-3, reference="nominal", **window)
+    est = study.monte_carlo(3, seed=2)
+    angles = FEEDER_OMEGA * turn * np.linspace(0.25, 0.375, 721)
+    for k, l5 in enumerate(est.inputs["l5"]):
+        expected = max(np.hypot(*(finger_closed_form(a, l5=float(l5)) - finger_closed_form(a))) for a in angles)
+        assert est.peaks[k] == pytest.approx(expected, rel=2e-4), (k, l5)
+    assert est.pf == float(np.mean(est.peaks > 0.2e-3))
+
+    # the scene's own [study] (clearances, l5, l6 and O6 random), shortened: each sample alone
+    text = FEEDER.read_text(encoding="utf-8").replace("skip_cycles = 1.0", "skip_cycles = 0.25").replace("\ncycles = 1.0", "\ncycles = 0.125")
+    short_scene = tmp_path / "feeder.toml"
+    short_scene.write_text(text, encoding="utf-8")
+    sc = load_scene_file(short_scene)
+    st = scene_study(sc, progress=False)
+    assert st.reference == "nominal"
+    mc = st.monte_carlo(2, seed=0)
+    assert not mc.failures
+    sim = sc.simulation
+    end = 0.375 * turn
+    fine = dict(dt_out=turn / 4000, progress=False, integrator=sim.integrator, rtol=sim.rtol, atol=sim.atol)
+    nominal = feeder("ideal").simulate(end, **{**fine, "rtol": sim.rtol / 10, "atol": sim.atol / 10})
+    names = {"A.clearance": "cA", "D.clearance": "cD", "O6.clearance": "cO6"}
+    for k in range(2):
+        x = {names.get(name, name): float(v[k]) for name, v in mc.inputs.items()}
+        alone = feeder(**x).simulate(end, **fine)
+        keep = alone.t >= 0.25 * turn - 1e-12
+        e = np.hypot(*(alone.point("arm", FINGER) - nominal.point("arm", FINGER)).T)[keep]
+        assert mc.peaks[k] == pytest.approx(e.max(), rel=2e-3), (k, x)
+
+    # both commands on the shortened scene: the finger's columns, the nominal reference named
+    out_dir = tmp_path / "run"
+    assert main(["run", str(short_scene), "-o", str(out_dir), "-q", "--no-plots"]) == 0
+    assert "finger.position.x [m]" in (out_dir / "bodies.csv").read_text().splitlines()[0]
+    assert "finger.displacement_error.y [m]" in (out_dir / "errors.csv").read_text().splitlines()[0]
+    rel_dir = tmp_path / "rel"
+    assert main(["reliability", str(short_scene), "-o", str(rel_dir), "-q", "--no-plots", "--methods", "monte_carlo", "--samples", "2"]) == 0
+    assert '`reference = "nominal"`' in (rel_dir / "report.md").read_text(encoding="utf-8")
+    assert capsys.readouterr().err == ""

@@ -66,6 +66,7 @@ system), and the methods to run.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
 
@@ -253,6 +254,11 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
     max_runs = t.integer("max_runs", 150)
     if max_runs < 2:
         raise t.error("max_runs", f"invalid study.max_runs = {max_runs!r}: must be at least 2", max_runs)
+    # the window and the estimators' settings, checked here so that a mistake names its line
+    window = {"cycles": t.number("cycles", 1.0), "skip_cycles": t.number("skip_cycles", 0.0), "cov": t.number("cov", 0.1), "bin_width": t.number("bin_width", BIN_WIDTH)}
+    for key, v in window.items():
+        if not (math.isfinite(v) and (v >= 0 if key == "skip_cycles" else v > 0)):
+            raise t.error(key, f"invalid study.{key} = {v!r}: must be {'finite and ≥ 0' if key == 'skip_cycles' else 'finite and positive'}", v)
     step: Union[float, str] = "auto"
     if "step" in t:
         fixed = float(t.number("step"))
@@ -260,8 +266,8 @@ def parse_study(t: Any, mech: Any, omega_default: Optional[float]) -> StudySetti
             raise t.error("step", f"invalid study.step = {fixed!r}: FORM's gradient step in the standard normal space must be positive", fixed)
         step = fixed
     return StudySettings(
-        outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=t.number("cycles", 1.0), skip_cycles=t.number("skip_cycles", 0.0),
-        methods=methods, samples=samples, cov=t.number("cov", 0.1), seed=t.integer("seed", 0), bin_width=t.number("bin_width", BIN_WIDTH), tolerance=tol,
+        outputs=[p[0] for p in pairs], limits=[p[1] for p in pairs], omega=float(omega), sobol_method=t.string("sobol_method", "saltelli", choices=SOBOL_METHODS), step=step, inputs=inputs, cycles=window["cycles"], skip_cycles=window["skip_cycles"],
+        methods=methods, samples=samples, cov=window["cov"], seed=t.integer("seed", 0), bin_width=window["bin_width"], tolerance=tol,
         max_runs=max_runs, life=life, reference=t.string("reference", "own_ideal", choices=REFERENCES),
     )  # fmt: skip
 
