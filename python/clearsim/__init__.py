@@ -5,7 +5,7 @@ analyses the results. SI units throughout.
 """
 
 from . import _core
-from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, ReliabilityError, SimulationError
+from .errors import AssemblyError, ClearsimError, ClusterError, InputError, InterruptedRun, PlausibilityWarning, ReliabilityError, SimulationError
 from .joints import Archard, Dry, Lubricated, Thermal, Vogel
 from .forces import Harmonic
 from .mechanism import GROUND, Mechanism
@@ -21,6 +21,7 @@ __all__ = [
     "Archard",
     "AssemblyError",
     "ClearsimError",
+    "ClusterError",
     "Dry",
     "GROUND",
     "Harmonic",

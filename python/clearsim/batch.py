@@ -15,13 +15,13 @@ its worker runs the references itself.
 from __future__ import annotations
 
 import os
-from concurrent.futures import Future, ThreadPoolExecutor, as_completed
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, as_completed, wait
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 from . import _core
 from .errors import InputError, SimulationError
 
-__all__ = ["run_descriptions", "task_threads", "run_all", "start", "Started", "finish", "progress", "failed", "error_of"]
+__all__ = ["run_descriptions", "task_threads", "chunk_size_for", "run_chunks", "TIMEOUT", "run_all", "start", "Started", "finish", "progress", "failed", "error_of"]
 
 
 def run_descriptions(descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], threads: int = 0, nominal: Optional[Dict[str, Any]] = None) -> List[Any]:
@@ -76,6 +76,66 @@ def finish(mechanism: Any, raw: Any, settings: Dict[str, Any]) -> Tuple[Any, Opt
         return err.result, err
 
 
+#: Seconds a cluster may go without finishing a chunk before a run through an executor stops
+#: (:func:`run_chunks`): generous, as one chunk of slow samples can take minutes.
+TIMEOUT = 1800.0
+
+
+def chunk_size_for(total: int, executor: Any, show: bool) -> int:
+    """Runs a batch: under an executor a few dozen (spread over its workers; the bar moves as each
+    finishes); locally one in-core batch, or, with a bar, large enough that the core's threads
+    stay busy to the batch's end (run times vary ±30 % between samples: with 3–6 runs a batch on 2
+    threads a quarter of the time was spent waiting for the slowest), small enough for the bar to move."""
+    if executor is not None:
+        return max(1, min(32, total // 20 or 1))
+    if not show:
+        return max(1, total)  # one batch: each distinct reference runs once (the core makes them per batch)
+    return max(1, min(total, max(16 * (os.cpu_count() or 1), total // 20)))
+
+
+def run_chunks(
+    descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], executor: Any, size: int, nominal: Optional[Dict[str, Any]] = None,
+    threads: Optional[int] = None, timeout: Optional[float] = None,
+) -> Iterator[Tuple[int, int, Union[List[Any], BaseException]]]:  # fmt: skip
+    """Run in chunks of ``size`` and yield ``(start, stop, raws)`` as each chunk finishes:
+    locally in order, through an executor with ``submit`` as they complete (one with ``map``
+    only: in order). A chunk the machinery lost (a dead worker, a broken pool) yields its
+    exception instead of its runs, and the others go on; when no chunk finishes for ``timeout``
+    seconds (default :data:`TIMEOUT`) every chunk still out yields a ``TimeoutError``."""
+    cores = task_threads(threads, executor)
+    bounds = [(i, min(len(descriptions), i + size)) for i in range(0, len(descriptions), max(1, size))]
+    if executor is None:
+        for a, b in bounds:
+            yield a, b, run_descriptions(descriptions[a:b], settings[a:b], cores, nominal)
+        return
+    if not hasattr(executor, "submit"):
+        results = executor.map(run_descriptions, [descriptions[a:b] for a, b in bounds], [settings[a:b] for a, b in bounds], *[len(bounds) * [x] for x in (cores, nominal)])
+        for k, (a, b) in enumerate(bounds):
+            try:
+                yield a, b, list(next(results))
+            except Exception as err:  # noqa: BLE001 — the machinery failed: every chunk from here is lost
+                for a2, b2 in bounds[k:]:
+                    yield a2, b2, err
+                return
+        return
+    limit = TIMEOUT if timeout is None else float(timeout)
+    pending = {executor.submit(run_descriptions, descriptions[a:b], settings[a:b], cores, nominal): (a, b) for a, b in bounds}
+    while pending:
+        done, _ = wait(list(pending), timeout=limit, return_when=FIRST_COMPLETED)
+        if not done:
+            for fut, (a, b) in sorted(pending.items(), key=lambda item: item[1]):
+                fut.cancel()
+                yield a, b, TimeoutError(f"no chunk finished in {limit:g} s (timeout)")
+            return
+        for fut in sorted(done, key=lambda f: pending[f]):
+            a, b = pending.pop(fut)
+            try:
+                raws: Union[List[Any], BaseException] = list(fut.result())
+            except BaseException as err:  # noqa: BLE001 — KilledWorker, BrokenProcessPool, CancelledError: the machinery's
+                raws = err
+            yield a, b, raws
+
+
 def run_all(
     descriptions: List[Dict[str, Any]], settings: List[Dict[str, Any]], executor: Any, chunk_size: Optional[int], show: bool, what: str,
     nominal: Optional[Dict[str, Any]] = None, threads: Optional[int] = None,
@@ -87,17 +147,7 @@ def run_all(
     if total == 0:
         return []
     if chunk_size is None:
-        if executor is None and not show:
-            # One in-core batch: the threads stay busy to its end and each distinct reference
-            # runs once (the core makes them per batch).
-            chunk_size = total
-        elif executor is None:
-            # In-core batches: large enough that the threads stay busy to the batch's end (run
-            # times vary ±30 % between samples; with 3–6 runs a batch on 2 threads a quarter of
-            # the time was spent waiting for the slowest), small enough for the bar to move.
-            chunk_size = max(1, min(total, max(16 * (os.cpu_count() or 1), total // 20)))
-        else:
-            chunk_size = max(1, min(32, total // 20 or 1))  # spread over the executor's workers
+        chunk_size = chunk_size_for(total, executor, show)
     chunks = [(descriptions[i : i + chunk_size], settings[i : i + chunk_size]) for i in range(0, total, chunk_size)]
     bar = progress(total, show, what)
     out: List[Any] = []

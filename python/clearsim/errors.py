@@ -6,7 +6,7 @@ Every error of the Rust core is mapped to one of these classes in one place
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 
 class ClearsimError(Exception):
@@ -67,6 +67,18 @@ class AssemblyError(SimulationError):
 class InterruptedRun(SimulationError):
     """The run was interrupted (Ctrl-C). ``Mechanism.simulate`` returns the partial result with
     a warning instead of raising this."""
+
+
+class ClusterError(ClearsimError, RuntimeError):
+    """Runs lost to the machinery that ran them, not to the mechanism: a worker that died
+    (Dask's ``KilledWorker``, a ``BrokenProcessPool``) or a cluster that finished nothing for
+    ``timeout`` seconds. ``lost``: ``[(first sample, last sample + 1, reason)]`` of the chunks lost;
+    ``finished``: the samples that completed; ``checkpoint``: the directory they are saved in
+    (``None``: not saved). A sample whose own run fails is not this: it is counted with its reason."""
+
+    lost: List[Tuple[int, int, str]] = []
+    finished: int = 0
+    checkpoint: Optional[str] = None
 
 
 class ReliabilityError(ClearsimError, RuntimeError):

@@ -85,7 +85,7 @@ def test_monte_carlo_bins_count_the_angle_from_t_0():
     and over [1.25 T, 2.25 T]: the bins 90°…342° both windows take from the same turn agree within
     5e-3 of μ_s (2e-3 at 90°, where the later window's grid cuts a step), and the stored crank angles start at |ω| t = 360° and 450°. Before: both folded
     their first time bin onto 0° and the crank angles started at 0."""
-    kwargs = dict(body="slider", component="x", allowable={"displacement": (0.0, 1e-3)}, cycles=1.0, progress=False, omega=OMEGA)
+    kwargs = dict(body="slider", component="x", allowable={"displacement": (0.0, 1e-3)}, cycles=1.0, progress=False, omega=OMEGA, keep_errors=True)
     build = lambda clearance: models.slider_crank("lubricated", clearance=clearance)  # noqa: E731
     runs = {skip: clearsim.monte_carlo(build, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, skip_cycles=skip, **kwargs) for skip in (1.0, 1.25)}
     assert runs[1.0].crank_angle[0, 0] == pytest.approx(360.0) and runs[1.25].crank_angle[0, 0] == pytest.approx(450.0)

@@ -111,3 +111,20 @@ def test_every_result_class_defines_its_displays(name):
 
     cls = next(getattr(mod, name) for mod in (mc, es, fo, st, uq, rs) if hasattr(mod, name))
     assert "_repr_html_" in vars(cls) and ("__repr__" in vars(cls))
+
+
+def test_figures_display_as_pictures_without_pyplot():
+    """A notebook shows clearsim's figures as PNG pictures in a fresh kernel: IPython's display
+    (a formatter with no printer registered for matplotlib figures, as before pyplot is imported)
+    finds a picture, not only '<Figure size 600x500 with 1 Axes>'."""
+    from IPython.core.formatters import DisplayFormatter
+
+    from clearsim import plots
+
+    m = models.slider_crank("dry")
+    r = m.simulate(0.004, dt_out=1e-4, progress=False)
+    e = r.eccentricity("rod-slider")
+    formatter = DisplayFormatter()
+    for fig in (m.plot(), r.plot_mechanism(0.002), plots.plot_journal_orbits({"rod-slider": (e[:, 0], e[:, 1])}, clearance=5e-4)):
+        data, _ = formatter.format(fig)
+        assert data.get("image/png", b"")[:8] == b"\x89PNG\r\n\x1a\n", list(data)

@@ -25,7 +25,7 @@ ALLOW = {"displacement": (0.0, 2e-4), "velocity": (0.0, 0.5), "acceleration": (0
 
 
 def test_monte_carlo_runs_and_reports_intervals():
-    mc = clearsim.monte_carlo(build, DISTS, 8, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=1)
+    mc = clearsim.monte_carlo(build, DISTS, 8, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=1, keep_errors=True)
     assert mc.ok.all() and not mc.failures
     assert mc.errors["acceleration"].shape == (8, 361)
     for q in ("displacement", "velocity", "acceleration"):
@@ -42,12 +42,12 @@ def test_monte_carlo_runs_and_reports_intervals():
 
 def test_monte_carlo_with_dask_executor_matches_local_batch():
     distributed = pytest.importorskip("dask.distributed")
-    local = clearsim.monte_carlo(build, DISTS, 4, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=3)
+    local = clearsim.monte_carlo(build, DISTS, 4, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=3, keep_errors=True)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
             remote = clearsim.monte_carlo(
                 build, DISTS, 4, omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=3,
-                executor=client.get_executor(), chunk_size=2,
+                executor=client.get_executor(), chunk_size=2, keep_errors=True,
             )
     for q in local.errors:
         np.testing.assert_array_equal(local.errors[q], remote.errors[q])
@@ -84,7 +84,7 @@ def test_pooled_fosm_is_the_time_average_of_a_dense_grid():
     a dense stored grid (a second method): they agree to the grid's quadrature error."""
     dists = {"clearance": Uniform(0.3e-3, 0.5e-3), "omega": 5000 * 2 * math.pi / 60}
     mc = clearsim.monte_carlo(build, dists, 4, omega="omega", body="slider", component="x", allowable={"displacement": (0.0, 2e-4)},
-                              progress=False, seed=3, bin_width=36.0, points_per_cycle=7200)  # fmt: skip
+                              progress=False, seed=3, bin_width=36.0, points_per_cycle=7200, keep_errors=True)  # fmt: skip
     e = np.abs(mc.errors["displacement"])[:, :-1]  # drop the window's end point (it opens no segment)
     per_bin = e.reshape(e.shape[0], 10, -1)
     np.testing.assert_allclose(mc.bins["displacement"].fosm.mu_s, per_bin.mean(axis=(0, 2)), rtol=2e-3)
@@ -144,7 +144,7 @@ def test_answers_do_not_depend_on_the_output_density():
     peaks between its samples (issue: 0.81 vs 1.00)."""
     dists = {"clearance": Uniform(0.3e-3, 0.5e-3), "omega": 5000 * 2 * math.pi / 60}
     allow = {"acceleration": (0.0, 2.8e5)}  # m/s²: within the range of the impact peaks
-    common = dict(omega="omega", body="slider", component="x", allowable=allow, progress=False, seed=4, bin_width=36.0)
+    common = dict(omega="omega", body="slider", component="x", allowable=allow, progress=False, seed=4, bin_width=36.0, keep_errors=True)
     coarse = clearsim.monte_carlo(build, dists, 8, points_per_cycle=36, **common)
     fine = clearsim.monte_carlo(build, dists, 8, points_per_cycle=3600, **common)
     np.testing.assert_allclose(coarse.peaks["acceleration"], fine.peaks["acceleration"], rtol=1e-6)
@@ -195,3 +195,29 @@ def test_monte_carlo_without_omega_takes_the_driver_speed_as_study_does():
     np.testing.assert_array_equal(mc.bins["displacement"].reliability, given.bins["displacement"].reliability)
     for q in mc.peaks:
         np.testing.assert_array_equal(mc.peaks[q], given.peaks[q])
+
+
+def test_error_traces_are_kept_only_when_asked():
+    """``clearsim.monte_carlo`` kept every sample's full run (~213 KB a sample on the nine-bar:
+    709 MB at n = 2 048); now it keeps the error rows of the samples ``keep_errors`` asks for
+    (none by default) and every estimate is the same whatever it keeps (from the monitors)."""
+    common = dict(omega="omega", body="slider", component="x", allowable=ALLOW, progress=False, seed=5)
+    none = clearsim.monte_carlo(build, DISTS, 6, **common)
+    some = clearsim.monte_carlo(build, DISTS, 6, keep_errors=2, **common)
+    every = clearsim.monte_carlo(build, DISTS, 6, keep_errors=True, **common)
+    assert none.errors["velocity"].shape == (0, 361) and none.crank_angle.shape == (0, 361) and none.error_samples.size == 0
+    assert some.errors["velocity"].shape == (2, 361) and list(some.error_samples) == [0, 1]
+    assert every.errors["velocity"].shape == (6, 361) and list(every.error_samples) == list(range(6))
+    np.testing.assert_array_equal(some.errors["acceleration"], every.errors["acceleration"][:2])
+    # The stored rows are the run minus its ideal twin on the same grid (a second computation).
+    m = build(float(every.inputs["clearance"][3]), float(every.inputs["omega"][3]))
+    t = every.crank_angle[3] / math.degrees(abs(float(every.inputs["omega"][3])))
+    res, ideal = m.simulate_with_ideal(float(t[-1]), t_out=t)
+    np.testing.assert_allclose(every.errors["displacement"][3], res.error(ideal, "slider", "displacement")[:, 0], atol=2e-7)  # 0.1 % of the 0.2 mm limit: step control
+    for q in ALLOW:
+        np.testing.assert_allclose(none.peaks[q], every.peaks[q], rtol=1e-9)
+        assert none.first_passage[q] == every.first_passage[q]
+        np.testing.assert_array_equal(none.bins[q].reliability, every.bins[q].reliability)
+        np.testing.assert_allclose(none.bins[q].fosm.mu_s, every.bins[q].fosm.mu_s, rtol=1e-9)
+    with pytest.raises(clearsim.InputError, match="keep_errors"):
+        clearsim.monte_carlo(build, DISTS, 2, keep_errors=-1, **common)

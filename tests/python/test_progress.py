@@ -46,6 +46,34 @@ def test_the_delay_is_one_second_by_default(monkeypatch: pytest.MonkeyPatch) -> 
         b.close()
 
 
+def test_a_run_shorter_than_the_delay_creates_no_bar(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Nothing is made for a run that ends before the delay (in a notebook, every bar made was
+    eleven widget models, never closed: 301 short runs left 3 311)."""
+    from tqdm.std import tqdm
+
+    monkeypatch.setattr(progress, "_enabled", True)
+    before = len(tqdm._instances)
+    models.slider_crank("dry").simulate(0.002, dt_out=1e-4)
+    with progress.bar(10, "short") as b:
+        b.update(10)
+        assert len(tqdm._instances) == before
+
+
+def test_a_notebook_bar_closes_every_widget_it_opened(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """A bar that goes away when done (the default) closes all the widget models it opened: the
+    box, the bar, its labels and their layout and style models (tqdm closes the box only)."""
+    from ipywidgets.widgets.widget import _instances
+    from tqdm.notebook import tqdm as notebook_bar
+
+    monkeypatch.setattr(progress, "_enabled", True)
+    monkeypatch.setattr(progress, "bar_class", lambda: notebook_bar)
+    before = len(_instances)
+    with progress.bar(10, "long", delay=0.0) as b:
+        b.update(5)
+        assert len(_instances) - before >= 4  # shown: a box, a bar, two labels (and their models)
+    assert len(_instances) == before
+
+
 def test_form_shows_its_runs_and_iterations(capfd: pytest.CaptureFixture[str], bars_at_once: None) -> None:
     """FORM (minutes on a mechanism: 14 runs and more an iteration) counts its runs and shows
     the iteration, |u| and g in a bar, like the sampling methods' bars; a model without

@@ -2,7 +2,8 @@
 rcParams (:data:`RC`, applied by :func:`style`), series styled by the kind their label names
 (:func:`series_style`: *dry* → vermillion/purple/orange solid lines, *lubricated* →
 blue/green/sky-blue dashed, *ideal* → black dotted, anything else → the remaining palette
-colours), figures built with ``Figure(...)`` (no pyplot state), legends above the axes, the
+colours), figures built with ``Figure(...)`` (no pyplot state; :class:`NotebookFigure`, shown as
+a picture in a notebook), legends above the axes, the
 input checks of the plotting functions and :func:`save` (PNG, 150 dpi).
 """
 
@@ -106,9 +107,22 @@ def series_style(labels: Iterable[str]) -> Dict[str, Dict[str, Any]]:
     return out
 
 
+class NotebookFigure(Figure):
+    """A :class:`~matplotlib.figure.Figure` that shows itself as a picture when a notebook cell
+    returns it, in a fresh kernel too: a bare ``Figure`` made without pyplot shows as
+    ``<Figure size 600x500 with 1 Axes>`` until ``matplotlib.pyplot`` is imported (which registers
+    IPython's display of figures; once it is, that display is used and this one stands aside)."""
+
+    def _repr_png_(self) -> bytes:
+        from .. import display
+
+        return display.png(self)
+
+
 def new_figure(width: float, height: float) -> Figure:
-    """A figure of ``width`` × ``height`` inches with constrained layout, not registered with pyplot."""
-    return Figure(figsize=(width, height), layout="constrained")
+    """A figure of ``width`` × ``height`` inches with constrained layout, not registered with
+    pyplot, that a notebook shows as a picture (:class:`NotebookFigure`)."""
+    return NotebookFigure(figsize=(width, height), layout="constrained")
 
 
 def suptitle(fig: Figure, title: str) -> None:

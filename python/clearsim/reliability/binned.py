@@ -24,8 +24,9 @@ from ..mechanism import Mechanism
 from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, RTOL
 from .bridge import check_on_failure
 from .distributions import Distribution, sample_inputs
-from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, mc_bin_reliability, wilson_interval
-from .fosm import BIN_WIDTH, bin_fold, crank_angle_at, fosm_from_monitors, window_start_turns
+from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, wilson_interval
+from .fosm import BIN_WIDTH, allowable_statistics, bin_fold, crank_angle_at, fosm_from_monitors, window_start_turns
+from .runs import output_grid
 from .outputs import Limit, Output
 from .study import Study
 
@@ -56,10 +57,15 @@ class MonteCarloResult:
         within / left the range: the honest range of the answer when failures are excluded (with
         ``"fail"`` the estimate is the high end).
     crank_angle:
-        (n_ok, n_times) crank angle [deg] of each analysed output sample: |ω| t with t from
-        t = 0, unwrapped (the bins take it modulo 360°; docs/physics.md §6).
+        (kept, n_times) crank angle [deg] of each stored output sample of the samples whose
+        errors were kept (``error_samples``): |ω| t with t from t = 0, unwrapped (the bins take it
+        modulo 360°; docs/physics.md §6).
     errors:
-        ``{quantity: (n_ok, n_times) array}`` of signed errors (clearance − ideal response).
+        ``{quantity: (kept, n_times) array}`` of signed errors (clearance − ideal response) on
+        the stored grid, of the samples ``keep_errors`` asked for (empty by default).
+    error_samples:
+        The sample number of each row of ``errors`` and ``crank_angle`` (completed samples among
+        those kept).
     bins:
         ``{quantity: MonteCarloBins}``: per-bin Monte Carlo reliability with Wilson intervals,
         and FOSM from the pooled samples (``bins[q].fosm``).
@@ -93,6 +99,7 @@ class MonteCarloResult:
     first_passage_times: Dict[str, np.ndarray] = field(default_factory=dict)
     wall_time: float = 0.0
     extra: Dict[str, Any] = field(default_factory=dict)
+    error_samples: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
 
     def _display_rows(self) -> List[Tuple[str, Any]]:
         rows: List[Tuple[str, Any]] = [("samples", int(self.ok.size)), ("completed", int(self.ok.sum())), ("failures", self.n_failed), ("on_failure", self.on_failure)]
@@ -165,6 +172,9 @@ def monte_carlo(
     atol: float = ATOL,
     reference: str = "own_ideal",
     threads: Optional[int] = None,
+    keep_errors: Union[bool, int] = False,
+    checkpoint: Any = None,
+    timeout: Optional[float] = None,
 ) -> MonteCarloResult:
     """Monte Carlo reliability of one output of a mechanism with random inputs.
 
@@ -217,6 +227,16 @@ def monte_carlo(
     integrator, rtol, atol:
         As in :meth:`Mechanism.simulate`; ``"auto"`` (default) runs lubricated samples with
         RADAU5 and their ideal counterparts and dry samples with RK45.
+    keep_errors:
+        Store the error traces (``errors``, ``crank_angle``) on ``points_per_cycle`` points a
+        cycle: ``True`` for every sample, a number for the first that many samples, ``False``
+        (default) for none. Every estimate comes from the integrator's monitors whatever is
+        kept; a kept sample costs 8 bytes a stored point and quantity (a full run, ~213 KB on
+        the nine-bar, is dropped as its chunk ends), so memory stays bounded at any ``n``.
+    checkpoint, timeout:
+        A directory where finished chunks are saved and the same call resumes from; seconds a
+        cluster may finish nothing before a :class:`clearsim.ClusterError` (as
+        :meth:`Study.monte_carlo <clearsim.reliability.Study.monte_carlo>`).
     """
     start = time.perf_counter()
     n = int(n)
@@ -271,31 +291,24 @@ def monte_carlo(
     omegas = np.asarray(inputs[omega], dtype=float) if isinstance(omega, str) else np.full(n, float(omega))
     if np.any(omegas == 0) or not np.all(np.isfinite(omegas)):
         raise InputError("invalid omega: the drive speed must be finite and non-zero", field="omega", value=omega)
+    keep = _kept(keep_errors, n)
     outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
+
+    def errors_of(k: int, trace: Dict[str, Any]) -> Tuple[int, np.ndarray, List[np.ndarray]]:
+        """A kept sample's error rows and crank angles (its full run is not kept)."""
+        actual, ideal = trace["sample"], trace["ideal"]
+        col = trace["columns"][0]
+        return k, crank_angle_at(actual["t"], omegas[k]), [actual[QUANTITIES[q]][:, col] - ideal[QUANTITIES[q]][:, col] for q in quantities]
+
     ev, traces = study.run_samples(
-        inputs, keep_traces=n, points_per_cycle=points_per_cycle, trace_outputs=outputs, raw_traces=True, keep_monitors=True,
-        check_assembly=False, what="Monte Carlo samples", show=progress,
+        inputs, keep_traces=keep, points_per_cycle=points_per_cycle, trace_outputs=outputs, raw_traces=True, keep_monitors=True,
+        check_assembly=False, what="Monte Carlo samples", show=progress, on_trace=errors_of, checkpoint=checkpoint, timeout=timeout,
     )  # fmt: skip
     assert ev.monitors is not None
     failed_at = dict(ev.failures)
     failures = [(k, _failure_reason(reason)) for k, reason in ev.failures]
-    ok = np.zeros(n, dtype=bool)
-    errs: Dict[str, List[np.ndarray]] = {q: [] for q in quantities}
-    angles: List[np.ndarray] = []
-    monitored: Dict[str, List[Dict[str, Any]]] = {q: [] for q in quantities}
-    by_sample = iter(traces)
-    for k in range(n):
-        if k in failed_at:
-            continue
-        trace = next(by_sample)
-        actual, ideal = trace["sample"], trace["ideal"]
-        col = trace["columns"][0]
-        ok[k] = True
-        for i, q in enumerate(quantities):
-            channel = QUANTITIES[q]
-            errs[q].append(actual[channel][:, col] - ideal[channel][:, col])
-            monitored[q].append(ev.monitors[k][i])
-        angles.append(crank_angle_at(actual["t"], omegas[k]))
+    ok = np.array([k not in failed_at for k in range(n)], dtype=bool)
+    monitored: Dict[str, List[Dict[str, Any]]] = {q: [ev.monitors[k][i] for k in range(n) if ok[k]] for i, q in enumerate(quantities)}
     if failures and on_failure == "raise":
         k, reason = failures[0]
         sample_text = ", ".join(f"{name}={float(v[k]):.6g}" for name, v in inputs.items())
@@ -303,8 +316,9 @@ def monte_carlo(
     if not ok.any():
         raise SimulationError(f"no Monte Carlo sample completed ({n} failed); first failure: {failures[0][1]}", reason=failures[0][1])
     n_failed = len(failures) if on_failure == "fail" else 0
-    crank = np.array(angles)
-    errors = {q: np.array(v) for q, v in errs.items()}
+    n_times = output_grid(0.0, cycles, 1.0, points_per_cycle).size
+    crank = np.array([angle for _, angle, _ in traces]).reshape(-1, n_times)
+    errors = {q: np.array([rows[i] for _, _, rows in traces]).reshape(-1, n_times) for i, q in enumerate(quantities)}
     bins = {}
     passage = {}
     bounds: Dict[str, Tuple[float, float]] = {}
@@ -312,10 +326,9 @@ def monte_carlo(
     first_times: Dict[str, np.ndarray] = {}
     for q in quantities:
         lo, hi = limits[q]
-        bins[q] = mc_bin_reliability(np.abs(errors[q]), crank, hi, lo, bin_width=bin_width, confidence=confidence, failed=n_failed)
         # Exceedances from the integrator's every step (the monitor), not from the stored grid.
         exceed_bins = np.array([(mon["bin_max"] > hi) | (mon["bin_min"] < lo) for mon in monitored[q]])
-        _fold_into_bins(bins[q], exceed_bins, monitored[q], window_start_turns(skip_cycles, bin_width), bin_width, n_failed, confidence)
+        bins[q] = _monitor_bins(exceed_bins, monitored[q], window_start_turns(skip_cycles, bin_width), bin_width, n_failed, confidence, lo, hi)
         exceed = exceed_bins.any(axis=1)
         k_out = int(exceed.sum())
         n_all = int(exceed.size) + n_failed
@@ -339,6 +352,7 @@ def monte_carlo(
         peaks=peaks,
         first_passage_times=first_times,
         wall_time=time.perf_counter() - start,
+        error_samples=np.array([k for k, _, _ in traces], dtype=int),
     )
 
 
@@ -351,14 +365,31 @@ def _failure_reason(reason: str) -> str:
     return f"{reason} (sample)"
 
 
-def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], start_turns: float, bin_width: float, failed: int, confidence: float) -> None:
-    """Per crank-angle bin (cycles folded modulo 360°, as ``b`` numbers its bins), from the
+def _kept(keep_errors: Union[bool, int], n: int) -> int:
+    """How many samples' error traces are kept (``keep_errors``: a bool or a count)."""
+    if isinstance(keep_errors, (bool, np.bool_)):
+        return n if keep_errors else 0
+    if not isinstance(keep_errors, (int, np.integer)) or keep_errors < 0:
+        raise InputError(f"invalid keep_errors = {keep_errors!r}: True (every sample), False (none) or a number of samples", field="keep_errors", value=keep_errors)
+    return min(int(keep_errors), n)
+
+
+def _monitor_bins(
+    exceed_bins: np.ndarray, monitored: List[Dict[str, Any]], start_turns: float, bin_width: float, failed: int, confidence: float, lower: float, upper: float
+) -> MonteCarloBins:  # fmt: skip
+    """Per crank-angle bin (edges at k·bin_width, cycles folded modulo 360°), from the
     monitor's time bins of a window opening at ``start_turns`` crank turns: the fraction of samples whose |error| stays in range over the whole
     bin, and FOSM (P27–P32) from the time-averaged mean and standard deviation of |error| over
     the completed samples and the analysed cycles (μ_s = Σ∫|e|dt / Σ∫dt, σ_s² = Σ∫e²dt / Σ∫dt −
     μ_s²), so neither depends on the stored output grid."""
     n_s, n_time_bins = exceed_bins.shape
-    n_bins = len(b.bin_starts)
+    per_cycle = int(math.ceil(360.0 / bin_width - 1e-9))
+    starts = np.arange(per_cycle) * bin_width
+    centres = (starts + np.minimum(starts + bin_width, 360.0)) / 2.0
+    cycle = np.zeros(per_cycle, dtype=np.int64)
+    b = MonteCarloBins(starts, centres, cycle, np.zeros(per_cycle, dtype=int), np.full(per_cycle, np.nan), np.full(per_cycle, np.nan), np.full(per_cycle, np.nan),
+                       None, Estimate(math.nan, math.nan, math.nan), lower, upper, confidence, bin_width)  # type: ignore[arg-type]  # fmt: skip
+    n_bins = per_cycle
     fold = bin_fold(start_turns, bin_width, n_time_bins)
     left = np.zeros((n_s, n_bins), dtype=bool)
     for k in range(n_time_bins):
@@ -376,8 +407,9 @@ def _fold_into_bins(b: Any, exceed_bins: np.ndarray, monitored: List[Dict[str, A
         b.reliability[seen] = k_ok[seen] / n_in[seen]
         lo, hi = wilson_interval(k_ok[seen], n_in[seen], confidence)
         b.lo[seen], b.hi[seen] = lo, hi
-    old = b.fosm
-    b.fosm = fosm_from_monitors(monitored, fold, old.bin_starts, old.bin_centres, old.cycle, old.mu_S, old.sigma_S, old.bin_width)
+    mu_S, sigma_S = allowable_statistics(lower, upper)
+    b.fosm = fosm_from_monitors(monitored, fold, starts, centres, cycle, mu_S, sigma_S, bin_width)
+    return b
 
 
 __all__ = ["monte_carlo", "MonteCarloResult"]

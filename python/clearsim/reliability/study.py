@@ -35,6 +35,8 @@ from .model import ReliabilityModel
 from .outputs import BODY_QUANTITIES, JOINT_QUANTITIES, Limit, Modes, Output, limits_and_outputs
 from ..batch import error_of, failed, progress, run_all, task_threads
 from .runs import REFERENCE_POINTS_PER_CYCLE, monitor_spec, output_grid, reference_grid
+from .checkpoint import Checkpoint, run_jobs
+from .window import at_window_start, warn_at_start
 from .. import display
 
 __all__ = ["Output", "Limit", "Study", "Evaluation", "MonteCarloEstimate", "ModeEstimate", "FosmResult", "BODY_QUANTITIES", "JOINT_QUANTITIES", "REFERENCE_POINTS_PER_CYCLE"]
@@ -281,6 +283,7 @@ class Study(ReliabilityModel, Modes):
         self._counter = [0]  # simulations of the mechanism with clearances so far (references aside)
         self._nominal: Optional[Tuple[Dict[str, Any], List[str]]] = None
         self._assembly_checked = False
+        self._warned_start = False  # warned once that the peaks sit at the window's start
 
     # ------------------------------------------------------------------ outputs and limits (Modes)
     @property
@@ -361,6 +364,7 @@ class Study(ReliabilityModel, Modes):
         self, points: Mapping[str, Any], *, keep_traces: int = 0, points_per_cycle: int = 360, trace_outputs: Optional[Sequence[str]] = None,
         raw_traces: bool = False, keep_monitors: bool = False, check_assembly: bool = True, what: str = "runs", show: Optional[bool] = None,
         on_job: Optional[Callable[[int, Dict[str, Any], Dict[str, Any]], None]] = None, on_raw: Optional[Callable[[int, Dict[str, Any]], None]] = None,
+        on_trace: Optional[Callable[[int, Any], Any]] = None, checkpoint: Any = None, timeout: Optional[float] = None,
     ) -> Tuple[Evaluation, List[Any]]:  # fmt: skip
         """The sample loop: run the model at ``points`` (``{input name: (N,) array}``; missing
         inputs at their mean) in chunks of :data:`CHUNK`, keeping each run's extremes and
@@ -371,7 +375,9 @@ class Study(ReliabilityModel, Modes):
         with ``raw_traces`` as ``{"sample": raw run, "ideal": the reference's t, q, qd and qdd
         at the same output times, "columns": each output's monitored coordinate or joint index}``. ``on_job(k, description,
         settings)`` may change sample k's description and run settings before it runs (life.py
-        writes the worn state there); ``on_raw(k, raw)`` sees each completed run's raw result."""
+        writes the worn state there); ``on_raw(k, raw)`` sees each completed run's raw result;
+        ``on_trace(k, trace)`` turns a kept trace into what is kept (the full run dropped as its
+        chunk ends). ``checkpoint``, ``timeout``: as :meth:`monte_carlo` (reliability/checkpoint.py)."""
         full = {name: np.atleast_1d(np.asarray(points[name], dtype=float)) if name in points else None for name in self.inputs}
         n = max((v.size for v in full.values() if v is not None), default=1)
         cols = {name: (v if v is not None else np.full(n, self.inputs[name].nominal)) for name, v in full.items()}
@@ -384,7 +390,11 @@ class Study(ReliabilityModel, Modes):
         failures: List[Tuple[int, str]] = []
         monitors: Optional[List[Any]] = [None] * n if keep_monitors else None
         traces: List[Any] = []
-        bar = progress(n, (self.progress and n >= 256) if show is None else show, what)  # big batches only (not FORM's gradients)
+        at_start = np.zeros((n, m_out), dtype=bool)  # peaks at the window's start (window.py)
+        t_start = math.nan
+        shown = (self.progress and n >= 256) if show is None else show  # big batches only (not FORM's gradients)
+        bar = progress(n, shown, what)
+        store = Checkpoint(checkpoint) if checkpoint is not None else None
         try:
             for start in range(0, n, CHUNK):
                 stop = min(n, start + CHUNK)
@@ -396,7 +406,8 @@ class Study(ReliabilityModel, Modes):
                     for job, d in zip(jobs, descriptions):
                         on_job(job.k, d, job.settings)
                 nominal = self._nominal_run()[0] if self.reference == "nominal" else None
-                raws = run_all(descriptions, [j.settings for j in jobs], self.executor, self.chunk_size, False, what, nominal, self.threads)
+                raws = run_jobs([j.k for j in jobs], descriptions, [j.settings for j in jobs], executor=self.executor, chunk_size=self.chunk_size, nominal=nominal,
+                                threads=self.threads, show=bool(shown), on_done=bar.update, store=store, timeout=timeout, finished_before=start)  # fmt: skip
                 for job, raw in zip(jobs, raws):
                     k = job.k
                     if failed(raw):
@@ -414,16 +425,22 @@ class Study(ReliabilityModel, Modes):
                         else:
                             values[k, i] = float(mon["peak"])
                         first[k, i] = float(mon["first_passage"])
+                        spec = job.settings["monitors"][i]
+                        t_start = spec["t_start"]
+                        at_start[k, i] = lim.side == "above" and at_window_start(float(mon["t_peak"]), t_start, spec["bin_width"] * spec["bins"], mon["bin_max"], mon["bin_min"])
                     if monitors is not None:
                         monitors[k] = mons
                     if k < keep_traces:
-                        traces.append(self._trace(job, raw, raw_traces))
+                        trace = self._trace(job, raw, raw_traces)
+                        traces.append(trace if on_trace is None else on_trace(k, trace))
                 failures += sorted(errors.items())
                 self.n_runs += stop - start
-                bar.update(stop - start)
         finally:
             bar.close()
-        return Evaluation(values, first, sorted(failures), monitors), traces
+        ev = Evaluation(values, first, sorted(failures), monitors)
+        if not getattr(self, "_warned_start", False):
+            self._warned_start = warn_at_start(at_start, ~ev.failed, values, [o.label for o in self.outputs], [o.unit for o in self.outputs], self.skip_cycles, t_start)
+        return ev, traces
 
     def _trace(self, job: _Job, raw: Dict[str, Any], raw_traces: bool) -> Any:
         if not raw_traces:
@@ -491,12 +508,22 @@ class Study(ReliabilityModel, Modes):
         return np.min(self.limit_states(u, on_failure), axis=1)
 
     # ------------------------------------------------------------------ methods
-    def monte_carlo(self, n: int, seed: Optional[int] = 0, executor: Any = None, on_failure: str = "fail", *, keep_traces: int = 0, confidence: float = 0.95) -> MonteCarloEstimate:
+    def monte_carlo(
+        self, n: int, seed: Optional[int] = 0, executor: Any = None, on_failure: str = "fail", *, keep_traces: int = 0, confidence: float = 0.95,
+        checkpoint: Any = None, timeout: Optional[float] = None,
+    ) -> MonteCarloEstimate:  # fmt: skip
         """Crude Monte Carlo with ``n`` samples (memory: a few numbers per sample; the full
         results of the first ``keep_traces`` samples on request). Each input has its own random
         stream seeded by ``(seed, name)``. ``on_failure``: ``"fail"`` (default: a failed run
         counts as an exceedance), ``"exclude"`` (left out; ``bounds`` brackets p_f) or
-        ``"raise"``. A series system's p_f and each output's (``modes``) come from the same runs."""
+        ``"raise"``. A series system's p_f and each output's (``modes``) come from the same runs.
+
+        ``checkpoint``: a directory where finished chunks of samples are saved; the same call
+        resumes from it, running only the samples missing (bit for bit the uninterrupted answer).
+        Runs lost to an ``executor``'s machinery (a dead worker, a broken pool) or a cluster that
+        finishes no chunk for ``timeout`` seconds (default :data:`clearsim.batch.TIMEOUT`, 1 800 s)
+        raise :class:`clearsim.ClusterError` naming the chunks lost and what finished, after
+        every other chunk has finished; samples whose own run fails are counted as usual."""
         check_on_failure(on_failure)
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
             raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
@@ -506,7 +533,7 @@ class Study(ReliabilityModel, Modes):
             u = np.column_stack([input_stream(seed, name).standard_normal(int(n)) for name in self.random_names]) if self.random_names else np.zeros((int(n), 0))
             inputs = self.values(u)
             runs0 = self.n_runs
-            ev, traces = self.run_samples(inputs, keep_traces=keep_traces, what="Monte Carlo samples")
+            ev, traces = self.run_samples(inputs, keep_traces=keep_traces, what="Monte Carlo samples", checkpoint=checkpoint, timeout=timeout)
         finally:
             self.executor = saved
         _check_failures(ev, on_failure)
