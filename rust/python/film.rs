@@ -6,8 +6,7 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use super::input_error;
-use super::output::array2;
+use super::{array2, input_error};
 use crate::clearance::ImpactMemory;
 use crate::model::Model;
 

@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
-use numpy::{PyArray1, PyArray2, PyReadonlyArray1};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -84,6 +84,12 @@ fn to_pyerr(py: Python<'_>, e: &Error) -> PyErr {
 
 fn input_error(py: Python<'_>, field: &str, value: impl std::fmt::Display, reason: &str) -> PyErr {
     to_pyerr(py, &Error::invalid(field, value, reason))
+}
+
+/// `v` (row-major, `cols` a row) as a numpy array of shape (rows, cols).
+fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, PyAny>> {
+    let rows = if cols == 0 { 0 } else { v.len() / cols };
+    Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
 }
 
 // ---------------------------------------------------------------- reading plain data

@@ -6,14 +6,9 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use super::to_pyerr;
+use super::{array2, to_pyerr};
 use crate::record::JOINT_COLUMNS;
 use crate::simulate::RunOutput;
-
-pub(super) fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, PyAny>> {
-    let rows = if cols == 0 { 0 } else { v.len() / cols };
-    Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
-}
 
 /// The channels of a recording into `d` (`t`, `q`, `qd`, `qdd`, `lambda`, `joints`,
 /// `temperature`, `violation`, `energy`: those it holds).
