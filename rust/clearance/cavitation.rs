@@ -82,8 +82,8 @@ impl FilmContent {
         self.film.reading(m, g.journal_radius, g.clearance, g.length, g.viscosity, s.eps_dot)
     }
 
-    /// Advance the content over an accepted step of `dt` [s]: `states_at(f)` gives the film state
-    /// at the fraction f ∈ [0, 1] of the step, `shift` [rad] how far the content moves relative to
+    /// Advance the content over an accepted step of `dt` \[s\]: `states_at(f)` gives the film state
+    /// at the fraction f ∈ [0, 1] of the step, `shift` \[rad\] how far the content moves relative to
     /// the line of centres over it (the mean surface speed's travel less the line of centres'
     /// turn). Sub-stepped so that the transport moves at most half a cell per sub-step; in each,
     /// the pressure part of the rate by Simpson's rule over its start, middle and end (solved at

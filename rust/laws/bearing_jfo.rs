@@ -141,7 +141,7 @@ impl JfoFilm {
 
     /// Solve the film with the fill `fill` (the fraction θ_f ∈ [0, 1] of each node's gap the oil
     /// fills; N = [`JFO_THETA`] × [`JFO_ZETA`] values, row-major in θ) at eccentricity ratio `eps`,
-    /// its rate `eps_dot` [1/s] and the wedge speed `wedge` [rad/s]: the pressure P [1/s] and the
+    /// its rate `eps_dot` \[1/s\] and the wedge speed `wedge` \[rad/s\]: the pressure P \[1/s\] and the
     /// oil's rate [`Self::rate`] (m = θ_f H, in units of c per second). A full node (θ_f = 1) stays
     /// full while the gap moves within a step (the pressure holds it so, or lets it go: the LCP).
     pub fn solve(&mut self, fill: &[f64], eps: f64, eps_dot: f64, wedge: f64) {
@@ -337,7 +337,7 @@ impl JfoFilm {
     }
 
     /// Force, flows, peak and oil of the last solve for a bearing of journal radius `r`,
-    /// clearance `c`, length `l` [m] and viscosity `mu` [Pa s], with the fill it was solved for.
+    /// clearance `c`, length `l` \[m\] and viscosity `mu` \[Pa s\], with the fill it was solved for.
     pub fn reading(&self, fill: &[f64], r: f64, c: f64, l: f64, mu: f64, eps_dot: f64) -> JfoReading {
         let p_scale = 6.0 * mu * r * r / (c * c);
         let (mut ix, mut iy, mut leak, mut supply, mut oil) = (0.0, 0.0, 0.0, 0.0, 0.0);
@@ -373,9 +373,9 @@ impl JfoFilm {
         }
     }
 
-    /// Advance the fill over a (sub-)step of `dt` [s]: the oil m = θ_f H (H at the step's
+    /// Advance the fill over a (sub-)step of `dt` \[s\]: the oil m = θ_f H (H at the step's
     /// start, `h_start`) gains `dt` × `pressure_rate` (the mean of the step's solves'
-    /// [`Self::pressure_rate`]) and is carried `shift` [rad] around the bearing with the mean
+    /// [`Self::pressure_rate`]) and is carried `shift` \[rad\] around the bearing with the mean
     /// surface speed (upwind in θ_f; |shift| ≤ ½ cell keeps it stable and positive); the new fill
     /// is m over the gap at the last solve's ε (the step's end), the supply groove and the nodes
     /// the last solve held full (P > 0) full, every other within [0, 1].
@@ -400,7 +400,7 @@ impl JfoFilm {
         }
     }
 
-    /// The largest |W|/2 · dt / Δθ a step of `dt` [s] at wedge speed `wedge` [rad/s] may take
+    /// The largest |W|/2 · dt / Δθ a step of `dt` \[s\] at wedge speed `wedge` \[rad/s\] may take
     /// for the upwind transport to stay stable and positive: ½.
     pub fn courant(wedge: f64, dt: f64) -> f64 {
         0.5 * wedge.abs() * dt / DTH

@@ -125,7 +125,7 @@ pub fn flow_and_peak(model: FilmModel, g: &BearingGeometry, s: FilmState, scratc
 }
 
 /// The film's pressure over the bearing (see [`FilmField`]): the long and short films on
-/// [`SAMPLES`] angles at the mid-plane, the finite film on its solver's grid over the whole width.
+/// `SAMPLES` angles at the mid-plane, the finite film on its solver's grid over the whole width.
 pub fn film_field(model: FilmModel, g: &BearingGeometry, s: FilmState, scratch: Option<&mut FiniteScratch>) -> FilmField {
     let eps = s.clamped_eps();
     let (rho, theta_m) = action(&s, eps);
