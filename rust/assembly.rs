@@ -132,7 +132,7 @@ const GAP_SUSPECT: f64 = 0.05;
 
 /// The mechanism's span \[m\] at the coordinates `q` (3 per body): the x extent plus the y extent
 /// of the bodies' centroids, at least 1 mm (docs/physics.md §1). The one definition of the word:
-/// the continuation's step ([`follow_drivers`]), the pose check ([`crate::pose`]) and the
+/// the continuation's step (`follow_drivers`), the pose check ([`crate::pose`]) and the
 /// plausibility checks ([`crate::compile::plausibility`], over the joints' points: [`extent`]).
 pub fn span(q: &[f64]) -> f64 {
     extent(q.chunks(3).map(|c| (c[0], c[1]))).max(1e-3)
