@@ -1,9 +1,12 @@
 //! Initial conditions (docs/physics.md §1): the pose given is the mechanism's pose at t = 0, the
 //! drivers' reference time. Newton assembly of the ideal mechanism at t = 0 from it (clearance
-//! journals placed at their initial eccentricity), then, for a start t0 ≠ 0, the drivers followed
-//! from 0 to t0 by continuation on the branch of that pose, and the consistent velocities
-//! Φq q̇ = −Φt at t0. Corrections are minimum-norm (unit weights). A Jacobian that loses rank on
+//! journals placed at their initial eccentricity: [`pose_at_zero`], once per compiled model, kept
+//! in [`Model::start`]), then, for a start t0 ≠ 0, the drivers followed from 0 to t0 by
+//! continuation on the branch of that pose, and the consistent velocities Φq q̇ = −Φt at t0
+//! ([`assemble`]). Corrections are minimum-norm (unit weights). A Jacobian that loses rank on
 //! the way is named (joints, drivers, time) by [`crate::rank`].
+
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::constraints::Constraint;
 use crate::error::{Error, Result};
@@ -20,45 +23,32 @@ const STEP_TURN: f64 = 0.05;
 /// a larger one could land on another branch.
 const STEP_CORRECTION: f64 = 0.05;
 
-/// The positions and velocities (q0, q̇0) of a consistent initial state at `t0`.
+/// Assemblies of a pose given ([`pose_at_zero`]) since the process started (for tests that
+/// count them: one per compiled model).
+static ASSEMBLIES: AtomicUsize = AtomicUsize::new(0);
+
+/// How many poses given this process has assembled ([`pose_at_zero`]).
+pub fn assembly_count() -> usize {
+    ASSEMBLIES.load(Ordering::Relaxed)
+}
+
+/// The Newton tolerance on ‖Φ‖∞ of a model's assembly (from the size of the pose given).
+fn tolerance(model: &Model) -> f64 {
+    1e-13 * (1.0 + model.q_guess.iter().fold(0.0f64, |m, v| m.max(v.abs())))
+}
+
+/// The positions and velocities (q0, q̇0) of a consistent initial state at `t0`, from the pose
+/// given assembled at t = 0 ([`Model::start`], or assembled now if the model holds none).
 pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
+    let mut q = match &model.start {
+        Some(Ok(q)) => q.clone(),
+        Some(Err(e)) => return Err(e.clone()),
+        None => pose_at_zero(model)?,
+    };
     let ideal = held(model);
     let n = 3 * model.n_bodies();
     let mut ws = Workspace::with_weights(&ideal, vec![1.0; n]);
-    let mut q = model.q_guess.clone();
-    if ideal.rows > n {
-        return Err(over_constrained(&ideal, &mut ws, &q));
-    }
-    let tol = 1e-13 * (1.0 + q.iter().fold(0.0f64, |m, v| m.max(v.abs())));
-    // The pose given, at t = 0.
-    match newton(&ideal, &mut ws, 0.0, &mut q, tol, MAX_ITERATIONS) {
-        Ok(_) => {}
-        Err(Failure::Singular(e)) => {
-            let at = singular_constraint(&ideal, &e);
-            let report = analysed(&ideal, &mut ws, 0.0, &q);
-            let reason = if redundant(&ideal, &mut ws, &q) {
-                format!("the constraint Jacobian is singular (at {at}): {}", report.over_constraint(&ideal))
-            } else if report.deficient() {
-                format!("the constraint Jacobian is singular during assembly (at {at}): {}", report.lock_up(&ideal, 0.0))
-            } else {
-                format!("the constraint Jacobian became singular during assembly at {at}: it is redundant with other joints, the pose is a toggle position, or the loop cannot close with these link lengths")
-            };
-            return Err(Error::Assembly { t: 0.0, residual: residual(&ws), reason });
-        }
-        Err(Failure::NotConverged(residual)) => {
-            // The equation that is furthest from closing names the joint to look at.
-            let worst = ws.phi.iter().enumerate().fold((0, -1.0f64), |w, (r, v)| if !(v.abs() <= w.1) { (r, v.abs()) } else { w }).0;
-            return Err(Error::Assembly {
-                t: 0.0,
-                residual,
-                reason: format!(
-                    "Newton did not converge in {MAX_ITERATIONS} iterations; {} is furthest from closing (|Φ| = {:.3e}): check its points (body frame) and give body positions and angles closer to an assembled pose",
-                    ideal.constraint_of_row(worst),
-                    ws.phi[worst].abs()
-                ),
-            });
-        }
-    }
+    let tol = tolerance(model);
     if t0 != 0.0 && ideal.constraints.iter().any(|c| matches!(c, Constraint::Driver { .. })) {
         follow_drivers(&ideal, &mut ws, &mut q, t0, tol)?;
     }
@@ -82,6 +72,102 @@ pub fn assemble(model: &Model, t0: f64) -> Result<(Vec<f64>, Vec<f64>)> {
     }
     let qd = ws.qdd.clone();
     Ok((q, qd))
+}
+
+/// The pose given (the pose at t = 0) assembled: the positions q closing every loop, by
+/// minimum-norm Newton from `model.q_guess`. An error names what stops it: redundant joints, a
+/// dead centre, or the joint whose points lie furthest apart at the pose given (a point given in
+/// the global instead of the body frame, a wrong length).
+pub fn pose_at_zero(model: &Model) -> Result<Vec<f64>> {
+    ASSEMBLIES.fetch_add(1, Ordering::Relaxed);
+    let ideal = held(model);
+    let n = 3 * model.n_bodies();
+    let mut ws = Workspace::with_weights(&ideal, vec![1.0; n]);
+    let mut q = model.q_guess.clone();
+    if ideal.rows > n {
+        return Err(over_constrained(&ideal, &mut ws, &q));
+    }
+    let tol = tolerance(model);
+    match newton(&ideal, &mut ws, 0.0, &mut q, tol, MAX_ITERATIONS) {
+        Ok(_) => {}
+        Err(Failure::Singular(e)) => {
+            let at = singular_constraint(&ideal, &e);
+            let report = analysed(&ideal, &mut ws, 0.0, &q);
+            let reason = if redundant(&ideal, &mut ws, &q) {
+                format!("the constraint Jacobian is singular (at {at}): {}", report.over_constraint(&ideal))
+            } else if report.deficient() {
+                format!("the constraint Jacobian is singular during assembly (at {at}): {}", report.lock_up(&ideal, 0.0))
+            } else {
+                format!("the constraint Jacobian became singular during assembly at {at}: it is redundant with other joints, the pose is a toggle position, or the loop cannot close with these link lengths")
+            };
+            return Err(Error::Assembly { t: 0.0, residual: residual(&ws), reason });
+        }
+        Err(Failure::NotConverged(residual)) => {
+            // The equation that is furthest from closing names the joint to look at, unless one
+            // joint's points lie far apart already at the pose given: that one is the suspect.
+            let worst = ws.phi.iter().enumerate().fold((0, -1.0f64), |w, (r, v)| if !(v.abs() <= w.1) { (r, v.abs()) } else { w }).0;
+            let furthest = (ideal.constraint_of_row(worst), ws.phi[worst].abs());
+            let suspect = match widest_gap(&ideal, &mut ws, &model.q_guess) {
+                Some((name, gap)) if gap > GAP_SUSPECT * span(&model.q_guess) => format!(
+                    "{name} has its two points {} m apart at the pose given, the most of any joint (furthest from closing now: {}, |Φ| = {:.3e})",
+                    crate::text::g(gap, 3),
+                    furthest.0,
+                    furthest.1
+                ),
+                _ => format!("{} is furthest from closing (|Φ| = {:.3e})", furthest.0, furthest.1),
+            };
+            return Err(Error::Assembly {
+                t: 0.0,
+                residual,
+                reason: format!("Newton did not converge in {MAX_ITERATIONS} iterations; {suspect}: check its points (body frame, not global) and give body positions and angles closer to an assembled pose"),
+            });
+        }
+    }
+    Ok(q)
+}
+
+/// A joint whose two points lie further apart at the pose given than this fraction of the
+/// mechanism's [`span`] is named as the likely cause of an assembly that does not converge.
+const GAP_SUSPECT: f64 = 0.05;
+
+/// The mechanism's span \[m\] at the coordinates `q` (3 per body): the x extent plus the y extent
+/// of the bodies' centroids, at least 1 mm (docs/physics.md §1). The one definition of the word:
+/// the continuation's step (`follow_drivers`), the pose check ([`crate::pose`]) and the
+/// plausibility checks ([`crate::compile::plausibility`], over the joints' points: [`extent`]).
+pub fn span(q: &[f64]) -> f64 {
+    extent(q.chunks(3).map(|c| (c[0], c[1]))).max(1e-3)
+}
+
+/// The x extent plus the y extent of a set of points \[m\] (0 for none).
+pub fn extent(points: impl Iterator<Item = (f64, f64)>) -> f64 {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for (x, y) in points {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    if x1 < x0 {
+        0.0
+    } else {
+        (x1 - x0) + (y1 - y0)
+    }
+}
+
+/// The revolute joint (ideal, or a clearance joint held at its initial eccentricity) whose two
+/// points lie furthest apart at the positions `q`, and that distance \[m\].
+fn widest_gap(ideal: &Model, ws: &mut Workspace, q: &[f64]) -> Option<(String, f64)> {
+    let zeros = vec![0.0; q.len()];
+    ws.eval_constraints(ideal, 0.0, q, &zeros);
+    let mut row = 0;
+    let mut best: Option<(usize, f64)> = None;
+    for (k, c) in ideal.constraints.iter().enumerate() {
+        if matches!(c, Constraint::Revolute { .. }) {
+            let gap = ws.phi[row].hypot(ws.phi[row + 1]);
+            if best.is_none_or(|(_, b)| gap > b) {
+                best = Some((k, gap));
+            }
+        }
+        row += c.rows();
+    }
+    best.map(|(k, gap)| (ideal.constraint_names[k].clone(), gap))
 }
 
 /// The ideal mechanism of the assembly: revolute clearance joints held at their initial
@@ -162,13 +248,7 @@ fn rates(ideal: &Model, ws: &mut Workspace, t: f64, q: &[f64], v: &mut [f64], a:
 /// followed past (a dead centre) is an `Assembly` error naming the dependent joints and drivers.
 fn follow_drivers(ideal: &Model, ws: &mut Workspace, q: &mut Vec<f64>, t0: f64, tol: f64) -> Result<()> {
     let n = q.len();
-    let size = {
-        let xs = q.iter().step_by(3);
-        let ys = q.iter().skip(1).step_by(3);
-        let ext = |it: &mut dyn Iterator<Item = &f64>| it.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(*v), hi.max(*v)));
-        let ((x0, x1), (y0, y1)) = (ext(&mut xs.clone()), ext(&mut ys.clone()));
-        ((x1 - x0) + (y1 - y0)).max(1e-3)
-    };
+    let size = span(q);
     let (mut v, mut a, mut trial) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     let direction = t0.signum();
     let mut t = 0.0f64;

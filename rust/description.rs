@@ -15,9 +15,10 @@ pub struct BodyDesc {
     pub mass: f64,
     /// Moment of inertia about the centroid [kg m²] (> 0).
     pub inertia: f64,
-    /// Approximate centroid position \[m\] at t0 (refined by the kinematic assembly).
+    /// Approximate centroid position \[m\] at t = 0, the drivers' reference time (refined by the
+    /// kinematic assembly; a run from t0 ≠ 0 follows the drivers on from there).
     pub position: [f64; 2],
-    /// Approximate angle \[rad\] at t0.
+    /// Approximate angle \[rad\] at t = 0.
     #[cfg_attr(feature = "serde", serde(default))]
     pub angle: f64,
     /// Optional initial velocity guess (ẋ, ẏ, θ̇) [m/s, rad/s]; projected onto the constraints.
@@ -101,23 +102,23 @@ pub struct DriverDesc {
 #[derive(Debug, Clone, PartialEq)]
 pub struct DryDesc {
     pub normal_law: NormalLaw,
-    /// Young's modulus of the bearing / journal \[Pa\].
-    pub youngs_bearing: f64,
-    pub youngs_journal: f64,
-    /// Poisson's ratio of the bearing / journal [-].
-    pub poisson_bearing: f64,
-    pub poisson_journal: f64,
+    /// Young's modulus E of the bearing \[Pa\] and Poisson's ratio ν [-] (the names of Python's
+    /// `Dry`, as everywhere from Python to errors, paths and scenes).
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    /// The journal's E \[Pa\] and ν [-] (Python's `Dry` writes the bearing's unless given).
+    pub journal_youngs_modulus: f64,
+    pub journal_poisson_ratio: f64,
     /// Coefficient of restitution c_e in (0, 1].
     pub restitution: f64,
     /// Exponent n of δ^n (1.5 for Hertzian contact).
     pub exponent: f64,
-    /// Contact stiffness K [N/m^n]; `None` computes it from the materials (P4, internal contact).
+    /// Contact stiffness K [N/m^n]; `None` computes it from the materials ([`StiffnessForm`]).
     pub stiffness: Option<f64>,
-    /// Use the paper's printed stiffness (R_b + R_j in the denominator of P4) instead.
-    pub stiffness_paper_printed: bool,
-    /// Pin length L \[m\] of a line contact (`Dry(stiffness_form="cylindrical")`, Johnson's
-    /// cylinders, docs/physics.md §3) instead of the point-contact stiffness; `None`: point contact.
-    pub cylinder_length: Option<f64>,
+    /// How K follows from the materials when not given (docs/physics.md §3).
+    pub stiffness_form: StiffnessForm,
+    /// Pin length L \[m\] of `stiffness_form = "cylindrical"` (a line contact); `None` otherwise.
+    pub length: Option<f64>,
     /// Sliding friction coefficient c_f (≥ 0).
     pub friction: f64,
     /// Modified-Coulomb speed limits v0 < v1 [m/s].
@@ -127,6 +128,21 @@ pub struct DryDesc {
     pub impact_speed_floor: f64,
     /// Archard wear of the contact (docs/physics.md §12); `None`: no wear is computed.
     pub wear: Option<WearDesc>,
+}
+
+/// How a dry contact's stiffness follows from the materials (docs/physics.md §3).
+#[cfg_attr(feature = "serde", derive(serde::Deserialize, serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StiffnessForm {
+    /// A point contact of effective radius R_b R_j / (R_b − R_j), journal inside bearing (P4 with
+    /// the erratum).
+    #[default]
+    Internal,
+    /// The paper's printed P4 (R_b + R_j in the denominator).
+    PaperPrinted,
+    /// A pin of `length` L in its bore as a line contact (Johnson's law for cylinders).
+    Cylindrical,
 }
 
 /// Archard's wear law: worn volume = coefficient × normal force × sliding distance / hardness.
@@ -388,9 +404,9 @@ pub enum ForceDesc {
         /// c [N m s/rad].
         #[cfg_attr(feature = "serde", serde(default))]
         damping: f64,
-        /// φ₀ \[rad\]; `None`: the assembled relative angle.
+        /// φ₀ \[rad\], the unloaded relative angle; `None`: the assembled one.
         #[cfg_attr(feature = "serde", serde(default))]
-        free_angle: Option<f64>,
+        angle0: Option<f64>,
     },
     /// A force (F_x, F_y) \[N\] at a body point, its components in the global or the body frame.
     Force {
@@ -529,15 +545,15 @@ impl DryDesc {
     pub fn steel() -> Self {
         DryDesc {
             normal_law: NormalLaw::LankaraniNikravesh,
-            youngs_bearing: 207e9,
-            youngs_journal: 207e9,
-            poisson_bearing: 0.3,
-            poisson_journal: 0.3,
+            youngs_modulus: 207e9,
+            journal_youngs_modulus: 207e9,
+            poisson_ratio: 0.3,
+            journal_poisson_ratio: 0.3,
             restitution: 0.9,
             exponent: 1.5,
             stiffness: None,
-            stiffness_paper_printed: false,
-            cylinder_length: None,
+            stiffness_form: StiffnessForm::Internal,
+            length: None,
             friction: 0.1,
             v0: 1e-4,
             v1: 1e-2,
@@ -557,26 +573,29 @@ pub const ELEMENTS: [(&str, &str); 6] = [
     ("forces", "force"),
 ];
 
-/// Read a description from JSON (what the Python layer and scene files hand over). A bad
+/// Read a description from JSON (what the Python layer and scene files hand over; bodies and
+/// drivers referred to by name or by index). A bad
 /// entry is reported as an [`crate::error::Error::InvalidInput`] naming the element and the
 /// field: `body 'crank'.mass`, `driver 'drive1'.law`.
 #[cfg(feature = "serde")]
 pub fn from_json(text: &str) -> crate::error::Result<MechanismDesc> {
     use crate::error::Error;
     let v: serde_json::Value = serde_json::from_str(text).map_err(|e| Error::invalid("description", "(JSON)", e.to_string()))?;
-    from_value(&v)
+    from_value(v)
 }
 
-/// [`from_json`] for a parsed JSON value.
+/// [`from_json`] for a parsed JSON value: the names by which elements refer to one another
+/// resolved ([`crate::names::resolve`]), then read through serde.
 #[cfg(feature = "serde")]
-pub fn from_value(v: &serde_json::Value) -> crate::error::Result<MechanismDesc> {
+pub fn from_value(mut v: serde_json::Value) -> crate::error::Result<MechanismDesc> {
     use crate::error::Error;
-    serde_path_to_error::deserialize::<_, MechanismDesc>(v).map_err(|e| {
+    crate::names::resolve(&mut v)?;
+    serde_path_to_error::deserialize::<_, MechanismDesc>(&v).map_err(|e| {
         let why = e.inner().to_string();
         // Inside an internally tagged enum (a joint's model, a force) serde's path stops at the
         // enum: an unknown name is then looked up by its value to name its field (`model.film`).
         let variant = why.strip_prefix("unknown variant `").and_then(|r| r.split('`').next());
-        let (field, value) = name_path(v, e.path(), variant);
+        let (field, value) = name_path(&v, e.path(), variant);
         Error::invalid(field, value, why)
     })
 }

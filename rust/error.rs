@@ -1,5 +1,6 @@
-//! The one error type of the crate. `rust/python/mod.rs` maps each variant to a Python exception;
-//! nothing else in the crate knows about Python.
+//! The one error type of the crate, and the one warning type. `rust/python/mod.rs` maps each
+//! error variant to a Python exception (its kind decides, never its text) and each [`Warning`] to
+//! a `PlausibilityWarning`; nothing else in the crate knows about Python.
 
 /// Everything that can go wrong while describing, assembling or simulating a mechanism.
 #[derive(Debug, Clone, thiserror::Error, PartialEq)]
@@ -21,6 +22,12 @@ pub enum Error {
     /// Newton's method could not close the loops of the ideal mechanism.
     #[error("assembly failed at t = {t} s: {reason} (residual ‖Φ‖ = {residual:.3e})")]
     Assembly { t: f64, residual: f64, reason: String },
+    /// The assembly of the pose given moved a body further than the mechanism's assembly
+    /// tolerance ([`crate::pose`]): `body` moved by `moved` \[m\] and turned by `turned` \[rad\];
+    /// `joint`, if named, has its points furthest apart at the pose given. `field` and `value`
+    /// locate it (the joint and its gap \[m\], or the body's position and its move).
+    #[error("{message}")]
+    PoseMoved { body: String, joint: Option<String>, moved: f64, turned: f64, field: String, value: f64, message: String },
     /// The KKT (Schur complement) matrix is singular: redundant constraints or a singular pose.
     #[error("singular constraint Jacobian at t = {t} s (constraint {index}): redundant constraints or a singular configuration")]
     SingularJacobian { t: f64, index: usize },
@@ -76,9 +83,17 @@ impl Error {
             | Error::NewtonFailure { t, .. }
             | Error::PenetrationTooDeep { t, .. }
             | Error::Interrupted { t } => Some(*t),
+            Error::PoseMoved { .. } => Some(0.0),
             Error::Reference { cause, .. } => cause.time(),
             _ => None,
         }
+    }
+
+    /// Whether the run stalled: it used up its budget (steps, wall time), its step fell to the
+    /// floor, or the user stopped it. A stall is no fault of the model as such; where the film
+    /// model sets the pace, [`crate::simulate::failure_hint`] says what to try.
+    pub fn is_stall(&self) -> bool {
+        matches!(self, Error::TimeBudget { .. } | Error::TooManySteps { .. } | Error::StepSizeUnderflow { .. } | Error::Interrupted { .. })
     }
 
     /// The error at the root of a chain of [`Error::Reference`] (what kind of failure it is).
@@ -122,4 +137,14 @@ pub fn num(v: f64) -> String {
         let (sign, digits) = exp.strip_prefix('-').map_or(("+", exp), |d| ("-", d));
         format!("{mantissa}e{sign}{digits:0>2}")
     }
+}
+
+/// A value that is valid but looks like a mistake (a unit slip, a joint point in the wrong
+/// frame): the field that holds it (`clearance joint 'A'.journal_radius`; empty when it is no
+/// single field) and the message, which names the element, the value and the unit clearsim
+/// expected. The run goes on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warning {
+    pub field: String,
+    pub message: String,
 }

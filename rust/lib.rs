@@ -20,13 +20,17 @@ pub mod integrate;
 pub mod kkt;
 pub mod laws;
 pub mod model;
+#[cfg(feature = "serde")]
+pub mod names;
 pub mod monitor;
+pub mod pose;
 pub mod rank;
 pub mod record;
 pub mod settings;
 pub mod simulate;
 pub mod system;
 pub mod table;
+mod text;
 
 #[cfg(feature = "python")]
 mod python;

@@ -147,9 +147,15 @@ class CompiledModel:
     def simulate(
         self, settings: Union[RunSettings, Mapping[str, Any]], progress: Optional[Callable[[float], None]] = None, nominal: Optional[Mapping[str, Any]] = None
     ) -> Dict[str, Any]:
-        """Run the model; monitors measured against its own ideal twin (or the ideal of the
-        ``nominal`` description) get their reference run here."""
-    def idealized(self) -> "CompiledModel": ...
+        """Run the model (after the pose check: its AssemblyError raised first); monitors
+        measured against its own ideal twin (or the ideal of the ``nominal`` description) get
+        their reference run here."""
+    @property
+    def warnings(self) -> List[Tuple[str, str]]:
+        """What is valid but looks like a mistake, as (field, message): sizes against the
+        mechanism's span (rust/compile/plausibility.rs), the pose given (rust/pose.rs)."""
+    def check_pose(self) -> None:
+        """Raise the pose check's AssemblyError (a body the assembly moved too far), if any."""
     def film_field(
         self, joint: int, y: npt.NDArray[np.float64], temperature: Optional[float] = None, content: Optional[npt.NDArray[np.float64]] = None
     ) -> Optional[Dict[str, Any]]:
@@ -158,15 +164,37 @@ class CompiledModel:
         supply_flow [m³/s]; ``temperature`` [K] for a viscosity that follows it; ``content`` the
         film content a run recorded (``cavitation="jfo"``; without it a flooded film). None if dry."""
 
-def compile(description: Union[str, Dict[str, Any]]) -> CompiledModel:
-    """Validate and compile a description (plain data or its JSON text), read by serde."""
+def compile(description: Union[str, Mapping[str, Any]], assembly_tolerance: Optional[float] = 0.2) -> CompiledModel:
+    """Resolve the names, validate and compile a description (plain data or its JSON text), read
+    by serde; assemble its pose given once and check it against ``assembly_tolerance`` (a
+    fraction of the mechanism's span; None accepts any pose)."""
+
+def check_element(group: str, entry: Mapping[str, Any]) -> None:
+    """Check one element as it is added (group: bodies, joints, drivers, clearance_joints,
+    prismatic_clearance_joints, forces; or dry, lubricated for a model alone): its own values,
+    by the compile's checks (InputError naming the field); its references are the compile's."""
+
+def resolve(description: Union[str, Mapping[str, Any]]) -> Dict[str, Any]:
+    """The description as the core reads it: bodies by index (the ground None), every default
+    filled in."""
+
+def findings(description: Union[str, Mapping[str, Any]]) -> List[Tuple[str, str]]:
+    """What looks like a unit slip against the mechanism's size, as (field, message), of a
+    description not yet valid as a whole (what explains an element refused as it is added)."""
+
+def assembly_count() -> int:
+    """Poses given assembled by this process (one per compiled model; for tests)."""
+
+#: R_j/c from which a lubricated joint counts as a µm film (rust/simulate/diagnosis.rs).
+MICROMETRE_FILM_RATIO: float
 
 def check_settings(settings: Union[RunSettings, Mapping[str, Any]]) -> None:
     """Check run settings as a run does (InputError naming the setting), without running."""
 
 def idealize(description: Union[str, Mapping[str, Any]]) -> Dict[str, Any]:
     """The ideal counterpart of a description (every clearance joint an ideal joint; the one
-    implementation, rust/description.rs), as plain data with every default filled in."""
+    implementation, rust/description.rs), as plain data with every default filled in and the
+    bodies named as in a Mechanism's description."""
 
 #: The defaults of the clearance-joint parameters, defined in the core (rust/description.rs):
 #: ``{"dry": {...}, "lubricated": {...}, "prismatic_clearance": {"corner_radius": ...}}``; and
@@ -185,7 +213,6 @@ def run_batch(
     design's description, for monitors measured against its ideal. One result dict or the
     exception that prevented the run, per description."""
 
-run_batch_py = run_batch
 
 def film_force(
     film: str,

@@ -19,6 +19,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from . import _core
 from .draw_points import PointMarks, paths_of, widen
 from .errors import InputError
 from .label_layout import renderer_of, separate
@@ -456,12 +457,18 @@ class Drawing:
                 self._updates.append(load)
 
 
+def _indexed(desc: Dict[str, Any]) -> Dict[str, Any]:
+    """``desc`` as the core reads it (bodies by index, the ground ``None``: ``_core.resolve``),
+    which the drawing places by the coordinates q."""
+    return dict(_core.resolve(desc))
+
+
 def draw(ax: Any, desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] = None, size: Optional[float] = None, labels: bool = True, t: Optional[float] = None) -> float:
     """Draw the mechanism ``desc`` (a :meth:`Mechanism.description`) at coordinates ``q`` on
     ``ax`` at time ``t`` [s] (loads drawn by their value then: none for a zero load), labels
     moved apart where they overlap at the axes' present limits. Returns the clearance
     magnification used."""
-    mag, drawing = _draw(ax, desc, q, magnify, size, labels, t)
+    mag, drawing = _draw(ax, _indexed(desc), q, magnify, size, labels, t)
     ax.autoscale_view()
     drawing.layout()
     return mag
@@ -499,6 +506,7 @@ def plot_pose(desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] =
     """A figure of the mechanism at coordinates ``q`` (see :func:`draw`)."""
     from . import plots
 
+    desc = _indexed(desc)
     with plots.style():
         if ax is None:
             fig = plots.new_figure(6.0, 5.0)
@@ -544,9 +552,9 @@ def animate(
 
     from . import plots
 
-    desc = result.description
-    if desc is None:
+    if result.description is None:
         raise InputError("invalid result: it does not carry its mechanism (make it with Mechanism.simulate)", field="result", value=None)
+    desc = _indexed(result.description)
     path = Path(path)
     if path.suffix.lower() not in (".gif", ".mp4"):
         raise InputError(f"invalid path = {str(path)!r}: must end in .gif or .mp4", field="path", value=str(path))

@@ -6,7 +6,6 @@ Every error of the Rust core is mapped to one of these classes in one place
 
 from __future__ import annotations
 
-import warnings
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 
@@ -130,13 +129,3 @@ def check_choice(field: str, value: Any, choices: Sequence[Any], note: str = "")
         raise InputError(f"invalid {field} = {value!r}: must be one of {', '.join(map(str, choices))}{tail}", field=field, value=value)
     return value
 
-
-def renamed(old: str, new: str, old_value: Any, new_value: Any, where: str = "") -> Any:
-    """The value of a keyword renamed from ``old`` to ``new``: ``new_value``, or ``old_value``
-    with a :class:`DeprecationWarning` when only the old name was given (both: InputError)."""
-    if old_value is None:
-        return new_value
-    if new_value is not None:
-        raise InputError(f"invalid {where}{old} = {old_value!r}: give {new} only ({old} is its old name)", field=f"{where}{old}", value=old_value)
-    warnings.warn(f"{where}{old}= is now called {new}=; the old name will be removed", DeprecationWarning, stacklevel=3)
-    return old_value

@@ -37,8 +37,6 @@ class Result(Protocol):
 
     def error(self, ideal: Any, body: str, quantity: str = ..., point: Optional[Sequence[float]] = ...) -> np.ndarray: ...
 
-#: Old name of :data:`clearsim.schema.COMPONENTS` here.
-COORDINATES = COMPONENTS
 #: (variable, raw key, long name, units of x, y, θ)
 def _units(quantity: str) -> Tuple[str, str, str]:
     """The ASCII units of x, y and θ of a body quantity (:data:`clearsim.schema.BODY_QUANTITY_UNITS`)."""
@@ -51,8 +49,6 @@ BODY_VARIABLES: Tuple[Tuple[str, str, str, Tuple[str, str, str]], ...] = (
     ("velocity", "qd", "centroid velocity and angular velocity", _units("velocity")),
     ("acceleration", "qdd", "centroid acceleration and angular acceleration", _units("acceleration")),
 )
-#: Units of the clearance-joint columns (old name of :data:`clearsim.schema.JOINT_COLUMN_UNITS`).
-JOINT_UNITS: Dict[str, str] = JOINT_COLUMN_UNITS
 _SUFFIX = {"position": "", "velocity": "_dot", "acceleration": "_ddot"}
 
 
@@ -150,12 +146,12 @@ def columns(res: "Result", points: Optional[PointsLike] = None) -> List[Tuple[st
         if key not in raw:
             continue
         for b, body in enumerate(res.body_names):
-            for k, (coord, unit) in enumerate(zip(COORDINATES, units)):
+            for k, (coord, unit) in enumerate(zip(COMPONENTS, units)):
                 out.append((f"{body}.{coord}{_SUFFIX[var]}", unit, raw[key][:, 3 * b + k]))
     if "joints" in raw:
         for j, joint in enumerate(res.joint_names):
             for c, col in enumerate(JOINT_COLUMNS):
-                out.append((f"{joint}.{col}", JOINT_UNITS.get(col, "1"), raw["joints"][:, j, c]))
+                out.append((f"{joint}.{col}", JOINT_COLUMN_UNITS.get(col, "1"), raw["joints"][:, j, c]))
     if "film" in raw:
         for j, joint in enumerate(res.joint_names):
             for c, col in enumerate(_core.FILM_COLUMNS):
@@ -187,9 +183,9 @@ def to_xarray(res: "Result") -> Any:
         if key in raw:
             values = raw[key].reshape(len(res.t), len(res.body_names), 3)
             data[var] = (("time", "body", "coordinate"), values, {"long_name": long_name, "units": ", ".join(units), "units_by_coordinate": list(units)})
-    coords: Dict[str, Any] = {"time": ("time", res.t, {"units": "s", "long_name": "time"}), "body": list(res.body_names), "coordinate": list(COORDINATES)}
+    coords: Dict[str, Any] = {"time": ("time", res.t, {"units": "s", "long_name": "time"}), "body": list(res.body_names), "coordinate": list(COMPONENTS)}
     if "joints" in raw and res.joint_names:
-        data["clearance_joint"] = (("time", "joint", "quantity"), raw["joints"], {"long_name": "clearance-joint quantities", "units_by_quantity": [JOINT_UNITS.get(c, "1") for c in JOINT_COLUMNS]})
+        data["clearance_joint"] = (("time", "joint", "quantity"), raw["joints"], {"long_name": "clearance-joint quantities", "units_by_quantity": [JOINT_COLUMN_UNITS.get(c, "1") for c in JOINT_COLUMNS]})
         coords["joint"] = list(res.joint_names)
         coords["quantity"] = list(JOINT_COLUMNS)
     if "violation" in raw:

@@ -2,8 +2,8 @@
 
 Each function here turns its inputs into the plain-data entry of the description's ``"forces"``
 list (numbers into floats, a load table's columns into the core's tables: what must be known to
-write the entry); the core checks their values when the mechanism compiles
-(``rust/compile/validate.rs``: signs, strictly increasing tables, periods), once; the :class:`~clearsim.Mechanism` methods ``spring``, ``rotational_spring``,
+write the entry); the core checks their values as each is added (``rust/compile/validate.rs``:
+signs, strictly increasing tables, periods; one validator); the :class:`~clearsim.Mechanism` methods ``spring``, ``rotational_spring``,
 ``force``, ``torque`` and ``motor`` call them. Everything is evaluated in the Rust core (tables
 too), so a load costs nanoseconds a step. SI units: N, N m, N/m, N s/m, rad, rad/s.
 
@@ -95,8 +95,8 @@ class Harmonic:
 
 #: A load: a constant, a table (see the module docstring) or a :class:`Harmonic`.
 Load = Union[float, Sequence[Any], Mapping[str, Any], Harmonic]
-#: A body as an entry names it: a body's name (or "ground"), resolved to its index when the
-#: mechanism compiles (clearsim.references), so elements may be added in any order.
+#: A body as an entry names it: a body's name (or "ground"), resolved to its index by the core
+#: when the mechanism compiles (rust/names.rs), so elements may be added in any order.
 BodyRef = Optional[str]
 
 
@@ -184,7 +184,7 @@ def rotational_spring(name: str, body_a: BodyRef, body_b: BodyRef, stiffness: fl
     return {
         "kind": "rotational_spring_damper", "name": name, "body_a": body_a, "body_b": body_b,
         "stiffness": check_finite("stiffness", stiffness), "damping": check_finite("damping", damping),
-        "free_angle": None if angle0 is None else check_finite("angle0", angle0),
+        "angle0": None if angle0 is None else check_finite("angle0", angle0),
     }  # fmt: skip
 
 

@@ -100,7 +100,8 @@ class JointReadings(FilmReadings):
         q = self._raw.get("q")
         if not drivers or q is None or not len(self.t) or not math.isfinite(t):
             return None
-        b = int(drivers[0]["body"])
+        body = drivers[0]["body"]  # by name (a Mechanism's description) or index (the core's)
+        b = self.body_names.index(body) if isinstance(body, str) else int(body)
         qd = self._raw.get("qd")
         if qd is not None and (t > self.t[-1] or t < self.t[0]):
             # Past the outputs (a run's end between two grid points): on with the stored speed.

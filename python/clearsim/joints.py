@@ -1,9 +1,10 @@
 """Clearance-joint models: the parameters of a dry or lubricated revolute clearance (docs/physics.md §3–§4).
 
 All quantities in SI units. The parameters' defaults are the core's (``_core.DEFAULTS``, the serde
-defaults of ``rust/description.rs``), and so are the checks of their values
-(``rust/compile/validate.rs``, when the mechanism compiles): the classes here check only what
-must be known to write the plain data (the type of a nested model, a choice that selects fields).
+defaults of ``rust/description.rs``), and so are the checks of their values: a model is checked by
+the core as it is made (``_core.check_element``, the checks of ``rust/compile/validate.rs``), so a
+bad value is an :class:`~clearsim.InputError` at the call that gives it. The classes here check
+only what must be known to write the plain data (the type of a nested model, a number's type).
 """
 
 from __future__ import annotations
@@ -37,8 +38,9 @@ FILM_MODELS = ("long", "short", "long_paper", "finite")
 FILM_SUPPLIES = ("widest_gap", "none")
 #: R_j/c from which a lubricated joint counts as a µm film: a long-bearing film there can crawl in
 #: a whirl near the centre, and a journal released at rest against the wall can stall at once
-#: (measured at R_j = 9.5 mm: docs/hard_cases.md, *µm films*).
-MICROMETRE_FILM_RATIO = 4000.0
+#: (measured at R_j = 9.5 mm: docs/hard_cases.md, *µm films*; the core's, which words the hint
+#: of a run that stalls there).
+MICROMETRE_FILM_RATIO: float = float(_core.MICROMETRE_FILM_RATIO)
 
 
 @dataclass(frozen=True)
@@ -144,8 +146,8 @@ class Dry:
     """
 
     normal_law: str = _DRY["normal_law"]
-    youngs_modulus: float = _DRY["youngs_bearing"]
-    poisson_ratio: float = _DRY["poisson_bearing"]
+    youngs_modulus: float = _DRY["youngs_modulus"]
+    poisson_ratio: float = _DRY["poisson_ratio"]
     journal_youngs_modulus: Optional[float] = None
     journal_poisson_ratio: Optional[float] = None
     restitution: float = _DRY["restitution"]
@@ -164,18 +166,8 @@ class Dry:
             raise InputError(f"invalid wear = {self.wear!r}: must be clearsim.Archard(...) or None", field="wear", value=self.wear)
         _numbers(self, ("youngs_modulus", "poisson_ratio", "restitution", "exponent", "friction", "v0", "v1", "impact_speed_floor"),
                  ("journal_youngs_modulus", "journal_poisson_ratio", "stiffness", "length"))  # fmt: skip
-        # stiffness_form selects the fields it is written into (stiffness_paper_printed,
-        # cylinder_length): checked here, before they are written.
         check_choice("stiffness_form", self.stiffness_form, STIFFNESS_FORMS)
-        if self.stiffness_form == "cylindrical":
-            if self.length is None:
-                raise InputError("stiffness_form = 'cylindrical' needs the pin length: Dry(..., length=L) [m]", field="length", value=None)
-        elif self.length is not None:
-            raise InputError(
-                f"invalid length = {self.length!r}: a pin length is used only with stiffness_form = 'cylindrical'",
-                field="length",
-                value=self.length,
-            )
+        _core.check_element("dry", self._as_dict())  # the values' ranges and what goes with what
 
     def _as_dict(self) -> Dict[str, Any]:
         e_j = self.youngs_modulus if self.journal_youngs_modulus is None else self.journal_youngs_modulus
@@ -183,15 +175,15 @@ class Dry:
         return {
             "kind": "dry",
             "normal_law": self.normal_law,
-            "youngs_bearing": self.youngs_modulus,
-            "youngs_journal": e_j,
-            "poisson_bearing": self.poisson_ratio,
-            "poisson_journal": nu_j,
+            "youngs_modulus": self.youngs_modulus,
+            "journal_youngs_modulus": e_j,
+            "poisson_ratio": self.poisson_ratio,
+            "journal_poisson_ratio": nu_j,
             "restitution": self.restitution,
             "exponent": self.exponent,
             "stiffness": self.stiffness,
-            "stiffness_paper_printed": self.stiffness_form == "paper_printed",
-            "cylinder_length": None if self.length is None else float(self.length),
+            "stiffness_form": self.stiffness_form,
+            "length": None if self.length is None else float(self.length),
             "friction": self.friction,
             "v0": self.v0,
             "v1": self.v1,
@@ -363,6 +355,7 @@ class Lubricated:
         if not isinstance(self.dry, Dry):
             raise InputError(f"invalid dry = {self.dry!r}: must be clearsim.Dry(...)", field="dry", value=self.dry)
         _numbers(self, ("length", "eps0", "m", "eps_max") + (() if isinstance(self.viscosity, Vogel) else ("viscosity",)), ("e0", "roughness", "boundary_friction", "boundary_slip"))
+        _core.check_element("lubricated", self._as_dict())  # the values' ranges and what goes with what
 
     def _as_dict(self) -> Dict[str, Any]:
         d: Dict[str, Any] = {

@@ -1,7 +1,9 @@
 """Describing a planar mechanism: :class:`Mechanism` collects bodies, ideal joints, drivers,
-clearance joints and force elements as plain data, kept in name order (running it is
+clearance joints and force elements as plain data, kept in name order, each element checked by
+the core as it is added (``_core.check_element``: its own values; the names it refers to are
+resolved when the mechanism compiles, so elements may come in any order). Running it is
 :mod:`clearsim.running`'s job, mixed in: ``simulate`` compiles it in the Rust core and
-integrates it there with the GIL released).
+integrates it there with the GIL released.
 SI units throughout: metres, kilograms, seconds, radians.
 """
 
@@ -14,8 +16,8 @@ import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import forces as _forces
-from . import _core, plausibility, references
-from .errors import InputError, SimulationError, check_finite
+from . import _core, plausibility
+from .errors import ClearsimError, InputError, SimulationError, check_finite
 from .joints import Dry, Lubricated
 from .running import DEFAULT_OUTPUTS, INTEGRATORS, MAX_OUTPUTS, OUTPUTS, RunOptions, Running  # noqa: F401 (re-exported)
 
@@ -59,8 +61,8 @@ class Mechanism(Running):
     """
 
     def __init__(self, gravity: Point = (0.0, -9.81), baumgarte: Tuple[float, float] = (50.0, 50.0)) -> None:
-        self.gravity = _point("gravity", gravity)
-        self.baumgarte = _point("baumgarte", baumgarte)
+        self._gravity = _point("gravity", gravity)
+        self._baumgarte = _point("baumgarte", baumgarte)
         self._bodies: List[Dict[str, Any]] = []
         self._index: Dict[str, int] = {}
         self._joints: List[Dict[str, Any]] = []
@@ -72,6 +74,7 @@ class Mechanism(Running):
         self._motor_angles: Dict[str, float] = {}  # body → angle0 of a motor on it (applied when the body is added)
         self._warned: set = set()  # plausibility findings warned already (clearsim.plausibility)
         self._compiled: Any = None
+        self._plain: Optional[Dict[str, Any]] = None  # the description, built once per change
 
     def __repr__(self) -> str:
         joints = ", ".join(f"{name} {c['kind']}" for name, c in self.contacts().items())
@@ -99,13 +102,50 @@ class Mechanism(Running):
         new = self.__class__.__new__(self.__class__)
         memo[id(self)] = new
         for key, value in self.__dict__.items():
-            setattr(new, key, None if key in ("_compiled", "_pose_checked_for") else copy.deepcopy(value, memo))
+            setattr(new, key, None if key == "_compiled" else copy.deepcopy(value, memo))
         return new
+
+    @property
+    def gravity(self) -> List[float]:
+        """Gravitational acceleration (g_x, g_y) [m/s²]."""
+        return list(self._gravity)
+
+    @gravity.setter
+    def gravity(self, value: Point) -> None:
+        self._gravity = _point("gravity", value)
+        self._changed()
+
+    @property
+    def baumgarte(self) -> List[float]:
+        """Baumgarte stabilisation coefficients (α, β) [1/s]."""
+        return list(self._baumgarte)
+
+    @baumgarte.setter
+    def baumgarte(self, value: Point) -> None:
+        self._baumgarte = _point("baumgarte", value)
+        self._changed()
+
+    def _explain(self, group: str, entry: Dict[str, Any]) -> None:
+        """Before the InputError of an element refused as it is added: the core's plausibility
+        findings of the mechanism with it (a journal radius in mm, which put its film out of
+        range), so that the warning naming the cause comes before the error it caused."""
+        trial = dict(self._description())
+        trial[group] = [*trial.get(group, []), entry]
+        try:
+            found = _core.findings(trial)
+        except ClearsimError:
+            return
+        plausibility.warn_new(found, self._warned)
+
+    def _changed(self) -> None:
+        """Forget what was derived from the elements: the description and the compiled model."""
+        self._compiled = None
+        self._plain = None
 
     def __getstate__(self) -> Dict[str, Any]:
         # Pickling keeps the description; the compiled Rust model is rebuilt on demand.
         state = dict(self.__dict__)
-        state["_compiled"] = state["_pose_checked_for"] = None
+        state["_compiled"] = None
         return state
 
     def __setstate__(self, state: Dict[str, Any]) -> None:
@@ -113,6 +153,10 @@ class Mechanism(Running):
         state.setdefault("_prismatic_clearance", [])
         state.setdefault("_motor_angles", {})
         state.setdefault("_warned", set())
+        state.setdefault("_plain", None)
+        for key in ("gravity", "baumgarte"):  # pickled before they were properties
+            if key in state:
+                state[f"_{key}"] = state.pop(key)
         self.__dict__.update(state)
 
     # ------------------------------------------------------------------ building
@@ -155,7 +199,7 @@ class Mechanism(Running):
             position = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
             angle = math.atan2(q[1] - p[1], q[0] - p[0])
         # Names are checked here, not only in the core: elements refer to bodies by name until the
-        # description resolves them (clearsim.references), so a name must be unique and not "ground".
+        # core resolves them when the mechanism compiles, so a name must be unique and not "ground".
         if not isinstance(name, str) or not name:
             raise InputError(f"invalid body name = {name!r}: must be a non-empty string", field="name", value=name)
         if name == GROUND:
@@ -164,8 +208,8 @@ class Mechanism(Running):
             raise InputError(f"invalid body name = {name!r}: a body of that name exists already", field="name", value=name)
         body = {
             "name": name,
-            # Numbers become floats here (the plausibility checks compute with them); their
-            # ranges (mass > 0, ...) are the core's checks (rust/compile/validate.rs), once.
+            # Numbers become floats here; their ranges (mass > 0, ...) are the core's checks
+            # (rust/compile/validate.rs), made as the body is added.
             "mass": check_finite(f"body '{name}'.mass", mass),
             "inertia": check_finite(f"body '{name}'.inertia", inertia),
             "position": _point(f"body '{name}'.position", position),
@@ -178,9 +222,10 @@ class Mechanism(Running):
             if len(v) != 3:
                 raise InputError(f"invalid body '{name}'.velocity = {velocity!r}: must be (vx, vy, omega)", field=f"body '{name}'.velocity", value=velocity)
             body["velocity"] = [check_finite(f"body '{name}'.velocity[{k}]", x) for k, x in enumerate(v)]
+        _core.check_element("bodies", body)
         _insert(self._bodies, body)
         self._index = {b["name"]: k for k, b in enumerate(self._bodies)}
-        self._compiled = None
+        self._changed()
         return self
 
     def _body(self, field: str, name: str, allow_ground: bool = True) -> Optional[int]:
@@ -192,8 +237,8 @@ class Mechanism(Running):
         return self._index[name]
 
     def _ref(self, field: str, name: Any, allow_ground: bool = True) -> str:
-        """A reference to a body by name, checked for its type now and resolved when the
-        mechanism compiles (:mod:`clearsim.references`): bodies may be added later."""
+        """A reference to a body by name, checked for its type now and resolved by the core when
+        the mechanism compiles (``rust/names.rs``): bodies may be added later."""
         if not isinstance(name, str) or not name:
             raise InputError(f"invalid {field} = {name!r}: must be a body's name", field=field, value=name)
         if name == GROUND and not allow_ground:
@@ -210,9 +255,17 @@ class Mechanism(Running):
             raise InputError(f"invalid {kind} name = {name!r}: must be a non-empty string", field="name", value=name)
         if name in self._names:
             raise InputError(f"invalid {kind} name = {name!r}: a joint or driver of that name exists already", field="name", value=name)
-        self._names.add(name)
-        self._compiled = None
         return name
+
+    def _add(self, group: str, entries: List[Dict[str, Any]], entry: Dict[str, Any]) -> "Mechanism":
+        """Add ``entry`` to the description list ``group`` (``entries``), once the core has
+        checked its values (``_core.check_element``): a bad value is an :class:`InputError` at
+        the call that gives it."""
+        _core.check_element(group, entry)
+        self._names.add(entry["name"])
+        _insert(entries, entry)
+        self._changed()
+        return self
 
     def revolute(self, body_a: str, point_a: Point, body_b: str, point_b: Point, name: Optional[str] = None) -> "Mechanism":
         """Ideal revolute joint: ``point_a`` of ``body_a`` coincides with ``point_b`` of ``body_b``.
@@ -222,18 +275,8 @@ class Mechanism(Running):
         """
         a = self._ref("body_a", body_a)
         b = self._ref("body_b", body_b)
-        _insert(
-            self._joints,
-            {
-                "kind": "revolute",
-                "name": self._new_name("revolute", name),
-                "body_a": a,
-                "point_a": _point("point_a", point_a),
-                "body_b": b,
-                "point_b": _point("point_b", point_b),
-            }
-        )
-        return self
+        entry = {"kind": "revolute", "name": self._new_name("revolute", name), "body_a": a, "point_a": _point("point_a", point_a), "body_b": b, "point_b": _point("point_b", point_b)}
+        return self._add("joints", self._joints, entry)
 
     def prismatic(
         self,
@@ -250,19 +293,9 @@ class Mechanism(Running):
         a = self._ref("body_a", body_a)
         b = self._ref("body_b", body_b, allow_ground=False)
         ax = _point("axis", axis)
-        _insert(
-            self._joints,
-            {
-                "kind": "prismatic",
-                "name": self._new_name("prismatic", name),
-                "body_a": a,
-                "point_a": _point("point_a", point_a),
-                "axis": ax,
-                "body_b": b,
-                "point_b": _point("point_b", point_b),
-            }
-        )
-        return self
+        entry = {"kind": "prismatic", "name": self._new_name("prismatic", name), "body_a": a, "point_a": _point("point_a", point_a), "axis": ax, "body_b": b,
+                 "point_b": _point("point_b", point_b)}  # fmt: skip
+        return self._add("joints", self._joints, entry)
 
     def driver(
         self,
@@ -291,7 +324,7 @@ class Mechanism(Running):
                 raise InputError(f"invalid law = {law!r}: must be a clearsim.Harmonic", field="law", value=law)
             entry: Dict[str, Any] = law.entry()
         elif omega is not None:
-            # angle0 None: the body's angle, filled in when the mechanism compiles (references.resolve)
+            # angle0 None: the body's angle, filled in when the mechanism compiles (the core's names.rs)
             entry = {"kind": "constant_speed", "omega": check_finite("omega", omega), "angle0": None if angle0 is None else check_finite("angle0", angle0)}
         elif polynomial is not None:
             entry = {"kind": "polynomial", "coefficients": [check_finite(f"polynomial[{k}]", c) for k, c in enumerate(polynomial)]}
@@ -303,8 +336,7 @@ class Mechanism(Running):
                 "times": [check_finite(f"times[{k}]", c) for k, c in enumerate(times)],  # type: ignore[arg-type]
                 "angles": [check_finite(f"angles[{k}]", c) for k, c in enumerate(angles)],
             }
-        _insert(self._drivers, {"name": self._new_name("driver", name), "body": b, "law": entry})
-        return self
+        return self._add("drivers", self._drivers, {"name": self._new_name("driver", name), "body": b, "law": entry})
 
     def clearance_joint(
         self,
@@ -336,28 +368,29 @@ class Mechanism(Running):
         # The model object becomes plain data here: only a Dry or Lubricated can (serde carries dicts).
         if not isinstance(model, (Dry, Lubricated)):
             raise InputError(f"invalid model = {model!r}: must be clearsim.Dry(...) or clearsim.Lubricated(...)", field="model", value=model)
-        # Valid but implausible (a unit slip, a film outside its laws' range): PlausibilityWarning, for
-        # sizes that are valid (0 < c, R_j: invalid ones are the core's InputError when it compiles).
-        if r_j > 0.0 and c > 0.0:
-            plausibility.warn_new(plausibility.joint_findings(name, r_j, c, model._as_dict()), self._warned, stacklevel=2)
-        note = plausibility.micrometre_film_note(name, r_j, c, model.film) if isinstance(model, Lubricated) and r_j > 0.0 and c > 0.0 else None
-        if note:
-            warnings.warn(note, stacklevel=2)
-        _insert(
-            self._clearance,
-            {
-                "name": self._new_name("clearance", name),
-                "bearing_body": i,
-                "bearing_point": _point("bearing_point", bearing_point),
-                "journal_body": j,
-                "journal_point": _point("journal_point", journal_point),
-                "journal_radius": r_j,
-                "clearance": c,
-                "model": model._as_dict(),
-                "initial_eccentricity": e_init,
-            }
-        )
-        return self
+        entry = {
+            "name": self._new_name("clearance", name),
+            "bearing_body": i,
+            "bearing_point": _point("bearing_point", bearing_point),
+            "journal_body": j,
+            "journal_point": _point("journal_point", journal_point),
+            "journal_radius": r_j,
+            "clearance": c,
+            "model": model._as_dict(),
+            "initial_eccentricity": e_init,
+        }
+        try:
+            _core.check_element("clearance_joints", entry)  # invalid sizes: an InputError here
+        except InputError:
+            self._explain("clearance_joints", entry)
+            raise
+        # Valid but implausible (a unit slip, a film outside its laws' range): PlausibilityWarning.
+        plausibility.warn_new(plausibility.joint_findings(name, r_j, c, model._as_dict()), self._warned)
+        if isinstance(model, Lubricated):
+            note = plausibility.micrometre_film_note(name, r_j, c, model.film)
+            if note:
+                warnings.warn(note, stacklevel=2)
+        return self._add("clearance_joints", self._clearance, entry)
 
     def prismatic_clearance(
         self,
@@ -391,23 +424,18 @@ class Mechanism(Running):
         if not isinstance(model, Dry):
             raise InputError(f"invalid model = {model!r}: a prismatic clearance joint is dry: clearsim.Dry(...)", field="model", value=model)
         jname = self._new_name("prismatic_clearance", name)
-        _insert(
-            self._prismatic_clearance,
-            {
-                "name": jname, "guide_body": g, "guide_point": _point("guide_point", guide_point), "slider_body": s, "axis": ax,
-                "clearance": check_finite(f"clearance joint '{jname}'.clearance", clearance),
-                "slider_length": check_finite(f"clearance joint '{jname}'.slider_length", slider_length),
-                "corner_radius": check_finite(f"clearance joint '{jname}'.corner_radius", corner_radius),
-                "model": model._as_dict(),
-            }
-        )  # fmt: skip
-        return self
+        entry = {
+            "name": jname, "guide_body": g, "guide_point": _point("guide_point", guide_point), "slider_body": s, "axis": ax,
+            "clearance": check_finite(f"clearance joint '{jname}'.clearance", clearance),
+            "slider_length": check_finite(f"clearance joint '{jname}'.slider_length", slider_length),
+            "corner_radius": check_finite(f"clearance joint '{jname}'.corner_radius", corner_radius),
+            "model": model._as_dict(),
+        }  # fmt: skip
+        return self._add("prismatic_clearance_joints", self._prismatic_clearance, entry)
 
     # ------------------------------------------------------------------ force elements (docs/physics.md §10)
     def _add_force(self, entry: Dict[str, Any]) -> "Mechanism":
-        _insert(self._forces, entry)
-        self._compiled = None
-        return self
+        return self._add("forces", self._forces, entry)
 
     def _pair(self, body_a: str, body_b: str) -> Tuple[str, str]:
         return self._ref("body_a", body_a), self._ref("body_b", body_b)
@@ -527,25 +555,29 @@ class Mechanism(Running):
         return out
 
     def description(self) -> Dict[str, Any]:
-        """The plain-data description handed to the Rust core (a deep copy), with every
-        reference between elements resolved: the order in which they were added does not
+        """The plain-data description handed to the Rust core (a copy, yours to change), its
+        elements in name order and referring to one another by name (``"ground"``: the fixed
+        frame). The core resolves the names when the mechanism compiles (``_core.resolve`` gives
+        the description as the core reads it): the order in which elements were added does not
         matter, and a name that refers to nothing is an :class:`InputError` naming the element
-        and its field (``force 'gas'.value.driver``). A size that looks like millimetres
-        against the mechanism's span is a :class:`~clearsim.PlausibilityWarning` (once)."""
-        desc = references.resolve(copy.deepcopy(
-            {
-                "gravity": self.gravity,
-                "baumgarte": self.baumgarte,
-                "bodies": self._bodies,
-                "joints": self._joints,
-                "drivers": self._drivers,
-                "clearance_joints": self._clearance,
-                "prismatic_clearance_joints": self._prismatic_clearance,
-                "forces": self._forces,
+        and its field (``force 'gas'.value.driver``)."""
+        return copy.deepcopy(self._description())
+
+    def _description(self) -> Dict[str, Any]:
+        """The description itself (not a copy: do not change it), built once per change of the
+        mechanism and cached like the compiled model."""
+        if self._plain is None:
+            self._plain = {
+                "gravity": list(self._gravity),
+                "baumgarte": list(self._baumgarte),
+                "bodies": copy.deepcopy(self._bodies),
+                "joints": copy.deepcopy(self._joints),
+                "drivers": copy.deepcopy(self._drivers),
+                "clearance_joints": copy.deepcopy(self._clearance),
+                "prismatic_clearance_joints": copy.deepcopy(self._prismatic_clearance),
+                "forces": copy.deepcopy(self._forces),
             }
-        ))
-        plausibility.warn_new(plausibility.mechanism_findings(desc), self._warned, stacklevel=2)
-        return desc
+        return self._plain
 
     def copy(self) -> "Mechanism":
         """An independent copy (the compiled Rust model, if any, is not copied)."""
@@ -560,35 +592,53 @@ class Mechanism(Running):
         "crank1.mass": 0.25, "drive1.omega": -16.0}``. A path is ``element.field``: the element
         by its name (body, joint, driver, clearance joint, force), the field the first key of
         that name in its description, looked up through its nested tables (a joint's model, its
-        dry law, a driver's law) in SI units. Unknown or ambiguous paths are an
-        :class:`InputError` naming them."""
+        dry law, a driver's law) in SI units. Unknown or ambiguous paths, and values the element
+        cannot take, are an :class:`InputError` naming them."""
         m = self.copy()
-        groups = [m._bodies, m._joints, m._drivers, m._clearance, m._prismatic_clearance, m._forces]
+        changed = []
         for path, value in values.items():
-            element, _, key = str(path).rpartition(".")
-            if not element or not key:
-                raise InputError(f"invalid path {path!r}: write it as element.field (e.g. 'B.clearance')", field="path", value=path)
-            hits = [e for g in groups for e in g if e.get("name") == element]
-            if not hits:
-                raise InputError(f"invalid path {path!r}: no element named {element!r}", field="path", value=path)
-            owner = _find_key(hits[0], key)
-            if owner is None or isinstance(owner[key], (bool, dict, list, str)):
-                raise InputError(f"invalid path {path!r}: {element!r} has no number {key!r}", field="path", value=path)
+            group, entry, owner, key = m._path(path)
             owner[key] = check_finite(str(path), value)
+            changed.append((group, entry))
+        for group, entry in changed:  # a value out of range is named here, by the core's checks
+            _core.check_element(group, entry)
+        m._changed()
         return m
+
+    def value(self, path: str) -> Optional[float]:
+        """The number that ``path`` (``"B.clearance"``, see :meth:`with_values`) names [SI]
+        (``None`` for a number left to its default, e.g. a stiffness computed from the materials)."""
+        _, _, owner, key = self._path(path)
+        return None if owner[key] is None else float(owner[key])
+
+    def _path(self, path: Any) -> Tuple[str, Dict[str, Any], Dict[str, Any], str]:
+        """The element a path names (its description list and entry), the dict holding the
+        number and its key; an :class:`InputError` naming the path if there is none."""
+        groups = {"bodies": self._bodies, "joints": self._joints, "drivers": self._drivers, "clearance_joints": self._clearance,
+                  "prismatic_clearance_joints": self._prismatic_clearance, "forces": self._forces}  # fmt: skip
+        element, _, key = str(path).rpartition(".")
+        if not element or not key:
+            raise InputError(f"invalid path {path!r}: write it as element.field (e.g. 'B.clearance')", field="path", value=path)
+        hits = [(group, e) for group, g in groups.items() for e in g if e.get("name") == element]
+        if not hits:
+            raise InputError(f"invalid path {path!r}: no element named {element!r}", field="path", value=path)
+        owner = _find_key(hits[0][1], key)
+        if owner is None or isinstance(owner[key], (bool, dict, list, str)):
+            raise InputError(f"invalid path {path!r}: {element!r} has no number {key!r}", field="path", value=path)
+        return hits[0][0], hits[0][1], owner, key
 
     def idealized(self) -> "Mechanism":
         """A copy with every clearance joint replaced by an ideal joint (docs/physics.md §5): a
         revolute one by a revolute joint, a prismatic one by a prismatic joint along its guide.
         The core idealises (``_core.idealize``, ``MechanismDesc::idealized``: the one
         implementation); the copy is rebuilt from the description it returns."""
-        ideal = references.unresolve(_core.idealize(self.description()))
+        ideal = _core.idealize(self._description())  # bodies by name, as the description gives them
         m = self.copy()
-        m.gravity, m.baumgarte = ideal["gravity"], ideal["baumgarte"]
+        m._gravity, m._baumgarte = ideal["gravity"], ideal["baumgarte"]
         m._bodies, m._joints, m._drivers, m._forces = ideal["bodies"], ideal["joints"], ideal["drivers"], ideal["forces"]
         m._clearance, m._prismatic_clearance = ideal["clearance_joints"], ideal["prismatic_clearance_joints"]
         m._index = {b["name"]: k for k, b in enumerate(m._bodies)}
-        m._compiled = None
+        m._changed()
         return m
 
 __all__ = ["Mechanism", "GROUND", "SimulationError"]

@@ -19,13 +19,10 @@ from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMN
 _COL = {name: k for k, name in enumerate(JOINT_COLUMNS)}
 CONTACT_STATES = {0: "free or film", 1: "transition", 2: "contact"}
 
-#: What :meth:`Result.extremes` reports, per body (each of x, y, theta) and per clearance joint,
-#: with the units (clearsim.schema; old names kept): body quantities (x and y | theta), the joint's
-#: monitored quantities, and the bearing readings a run tracks at every lubricated joint
-#: (:mod:`clearsim.joint_readings`; ``film_thickness`` there is the reading h = c − |e|).
-BODY_QUANTITIES = BODY_QUANTITY_UNITS
-JOINT_QUANTITIES = JOINT_MONITOR_UNITS
-READING_QUANTITIES = READING_MONITOR_UNITS
+# What Result.extremes reports, per body (each of x, y, theta) and per clearance joint, with the
+# units (clearsim.schema): BODY_QUANTITY_UNITS (x and y | theta), the joint's JOINT_MONITOR_UNITS,
+# and the bearing readings a run tracks at every lubricated joint, READING_MONITOR_UNITS
+# (clearsim.joint_readings; film_thickness there is the reading h = c − |e|).
 
 
 @dataclass(frozen=True)
@@ -75,13 +72,13 @@ def extreme_monitors(
         seen.add(key)
         if isinstance(key, tuple):
             b = list(body_names).index(key[0])
-            out += [{"body": b, "point": list(key[1]), "component": c, "quantity": q, **span} for c in POINT_MONITOR_COMPONENTS for q in BODY_QUANTITIES]
+            out += [{"body": b, "point": list(key[1]), "component": c, "quantity": q, **span} for c in POINT_MONITOR_COMPONENTS for q in BODY_QUANTITY_UNITS]
         elif key in body_names:
             b = list(body_names).index(key)
-            out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITIES]
+            out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITY_UNITS]
         else:
             j = list(joint_names).index(key)
-            out += [{"coordinate": j, "quantity": q, **span} for q in (*JOINT_QUANTITIES, *READING_QUANTITIES)]
+            out += [{"coordinate": j, "quantity": q, **span} for q in (*JOINT_MONITOR_UNITS, *READING_MONITOR_UNITS)]
     return out
 
 
@@ -117,15 +114,28 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         self.failure = raw.get("error")
         self.q0: np.ndarray = raw["q0"]
         self.qd0: np.ndarray = raw["qd0"]
-        #: The mechanism's description (plain data), for drawing; set by Mechanism.simulate (the
-        #: compiled mechanism's own, shared by its runs: read it, do not change it).
-        self.description: Optional[Dict[str, Any]] = None
+        self._given: Optional[Dict[str, Any]] = None  # the mechanism's description, bodies named
+        self._read: Optional[Dict[str, Any]] = None
         #: The monitors the run was given (its settings' ``monitors``); set by Mechanism.simulate.
         self.monitor_specs: List[Dict[str, Any]] = []
         #: Named body points (:class:`clearsim.points.TrackedPoint`) that :meth:`plot_mechanism`,
         #: :meth:`animate`, :meth:`to_pandas` and :meth:`save` show when given no ``points``: a
         #: scene's ``[outputs] points`` (set by its run); empty otherwise.
         self.tracked_points: List[TrackedPoint] = []
+
+    @property
+    def description(self) -> Optional[Dict[str, Any]]:
+        """The mechanism's description as the core read it (plain data: bodies by index, the
+        ground ``None``, every default filled in; ``_core.resolve``), for drawings, readings and
+        exports; ``None`` for a result made without its mechanism. Set by ``Mechanism.simulate``
+        with the mechanism's own description (bodies by name), read by the core on first use."""
+        if self._read is None and self._given is not None:
+            self._read = _core.resolve(self._given)
+        return self._read
+
+    @description.setter
+    def description(self, value: Optional[Dict[str, Any]]) -> None:
+        self._given, self._read = value, None
 
     def __repr__(self) -> str:
         status = "complete" if self.failure is None else f"stopped early: {self.failure}"
@@ -294,7 +304,7 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         ``"acceleration"`` [m/s², m/s², rad/s²]; with ``point=(x, y)`` [m] (in the body's frame,
         as joints take theirs), the (N, 2) error of that point's global x, y [m, m/s or m/s²]
         (:meth:`point`)."""
-        check_choice("quantity", quantity, list(BODY_QUANTITIES))
+        check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
         n = min(len(self.t), len(ideal.t))
         if not np.allclose(self.t[:n], ideal.t[:n], rtol=0, atol=1e-12 * (1 + abs(float(self.t[n - 1])) if n else 1)):
             raise InputError("invalid ideal: it was not run on the same output grid", field="ideal", value=ideal)
@@ -312,7 +322,7 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         ``"acceleration"`` r̈ + θ̈ B p − θ̇² A p [m/s²] (A the body's rotation, B p = A p turned
         +90°; docs/physics.md §5, *Points*). ``point=(0, 0)`` is the centroid. Needs the
         ``"states"`` output, and ``"accelerations"`` for the acceleration (both stored by default)."""
-        check_choice("quantity", quantity, list(BODY_QUANTITIES))
+        check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
         k = self._body(body)
         cols = slice(3 * k, 3 * k + 3)
         pose = self._channel("q", "states")[:, cols]
@@ -355,26 +365,26 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         if point is not None:
             if name not in self.body_names:
                 raise InputError(f"invalid name = {name!r}: a point lies on a body (known: {', '.join(self.body_names)})", field="name", value=name)
-            check_choice("quantity", quantity, list(BODY_QUANTITIES))
+            check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
             check_choice("component", component, list(POINT_MONITOR_COMPONENTS), "(a point's)")
             at = list(check_point(point, "point"))
             match = {"body": self.body_names.index(name), "point": at, "component": component}
-            unit = BODY_QUANTITIES[quantity][0]
+            unit = BODY_QUANTITY_UNITS[quantity][0]
             what = f"{name} ({at[0]:g}, {at[1]:g}).{component} {quantity}"
             asked = f"({name!r}, ({at[0]:g}, {at[1]:g}))"
         elif name in self.body_names:
-            check_choice("quantity", quantity, list(BODY_QUANTITIES))
+            check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
             check_choice("component", component, list(_COMPONENTS), "(a body's quantity has three)")
             c = _COMPONENTS.index(str(component))
             match = {"coordinate": 3 * self.body_names.index(name) + c}
-            unit = BODY_QUANTITIES[quantity][c == 2]
+            unit = BODY_QUANTITY_UNITS[quantity][c == 2]
             what, asked = f"{name}.{component} {quantity}", repr(name)
         elif name in self.joint_names:
-            check_choice("quantity", quantity, list(JOINT_QUANTITIES) + list(READING_QUANTITIES))
+            check_choice("quantity", quantity, list(JOINT_MONITOR_UNITS) + list(READING_MONITOR_UNITS))
             if component is not None:
                 raise InputError(f"invalid component = {component!r}: a joint's {quantity} has none (give component=None)", field="component", value=component)
             match = {"coordinate": self.joint_names.index(name)}
-            unit = {**JOINT_QUANTITIES, **READING_QUANTITIES}[quantity]
+            unit = {**JOINT_MONITOR_UNITS, **READING_MONITOR_UNITS}[quantity]
             what, asked = f"{name} {quantity}", repr(name)
         else:
             known = ", ".join(self.body_names + self.joint_names)

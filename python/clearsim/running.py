@@ -1,21 +1,23 @@
 """Running a mechanism: the second half of :class:`clearsim.Mechanism` (a mixin), from the
 compiled Rust model to a :class:`clearsim.Result` — the state layout, the right-hand side and
 its Newton matrix for other integrators, the run settings (:class:`RunOptions`), ``simulate``
-and ``simulate_with_ideal``. SI units throughout.
+and ``simulate_with_ideal``. The core decides how a run goes: it resolves the names, compiles,
+assembles the pose given once and checks it, and words a failed run's hint; Python turns its
+findings into :class:`~clearsim.PlausibilityWarning` and its errors into the exceptions of
+:mod:`clearsim.errors`. ``simulate`` is one core call once the mechanism is compiled. SI units
+throughout.
 """
 
 from __future__ import annotations
 
-import math
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequence, Tuple, TypedDict, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 
-from . import _core
+from . import _core, plausibility
 from .batch import run_descriptions
-from .errors import AssemblyError, ClearsimError, InputError, InterruptedRun, PlausibilityWarning, SimulationError, check_choice, check_finite
-from .joints import MICROMETRE_FILM_RATIO
+from .errors import InputError, InterruptedRun, check_choice, check_finite
 from .dynamics.readings import section_spec
 from .points import PointsLike, tracked_points
 from .result import Result, extreme_monitors
@@ -49,102 +51,65 @@ class RunOptions(TypedDict, total=False):
 MAX_OUTPUTS: float = float(_core.DEFAULTS["settings"]["max_outputs"])
 
 
-#: Largest rotation [rad] of a body by the assembly before the pose given counts as wrong.
-ASSEMBLY_TURN = 0.5
-#: Above these the pose given draws a :class:`clearsim.errors.PlausibilityWarning`: a joint whose
-#: two points lie further apart than this fraction of the mechanism's span, or a body that the
-#: assembly turns by more than this angle [rad] (docs/physics.md §1).
-POSE_GAP_WARNING = 0.01
-POSE_TURN_WARNING = math.radians(2.0)
+def _check_options(where: str, options: Dict[str, Any]) -> None:
+    """A keyword of ``options`` that :class:`RunOptions` does not know is a TypeError naming the
+    method the user called (``simulate``), not an internal one, with the nearest known name."""
+    known = list(RunOptions.__annotations__)
+    for key in options:
+        if key not in known:
+            import difflib
 
-
-class _Gap(NamedTuple):
-    """A joint at the poses given: its name, its two bodies, how far its two points lie apart
-    [m] (a prismatic joint: the slider's point off the guide line; a clearance joint: from its
-    bearing's centre or its initial eccentricity, whichever is nearer) and each point as given
-    (body frame) and where it lies (global)."""
-
-    joint: str
-    bodies: Tuple[Optional[int], Optional[int]]
-    gap: float
-    local: Tuple[Sequence[float], Sequence[float]]
-    world: Tuple[np.ndarray, np.ndarray]
-
-
-def _joint_gaps(desc: Dict[str, Any]) -> List[_Gap]:
-    """The two-point joints (revolute, prismatic and clearance joints) at the poses given
-    (before assembly), with the distance between their points."""
-    bodies = desc["bodies"]
-
-    def frame(body: Optional[int]) -> Tuple[np.ndarray, np.ndarray]:
-        if body is None:
-            return np.zeros(2), np.eye(2)
-        b = bodies[body]
-        c, s = math.cos(b.get("angle", 0.0)), math.sin(b.get("angle", 0.0))
-        return np.asarray(b["position"], dtype=float), np.array([[c, -s], [s, c]])
-
-    def at(body: Optional[int], point: Sequence[float]) -> np.ndarray:
-        r, rot = frame(body)
-        return r + rot @ np.asarray(point, dtype=float)
-
-    out = []
-    for j in desc["joints"]:
-        a, b = at(j["body_a"], j["point_a"]), at(j["body_b"], j["point_b"])
-        if j["kind"] == "revolute":
-            gap = float(np.hypot(*(a - b)))
-        elif j["kind"] == "prismatic":
-            u = frame(j["body_a"])[1] @ np.asarray(j["axis"], dtype=float)
-            gap = abs(float(u[0] * (b - a)[1] - u[1] * (b - a)[0])) / max(float(np.hypot(*u)), 1e-300)
-        else:
-            continue
-        out.append(_Gap(j["name"], (j["body_a"], j["body_b"]), gap, (j["point_a"], j["point_b"]), (a, b)))
-    for j in desc["clearance_joints"]:
-        a, b = at(j["bearing_body"], j["bearing_point"]), at(j["journal_body"], j["journal_point"])
-        # The journal may be given centred or at its initial eccentricity e0 (the assembly puts it there).
-        e0 = np.asarray(j.get("initial_eccentricity", (0.0, 0.0)), dtype=float)
-        gap = min(float(np.hypot(*(b - a))), float(np.hypot(*(b - a - e0))))
-        out.append(_Gap(j["name"], (j["bearing_body"], j["journal_body"]), gap, (j["bearing_point"], j["journal_point"]), (a, b)))
-    return out
-
-
-def _points_text(g: _Gap, names: Sequence[str]) -> str:
-    """Both points of a joint, as given (body frame) and where they lie (global) [m]."""
-
-    def fmt(v: Any) -> str:
-        return f"({float(v[0]):.4g}, {float(v[1]):.4g})"
-
-    def body(i: Optional[int]) -> str:
-        return "the ground" if i is None else f"body '{names[i]}'"
-
-    return "; ".join(f"point {fmt(g.local[k])} on {body(g.bodies[k])} lies at {fmt(g.world[k])} (global)" for k in (0, 1))
+            near = difflib.get_close_matches(key, known, n=1)
+            hint = f"; did you mean {near[0]!r}?" if near else f" (its keywords: progress, {', '.join(known)})"
+            raise TypeError(f"Mechanism.{where}() got an unexpected keyword argument {key!r}{hint}")
 
 
 class Running:
     """What a :class:`clearsim.Mechanism` does with its description: compile, run, check."""
 
     _compiled: Any
-    #: The description the compiled model was built from (given to its results, which share it:
-    #: a run copies no description) and the compiled model whose pose given was checked last.
-    _compiled_description: Optional[Dict[str, Any]] = None
-    _pose_checked_for: Any = None
     if TYPE_CHECKING:  # provided by Mechanism (mechanism.py, the class that mixes this in)
         _bodies: List[Dict[str, Any]]
         _clearance: List[Dict[str, Any]]
+        _warned: set
 
         @property
         def body_names(self) -> List[str]: ...
         @property
         def clearance_joint_names(self) -> List[str]: ...
         def description(self) -> Dict[str, Any]: ...
+        def _description(self) -> Dict[str, Any]: ...
+        def _changed(self) -> None: ...
         def idealized(self) -> "Running": ...
         def _body(self, field: str, name: str, allow_ground: bool = True) -> Optional[int]: ...
 
+    #: Largest distance the assembly may move a body from the pose given, as a fraction of the
+    #: mechanism's span (the extent of the bodies' positions); a larger move (or a turn of more
+    #: than 0.5 rad) is an :class:`~clearsim.AssemblyError` before the run. ``None`` accepts any
+    #: pose. Smaller mismatches (a joint's points more than 1 % of the span apart, a body turned
+    #: by more than 2°) draw a :class:`clearsim.errors.PlausibilityWarning` (``rust/pose.rs``).
+    _assembly_tolerance: Optional[float] = 0.2
+
+    @property
+    def assembly_tolerance(self) -> Optional[float]:
+        """See :attr:`_assembly_tolerance`: the pose check's tolerance (``None``: none)."""
+        return self._assembly_tolerance
+
+    @assembly_tolerance.setter
+    def assembly_tolerance(self, value: Optional[float]) -> None:
+        self._assembly_tolerance = None if value is None else check_finite("assembly_tolerance", value)
+        self._compiled = None  # the pose check is part of the compiled model
+
     def compile(self) -> "_core.CompiledModel":
-        """The compiled Rust model (cached until the mechanism changes)."""
+        """The compiled Rust model (cached until the mechanism changes). The core resolves the
+        names, validates, compiles, assembles the pose given once and checks it (against
+        :attr:`assembly_tolerance`); what looks wrong (a size in mm against the mechanism's span,
+        a joint point in the wrong frame) is a :class:`~clearsim.PlausibilityWarning` here, once
+        per mechanism."""
         if self._compiled is None:
-            desc = self.description()
-            self._compiled = _core.compile(desc)
-            self._compiled_description = desc
+            compiled = _core.compile(self._description(), self.assembly_tolerance)
+            self._compiled = compiled
+            plausibility.warn_new(compiled.warnings, self._warned)
         return self._compiled
 
     @property
@@ -173,7 +138,7 @@ class Running:
 
         named = tracked_points(points, self.body_names) if points is not None else []
         q = self.initial_state(float(t))[: 3 * len(self._bodies)]
-        fig = draw.plot_pose(self.description(), q, magnify=magnify, t=float(t), ax=ax)
+        fig = draw.plot_pose(self._description(), q, magnify=magnify, t=float(t), ax=ax)
         if named:
             draw_points.mark_pose(fig.axes[0] if ax is None else ax, self.body_names, q, named)
         return fig
@@ -359,9 +324,9 @@ class Running:
         Raises :class:`clearsim.SimulationError` (with ``.result`` holding the partial result)
         if the run cannot go on; a Ctrl-C returns the partial result with a warning.
         """
+        _check_options("simulate", dict(kwargs))
         settings = self.run_settings(t_end, **kwargs)
-        compiled = self.compile()
-        self._checked_assembly(settings["t0"])
+        compiled = self.compile()  # the pose check's AssemblyError comes from compiled.simulate
         from .progress import bar as progress_bar, progress_enabled
 
         if not (progress and progress_enabled()):
@@ -383,15 +348,16 @@ class Running:
         ``(result, ideal)``; ``result.error(ideal, body, quantity)`` gives the errors (docs/physics.md §5).
         The options are :meth:`simulate`'s; ``progress`` is accepted as there, but the pair runs
         as one batch in the core, which shows no bar."""
+        _check_options("simulate_with_ideal", dict(kwargs))
         settings = self.run_settings(t_end, **kwargs)
-        self._checked_assembly(settings["t0"])
+        self.compile().check_pose()
         ideal = self.idealized()
         # ``integrator="auto"`` resolves per mechanism: the ideal one has no film (nor joints).
         ideal_kwargs: Dict[str, Any] = dict(kwargs)
         if ideal_kwargs.get("extremes") not in (None, True, False):
             ideal_kwargs["extremes"] = [n for n in ideal_kwargs["extremes"] if (n[0] if isinstance(n, (tuple, list)) else n) in ideal.body_names]
         ideal_settings = ideal.run_settings(t_end, **ideal_kwargs)
-        raws = run_descriptions([self.description(), ideal.description()], [settings, ideal_settings])
+        raws = run_descriptions([self._description(), ideal._description()], [settings, ideal_settings])  # read only: no copies
         actual, twin = raws
         if isinstance(actual, BaseException):
             raise actual
@@ -399,114 +365,31 @@ class Running:
             raise twin
         return self._finish(actual, settings), ideal._finish(twin, ideal_settings)
 
-    #: Largest distance the assembly may move a body from the pose given, as a fraction of the
-    #: mechanism's span (the extent of the bodies' positions); a larger move (or a turn of more
-    #: than 0.5 rad) is an :class:`AssemblyError` before the run. ``None`` accepts any pose.
-    #: Smaller mismatches (a joint's points more than 1 % of the span apart, a body turned by more
-    #: than 2°) draw a :class:`clearsim.errors.PlausibilityWarning`.
-    assembly_tolerance: Optional[float] = 0.2
-
     def check_assembly(self, t0: float = 0.0) -> np.ndarray:
         """Assemble at ``t0`` [s] and return q0 there, after checking the pose given (the pose
         at t = 0, the drivers' reference time; a start ``t0`` ≠ 0 follows the drivers from it):
         a body that its assembly at t = 0 moves far (see :attr:`assembly_tolerance`) is an
-        :class:`AssemblyError` naming the body, how far it moved and the joint whose points lie
-        furthest apart at the poses given; a joint whose two points lie more than 1 % of the
-        mechanism's span apart, or a body turned by more than 2°, a
+        :class:`~clearsim.AssemblyError` naming the body, how far it moved and the joint whose
+        points lie furthest apart at the poses given; a joint whose two points lie more than 1 %
+        of the mechanism's span apart, or a body turned by more than 2°, a
         :class:`clearsim.errors.PlausibilityWarning` naming the joint and both points (body
-        frame and global). A joint point given in the global instead of the body frame, or a
-        wrong length, is the usual cause. Called by :meth:`simulate` before it runs."""
-        self._check_shift(np.asarray(self.compile().initial_state(0.0), dtype=float)[: 3 * len(self._bodies)], stacklevel=3)
-        return np.asarray(self.compile().initial_state(float(t0)), dtype=float)[: 3 * len(self._bodies)]
-
-    def _check_shift(self, q0: np.ndarray, stacklevel: int = 4) -> None:
-        """Compare the pose given with ``q0``, its assembly at t = 0."""
-        tol = self.assembly_tolerance
-        if tol is None or not np.all(np.isfinite(q0)):
-            return
-        guess = np.array([[*b["position"], b.get("angle", 0.0)] for b in self._bodies], dtype=float)
-        pos = guess[:, :2]
-        span = max(float(np.ptp(pos[:, 0]) + np.ptp(pos[:, 1])), 1e-3) if len(pos) > 1 else 1.0
-        moved = np.hypot(q0[0::3] - guess[:, 0], q0[1::3] - guess[:, 1])
-        turned = np.abs((q0[2::3] - guess[:, 2] + math.pi) % (2 * math.pi) - math.pi)
-        k = int(np.argmax(moved / span + turned / ASSEMBLY_TURN))
-        gaps = _joint_gaps(self.description())
-        if moved[k] <= tol * span and turned[k] <= ASSEMBLY_TURN:
-            self._warn_pose(gaps, turned, span, stacklevel + 1)
-            return
-        name = self._bodies[k]["name"]
-        own = [g for g in gaps if k in g.bodies]
-        culprit = max(own or gaps, key=lambda g: g.gap, default=None)
-        joint = None
-        because = ""
-        if culprit is not None and culprit.gap > 0.05 * span:
-            joint = culprit.joint
-            because = f"; joint '{joint}' has its two points {culprit.gap:.3g} m apart at the poses given ({_points_text(culprit, self.body_names)})"
-        raise AssemblyError(
-            f"the assembly of the pose given (the pose at t = 0) moves body '{name}' by {moved[k]:.3g} m and {math.degrees(turned[k]):.3g}° "
-            f"(tolerance: {tol:g} × the mechanism's span {span:.3g} m, or {math.degrees(ASSEMBLY_TURN):.3g}°)"
-            f"{because}: check the joint points (body frame, not global) and the lengths, or give poses nearer the "
-            "assembled ones (m.assembly_tolerance = None accepts any)",
-            t=0.0, joint=joint, body=name, moved=float(moved[k]), turned=float(turned[k]), result=None,
-            field=f"joint '{joint}'" if joint else f"body '{name}'.position", value=culprit.gap if joint and culprit else float(moved[k]),
-        )  # fmt: skip
-
-    def _warn_pose(self, gaps: List[_Gap], turned: np.ndarray, span: float, stacklevel: int) -> None:
-        """A :class:`PlausibilityWarning` for a pose given that assembles but looks wrong: the
-        joint whose points lie furthest apart beyond POSE_GAP_WARNING × span, or else the joint of
-        a body the assembly turns by more than POSE_TURN_WARNING."""
-        names = self.body_names
-        far = [g for g in gaps if g.gap > POSE_GAP_WARNING * span]
-        k = int(np.argmax(turned)) if len(turned) else 0
-        if far:
-            g = max(far, key=lambda g: g.gap)
-            what = f"joint '{g.joint}' has its two points {g.gap:.3g} m apart ({100 * g.gap / span:.3g} % of the mechanism's span {span:.3g} m)"
-        elif len(turned) and turned[k] > POSE_TURN_WARNING:
-            own = [g for g in gaps if k in g.bodies]
-            if not own:
-                return
-            g = max(own, key=lambda g: g.gap)
-            what = f"the assembly turns body '{names[k]}' by {math.degrees(turned[k]):.3g}° (its joint '{g.joint}' has its points {g.gap:.3g} m apart)"
-        else:
-            return
-        others = [f"'{o.joint}' {o.gap:.3g} m" for o in far if o is not g]
-        also = f"; also apart: {', '.join(others)}" if others else ""
-        warnings.warn(
-            f"clearsim: the pose given looks wrong: {what}: {_points_text(g, names)}{also}. Joint points are given in each "
-            "body's own frame (a point given in global coordinates, or a wrong length, is the usual cause); the run goes on "
-            "from the assembled pose (m.assembly_tolerance = None silences this)",
-            PlausibilityWarning,
-            stacklevel=stacklevel,
-        )
-
-    def _checked_assembly(self, t0: float = 0.0) -> None:
-        """:meth:`check_assembly` before a run from ``t0``: the pose given is checked at t = 0,
-        whatever ``t0``, once per compiled model (the check depends on the mechanism alone: the
-        runs after the first repeat neither its assembly nor its warnings); an assembly that fails
-        altogether is left to the run, whose error carries the diagnosis and an empty partial
-        result."""
+        frame and global), when the mechanism compiles. A joint point given in the global
+        instead of the body frame, or a wrong length, is the usual cause. The core checks it
+        (``rust/pose.rs``); :meth:`simulate` checks it before it runs."""
         compiled = self.compile()
-        if self._pose_checked_for is compiled:
-            return
-        try:
-            q0 = np.asarray(compiled.initial_state(0.0), dtype=float)[: 3 * len(self._bodies)]
-        except ClearsimError:
-            return
-        self._check_shift(q0)
-        self._pose_checked_for = compiled
+        compiled.check_pose()
+        return np.asarray(compiled.initial_state(float(t0)), dtype=float)[: 3 * len(self._bodies)]
 
     def _finish(self, raw: Dict[str, Any], settings: Optional[Dict[str, Any]] = None) -> Result:
         if settings is not None and "sections" in settings:
             raw["section_settings"] = settings["sections"]
         res = Result(raw, self.body_names, self.clearance_joint_names)
-        # The compiled model's description when there is one (shared, not copied per run).
-        compiled_desc = self._compiled_description if self._compiled is not None else None
-        res.description = compiled_desc if compiled_desc is not None else self.description()
+        res.description = self._description()  # the mechanism's own (not a copy): read it, do not change it
         res.monitor_specs = list(settings.get("monitors", [])) if settings is not None else []
         err = raw.get("error")
         if err is not None:
             err.result = res
-            hint = self._micrometre_film_hint(err)
+            hint = getattr(err, "hint", None)  # the core's, chosen by the kind of failure
             if isinstance(err, InterruptedRun):
                 # A crawl the user stopped by hand gets the same advice as one out of budget.
                 tail = f"; {hint}" if hint else ""
@@ -516,39 +399,6 @@ class Running:
                 err.args = (f"{err.args[0] if err.args else ''}; {hint}",)
             raise err
         return res
-
-    def _micrometre_film_hint(self, err: SimulationError) -> Optional[str]:
-        """What to try when a lubricated run stalls where the film model, not the solver, sets the
-        pace (docs/hard_cases.md, after the table): a journal released at rest against the wall
-        that cannot leave it (any clearance: the short film up to 20 µm, the finite up to 1 µm, the
-        long up to 3 µm), and in a µm film (R/c ≥ MICROMETRE_FILM_RATIO) a half-speed whirl along the
-        wall or the long film's whirl near the centre."""
-        stalled = any(s in str(err) for s in ("wall-time budget", "maximum number of steps", "step size underflow", "interrupted"))
-        joint = next((j for j in self.description()["clearance_joints"] if j["name"] == err.joint), None)
-        if not stalled or joint is None or joint["model"]["kind"] != "lubricated" or err.eccentricity is None:
-            return None
-        ratio = joint["journal_radius"] / joint["clearance"]
-        where = f"joint '{joint['name']}' has a {joint['clearance'] * 1e6:.3g} µm {joint['model']['film']!r} film (R/c = {ratio:.0f})"
-        if err.eccentricity >= 0.9 and err.t == 0.0:
-            return (
-                f"hint: {where} and its journal was released at rest against the wall with the drive already at speed: "
-                "the film pushes with a force so large and so nonlinear that the first steps cannot converge: start it "
-                "centred or off the wall (docs/hard_cases.md lists the clearances each film releases from)"
-            )
-        if ratio < MICROMETRE_FILM_RATIO:
-            return None
-        if err.eccentricity >= 0.9:
-            return (
-                f"hint: {where} and its journal sits against the wall, likely whirling along it at half the shaft speed "
-                "(wedge ≈ 0, no load capacity) where the squeeze film is as stiff as at contact: start it centred or off "
-                "the wall (docs/hard_cases.md)"
-            )
-        if joint["model"]["film"] == "long" and err.eccentricity < 0.5:
-            return (
-                f"hint: {where}; a journal whirling near the centre of a µm long-bearing (half-Sommerfeld) film meets a "
-                "negative squeeze damping and the run crawls: film='finite', supply='none' (the periodic film) damps it; the default supply line crawls like the long film (docs/hard_cases.md)"
-            )
-        return None
 
 
 __all__ = ["RunOptions", "Running", "COMPONENTS", "INTEGRATORS", "OUTPUTS", "DEFAULT_OUTPUTS", "MAX_OUTPUTS"]

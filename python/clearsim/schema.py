@@ -89,10 +89,10 @@ READING_MONITOR_UNITS: Dict[str, str] = {"film_thickness": "m", "friction_torque
 #: The SI unit of a description field a study can make random (``B.clearance`` → m), by the
 #: field's name in the description (``rust/description.rs``); ``1``: dimensionless.
 INPUT_UNITS: Dict[str, str] = {
-    "clearance": "m", "journal_radius": "m", "length": "m", "cylinder_length": "m", "slider_length": "m", "corner_radius": "m",
+    "clearance": "m", "journal_radius": "m", "length": "m", "slider_length": "m", "corner_radius": "m",
     "roughness": "m", "e0": "m", "mass": "kg", "inertia": "kg m^2", "angle": "rad", "omega": "rad/s", "v0": "m/s", "v1": "m/s",
-    "impact_speed_floor": "m/s", "youngs_bearing": "Pa", "youngs_journal": "Pa", "hardness": "Pa", "poisson_bearing": "1",
-    "poisson_journal": "1", "restitution": "1", "friction": "1", "boundary_friction": "1", "boundary_slip": "m/s", "coefficient": "1", "eps0": "1",
+    "impact_speed_floor": "m/s", "youngs_modulus": "Pa", "journal_youngs_modulus": "Pa", "hardness": "Pa", "poisson_ratio": "1",
+    "journal_poisson_ratio": "1", "restitution": "1", "friction": "1", "boundary_friction": "1", "boundary_slip": "m/s", "coefficient": "1", "eps0": "1",
     "eps_max": "1", "ambient": "K", "initial": "K", "viscosity": "Pa s", "angle0": "rad", "heat_capacity": "J/K", "heat_transfer": "W/K",
 }  # fmt: skip
 

@@ -1,14 +1,21 @@
-//! From what the user gives to what runs: a [`MechanismDesc`] checked once
-//! (`validate.rs`: every bad value named with its field) and compiled into a [`Model`]
-//! (flat arrays and enums, only the parts the scene uses). The run settings are checked in
-//! [`crate::settings`].
+//! From what the user gives to what runs: a description by names (`crate::names`: resolved into
+//! indices) read into a [`MechanismDesc`], checked once (`validate.rs`: every bad value named
+//! with its field; `element.rs`: one element alone, as it is added), compiled into a [`Model`]
+//! (flat arrays and enums, only the parts the scene uses) and assembled at t = 0 once
+//! ([`Model::start`]). What is valid but looks like a mistake is `plausibility.rs`'s. The run
+//! settings are checked in [`crate::settings`].
 
+#[cfg(feature = "serde")]
+mod element;
+pub mod plausibility;
 mod validate;
 
-pub(crate) use validate::num;
+#[cfg(feature = "serde")]
+pub use element::check_element;
+pub(crate) use crate::text::{num, quoted};
 pub use validate::{check_finite_bearing_ratio, FINITE_BEARING_L_OVER_D, MAX_FILM_CLEARANCE_RATIO};
 
-use crate::assembly::assemble;
+use crate::assembly::pose_at_zero;
 use crate::clearance::{max_penetration, ClearanceJoint, Film};
 use crate::constraints::{BodyKin, CompiledAngleLaw, Constraint, V2};
 use crate::description::*;
@@ -95,6 +102,7 @@ impl Model {
             qd_guess,
             assembly: Vec::new(),
             initial_wear: desc.clearance_joints.iter().map(initial_wear).collect(),
+            start: None,
         };
         for c in &desc.clearance_joints {
             model.assembly.push((
@@ -108,6 +116,9 @@ impl Model {
             model.clearance.extend(ends);
             model.assembly.push((format!("clearance joint '{}' (held centred in its guide)", p.name), guide));
         }
+        // The pose given assembled once, here: the springs' free lengths below and every run and
+        // initial state of this model start from it.
+        model.start = Some(pose_at_zero(&model));
         model.forces = compile_forces(&model, desc)?;
         // The oil temperatures follow (q, q̇) in the state, in joint order (rust/clearance/thermal.rs).
         let heats = model.clearance.iter_mut().filter_map(|c| c.film.as_mut().and_then(|f| f.heat.as_mut()));
@@ -120,12 +131,13 @@ impl Model {
 
 fn contact_law(c: &ClearanceJointDesc, dry: &DryDesc) -> ContactLaw {
     let r_b = c.journal_radius + c.clearance;
-    let line = dry.cylinder_length.map(|l| crate::laws::contact_line::LineContact::pin_in_bore(r_b, c.journal_radius, l, dry.youngs_bearing, dry.poisson_bearing, dry.youngs_journal, dry.poisson_journal));
+    let cylinder = if dry.stiffness_form == StiffnessForm::Cylindrical { dry.length } else { None };
+    let line = cylinder.map(|l| crate::laws::contact_line::LineContact::pin_in_bore(r_b, c.journal_radius, l, dry.youngs_modulus, dry.poisson_ratio, dry.journal_youngs_modulus, dry.journal_poisson_ratio));
     let k = match &line {
         Some(l) => l.force_scale(),
         None => dry.stiffness.unwrap_or_else(|| {
-            let f = if dry.stiffness_paper_printed { stiffness_paper_printed } else { stiffness_internal };
-            f(r_b, c.journal_radius, dry.youngs_bearing, dry.poisson_bearing, dry.youngs_journal, dry.poisson_journal)
+            let f = if dry.stiffness_form == StiffnessForm::PaperPrinted { stiffness_paper_printed } else { stiffness_internal };
+            f(r_b, c.journal_radius, dry.youngs_modulus, dry.poisson_ratio, dry.journal_youngs_modulus, dry.journal_poisson_ratio)
         }),
     };
     ContactLaw {
@@ -189,7 +201,7 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
                 mixed: l.roughness.map(|sigma| crate::clearance::mixed::Mixed {
                     asperity: crate::laws::asperity::GreenwoodTripp::typical(
                         sigma,
-                        crate::clearance::mixed::composite_modulus(l.dry.youngs_bearing, l.dry.poisson_bearing, l.dry.youngs_journal, l.dry.poisson_journal),
+                        crate::clearance::mixed::composite_modulus(l.dry.youngs_modulus, l.dry.poisson_ratio, l.dry.journal_youngs_modulus, l.dry.journal_poisson_ratio),
                     ),
                     friction: crate::clearance::mixed::boundary_friction(l.boundary_friction.unwrap_or(l.dry.friction), l.boundary_slip),
                 }),
@@ -221,17 +233,22 @@ fn compile_clearance(c: &ClearanceJointDesc) -> Result<ClearanceJoint> {
 }
 
 /// Compile the force elements. A spring without a free length (angle) takes the distance
-/// (relative angle) of the mechanism assembled at t = 0.
+/// (relative angle) of the mechanism assembled at t = 0 ([`Model::start`]).
 fn compile_forces(model: &Model, desc: &MechanismDesc) -> Result<Vec<ForceElement>> {
     if desc.forces.is_empty() {
         return Ok(Vec::new());
     }
     let needs_pose = desc.forces.iter().any(|f| {
-        matches!(f, ForceDesc::SpringDamper { free_length: None, .. } | ForceDesc::RotationalSpringDamper { free_angle: None, .. })
+        matches!(f, ForceDesc::SpringDamper { free_length: None, .. } | ForceDesc::RotationalSpringDamper { angle0: None, .. })
     });
     let kin: Vec<BodyKin> = if needs_pose {
-        let (q, qd) = assemble(model, 0.0)?;
-        (0..model.n_bodies()).map(|b| BodyKin::new(&q[3 * b..3 * b + 3], &qd[3 * b..3 * b + 3])).collect()
+        let q = match &model.start {
+            Some(Ok(q)) => q.clone(),
+            Some(Err(e)) => return Err(e.clone()),
+            None => pose_at_zero(model)?,
+        };
+        let rest = [0.0; 3]; // positions and angles only are read
+        (0..model.n_bodies()).map(|b| BodyKin::new(&q[3 * b..3 * b + 3], &rest)).collect()
     } else {
         Vec::new()
     };
@@ -251,12 +268,12 @@ fn compile_forces(model: &Model, desc: &MechanismDesc) -> Result<Vec<ForceElemen
                 free_length: free_length.unwrap_or_else(|| at(body_b).point((*point_b).into()).sub(at(body_a).point((*point_a).into())).norm()),
                 table: force_table.as_ref().map(Tabulated::new),
             },
-            ForceDesc::RotationalSpringDamper { body_a, body_b, stiffness, damping, free_angle, .. } => ForceElement::RotationalSpringDamper {
+            ForceDesc::RotationalSpringDamper { body_a, body_b, stiffness, damping, angle0, .. } => ForceElement::RotationalSpringDamper {
                 a: idx(body_a),
                 b: idx(body_b),
                 stiffness: *stiffness,
                 damping: *damping,
-                free_angle: free_angle.unwrap_or_else(|| at(body_b).th - at(body_a).th),
+                free_angle: angle0.unwrap_or_else(|| at(body_b).th - at(body_a).th),
             },
             ForceDesc::Force { body, point, frame, fx, fy, .. } => ForceElement::Force {
                 body: *body as u32,
@@ -284,7 +301,7 @@ fn compile_prismatic_clearance(p: &PrismaticClearanceDesc, desc: &MechanismDesc)
     let (s, c) = (th_g - th_s).sin_cos();
     let u_s = V2::new(c * u.x - s * u.y, s * u.x + c * u.y);
     let d = &p.model;
-    let k = d.stiffness.unwrap_or_else(|| crate::laws::contact::stiffness_sphere_plane(p.corner_radius, d.youngs_bearing, d.poisson_bearing, d.youngs_journal, d.poisson_journal));
+    let k = d.stiffness.unwrap_or_else(|| crate::laws::contact::stiffness_sphere_plane(p.corner_radius, d.youngs_modulus, d.poisson_ratio, d.journal_youngs_modulus, d.journal_poisson_ratio));
     let contact = ContactLaw { line: None, law: d.normal_law, stiffness: k, exponent: d.exponent, restitution: d.restitution, impact_speed_floor: d.impact_speed_floor };
     let half = 0.5 * p.clearance;
     let end = |sign: f64, label: &str| ClearanceJoint {

@@ -5,7 +5,7 @@ use std::collections::HashSet;
 use crate::description::*;
 use crate::error::{Error, Result};
 
-pub(crate) use crate::error::num;
+use super::num;
 
 fn finite(field: &str, v: f64) -> Result<()> {
     if v.is_finite() {
@@ -121,27 +121,31 @@ fn unique<'a>(what: &'static str, names: impl Iterator<Item = &'a String>) -> Re
 }
 
 pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
-    positive(&format!("{f}.youngs_bearing"), d.youngs_bearing)?;
-    positive(&format!("{f}.youngs_journal"), d.youngs_journal)?;
-    within(&format!("{f}.poisson_bearing"), d.poisson_bearing, -1.0, 0.5, true, true)?;
-    within(&format!("{f}.poisson_journal"), d.poisson_journal, -1.0, 0.5, true, true)?;
+    positive(&format!("{f}.youngs_modulus"), d.youngs_modulus)?;
+    positive(&format!("{f}.journal_youngs_modulus"), d.journal_youngs_modulus)?;
+    within(&format!("{f}.poisson_ratio"), d.poisson_ratio, -1.0, 0.5, true, true)?;
+    within(&format!("{f}.journal_poisson_ratio"), d.journal_poisson_ratio, -1.0, 0.5, true, true)?;
     within(&format!("{f}.restitution"), d.restitution, 0.0, 1.0, true, false)?;
     positive(&format!("{f}.exponent"), d.exponent)?;
     if let Some(k) = d.stiffness {
         positive(&format!("{f}.stiffness"), k)?;
     }
-    if let Some(l) = d.cylinder_length {
-        positive(&format!("{f}.length"), l)?;
-        // The line law is a whole force–penetration relation: a K or an n would be ignored.
-        if let Some(k) = d.stiffness {
-            return Err(Error::invalid(format!("{f}.stiffness"), num(k), "give either a stiffness or stiffness_form = \"cylindrical\", not both (the line contact computes its own force)"));
+    match (d.stiffness_form, d.length) {
+        (StiffnessForm::Cylindrical, None) => {
+            return Err(Error::invalid(format!("{f}.length"), "None", "stiffness_form = 'cylindrical' needs the pin length: Dry(..., length=L) [m]"));
         }
-        if d.stiffness_paper_printed {
-            return Err(Error::invalid(format!("{f}.stiffness_form"), "paper_printed", "cannot be combined with a cylinder length"));
+        (StiffnessForm::Cylindrical, Some(l)) => {
+            positive(&format!("{f}.length"), l)?;
+            // The line law is a whole force–penetration relation: a K or an n would be ignored.
+            if let Some(k) = d.stiffness {
+                return Err(Error::invalid(format!("{f}.stiffness"), num(k), "give either a stiffness or stiffness_form = \"cylindrical\", not both (the line contact computes its own force)"));
+            }
+            if d.exponent != 1.5 {
+                return Err(Error::invalid(format!("{f}.exponent"), num(d.exponent), "is not used by stiffness_form = \"cylindrical\" (Johnson's line contact has its own force–penetration law): leave it at 1.5"));
+            }
         }
-        if d.exponent != 1.5 {
-            return Err(Error::invalid(format!("{f}.exponent"), num(d.exponent), "is not used by stiffness_form = \"cylindrical\" (Johnson's line contact has its own force–penetration law): leave it at 1.5"));
-        }
+        (_, Some(l)) => return Err(Error::invalid(format!("{f}.length"), num(l), "a pin length is used only with stiffness_form = 'cylindrical'")),
+        (_, None) => {}
     }
     non_negative(&format!("{f}.friction"), d.friction)?;
     non_negative(&format!("{f}.v0"), d.v0)?;
@@ -172,6 +176,10 @@ pub(super) fn validate_dry(f: &str, d: &DryDesc) -> Result<()> {
 /// c/R_j ≈ 1e-3; the paper's exaggerated study clearances reach 0.06.
 pub const MAX_FILM_CLEARANCE_RATIO: f64 = 0.25;
 
+/// Check a whole description: each element's references (bodies by index, one driver per body,
+/// unique names) and its own values ([`body`], [`joint`], [`driver`], [`clearance_joint`],
+/// [`prismatic_clearance`], [`force`]: the checks an element also meets alone when it is added,
+/// `super::check_element`).
 pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
     let nb = desc.bodies.len();
     if nb == 0 {
@@ -190,42 +198,27 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
             .chain(desc.drivers.iter().map(|d| &d.name)),
     )?;
     for b in &desc.bodies {
-        let f = format!("body '{}'", b.name);
-        positive(&format!("{f}.mass"), b.mass)?;
-        positive(&format!("{f}.inertia"), b.inertia)?;
-        point(&format!("{f}.position"), b.position)?;
-        finite(&format!("{f}.angle"), b.angle)?;
-        for (k, v) in b.velocity.iter().enumerate() {
-            finite(&format!("{f}.velocity[{k}]"), *v)?;
-        }
+        body(b)?;
     }
     for j in &desc.joints {
+        let f = format!("joint '{}'", j.name());
         match j {
-            JointDesc::Revolute { name, body_a, point_a, body_b, point_b } => {
-                let f = format!("joint '{name}'");
+            JointDesc::Revolute { body_a, body_b, .. } => {
                 body_ref(&format!("{f}.body_a"), *body_a, nb)?;
                 body_ref(&format!("{f}.body_b"), *body_b, nb)?;
                 if body_a == body_b {
                     return Err(Error::invalid(format!("{f}.body_b"), format!("{body_b:?}"), "a joint needs two different bodies"));
                 }
-                point(&format!("{f}.point_a"), *point_a)?;
-                point(&format!("{f}.point_b"), *point_b)?;
             }
-            JointDesc::Prismatic { name, body_a, point_a, axis, body_b, point_b } => {
-                let f = format!("joint '{name}'");
+            JointDesc::Prismatic { body_a, body_b, .. } => {
                 body_ref(&format!("{f}.body_a"), *body_a, nb)?;
                 body_ref(&format!("{f}.body_b"), Some(*body_b), nb)?;
                 if *body_a == Some(*body_b) {
                     return Err(Error::invalid(format!("{f}.body_b"), body_b, "a joint needs two different bodies"));
                 }
-                point(&format!("{f}.point_a"), *point_a)?;
-                point(&format!("{f}.point_b"), *point_b)?;
-                point(&format!("{f}.axis"), *axis)?;
-                if axis[0].hypot(axis[1]) < 1e-12 {
-                    return Err(Error::invalid(format!("{f}.axis"), format!("{axis:?}"), "must be a non-zero direction"));
-                }
             }
         }
+        joint(j)?;
     }
     for (k, d) in desc.drivers.iter().enumerate() {
         body_ref(&format!("driver '{}'.body", d.name), Some(d.body), nb)?;
@@ -238,6 +231,7 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
                 format!("the body is already driven by driver '{}': one body takes one driver", first.name),
             ));
         }
+        driver(d)?;
     }
     for c in &desc.clearance_joints {
         let f = format!("clearance joint '{}'", c.name);
@@ -246,111 +240,7 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
         if c.bearing_body == c.journal_body {
             return Err(Error::invalid(format!("{f}.journal_body"), format!("{:?}", c.journal_body), "bearing and journal must be on different bodies"));
         }
-        point(&format!("{f}.bearing_point"), c.bearing_point)?;
-        point(&format!("{f}.journal_point"), c.journal_point)?;
-        point(&format!("{f}.initial_eccentricity"), c.initial_eccentricity)?;
-        positive(&format!("{f}.journal_radius"), c.journal_radius)?;
-        finite(&format!("{f}.clearance"), c.clearance)?;
-        if c.clearance <= 0.0 {
-            return Err(Error::invalid(
-                format!("{f}.clearance"),
-                num(c.clearance),
-                format!(
-                    "must be positive (c = R_b − R_j: the journal radius R_j = {} must be below the bearing radius R_b = R_j + c)",
-                    c.journal_radius
-                ),
-            ));
-        }
-        if c.clearance < 1e-9 * c.journal_radius {
-            return Err(Error::invalid(
-                format!("{f}.clearance"),
-                num(c.clearance),
-                format!(
-                    "is too small against the journal radius R_j = {}: c/R_j must be at least 1e-9 (R_b = R_j + c would round to R_j and the contact stiffness diverge)",
-                    c.journal_radius
-                ),
-            ));
-        }
-        let e_init = c.initial_eccentricity[0].hypot(c.initial_eccentricity[1]);
-        if e_init > 2.0 * c.clearance {
-            return Err(Error::invalid(
-                format!("{f}.initial_eccentricity"),
-                format!("{:?}", c.initial_eccentricity),
-                format!("its length must not exceed 2 × clearance = {} m (give e in metres, not in units of c)", 2.0 * c.clearance),
-            ));
-        }
-        match &c.model {
-            ClearanceModelDesc::Dry(d) => validate_dry(&f, d)?,
-            ClearanceModelDesc::Lubricated(l) => {
-                if c.clearance > MAX_FILM_CLEARANCE_RATIO * c.journal_radius {
-                    return Err(Error::invalid(
-                        format!("{f}.clearance"),
-                        num(c.clearance),
-                        format!(
-                            "is not small against the journal radius R_j = {} m (c/R_j = {} > {MAX_FILM_CLEARANCE_RATIO}): the film laws are thin-film (Reynolds) theory, valid for c ≪ R_j; is the clearance in metres?",
-                            c.journal_radius,
-                            num(c.clearance / c.journal_radius)
-                        ),
-                    ));
-                }
-                validate_heat(&f, l)?;
-                positive(&format!("{f}.length"), l.length)?;
-                if l.film == crate::laws::FilmModel::Finite {
-                    check_finite_bearing_ratio(&format!("{f}.film"), l.length / (2.0 * c.journal_radius))?;
-                } else if l.supply != crate::laws::FilmSupply::WidestGap {
-                    return Err(Error::invalid(
-                        format!("{f}.supply"),
-                        "none",
-                        "applies to film = \"finite\" only: the long films' pressure is referred to the widest gap (P12) and the short film has no flow around the bearing",
-                    ));
-                }
-                if l.cavitation == crate::laws::FilmCavitation::Jfo {
-                    if l.film != crate::laws::FilmModel::Finite {
-                        return Err(Error::invalid(
-                            format!("{f}.cavitation"),
-                            "jfo",
-                            "applies to film = \"finite\" only: mass-conserving cavitation follows the oil over the bearing, which the closed-form films do not resolve",
-                        ));
-                    }
-                    if l.supply != crate::laws::FilmSupply::WidestGap {
-                        return Err(Error::invalid(
-                            format!("{f}.supply"),
-                            "none",
-                            "cavitation = \"jfo\" needs the supply groove on the widest gap (supply = \"widest_gap\"): with the film ambient only at its ends no oil could come back in",
-                        ));
-                    }
-                }
-                within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;
-                within(&format!("{f}.m"), l.m, 0.0, 1.0, true, true)?;
-                if let Some(e0) = l.e0 {
-                    positive(&format!("{f}.e0"), e0)?;
-                }
-                within(&format!("{f}.eps_max"), l.eps_max, 0.0, 1.0, true, true)?;
-                validate_dry(&f, &l.dry)?;
-                if let Some(sigma) = l.roughness {
-                    positive(&format!("{f}.roughness"), sigma)?;
-                    if 4.0 * sigma >= c.clearance {
-                        return Err(Error::invalid(
-                            format!("{f}.roughness"),
-                            num(sigma),
-                            format!("must be below a quarter of the clearance c = {} m: the asperities (up to 4σ high) would touch with the journal centred; is it in metres?", num(c.clearance)),
-                        ));
-                    }
-                }
-                if let Some(v) = l.boundary_slip {
-                    positive(&format!("{f}.boundary_slip"), v)?;
-                    if l.roughness.is_none() {
-                        return Err(Error::invalid(format!("{f}.boundary_slip"), num(v), "applies with roughness only (the boundary friction's slip ramp): give roughness too"));
-                    }
-                }
-                if let Some(mu_b) = l.boundary_friction {
-                    non_negative(&format!("{f}.boundary_friction"), mu_b)?;
-                    if l.roughness.is_none() {
-                        return Err(Error::invalid(format!("{f}.boundary_friction"), num(mu_b), "applies with roughness only (the friction on the asperity load): give roughness too"));
-                    }
-                }
-            }
-        }
+        clearance_joint(c)?;
     }
     for p in &desc.prismatic_clearance_joints {
         let f = format!("clearance joint '{}'", p.name);
@@ -359,21 +249,7 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
         if p.guide_body == Some(p.slider_body) {
             return Err(Error::invalid(format!("{f}.slider_body"), p.slider_body, "guide and slider must be different bodies"));
         }
-        point(&format!("{f}.guide_point"), p.guide_point)?;
-        point(&format!("{f}.axis"), p.axis)?;
-        if p.axis[0].hypot(p.axis[1]) < 1e-12 {
-            return Err(Error::invalid(format!("{f}.axis"), format!("{:?}", p.axis), "must be a non-zero direction"));
-        }
-        positive(&format!("{f}.clearance"), p.clearance)?;
-        positive(&format!("{f}.slider_length"), p.slider_length)?;
-        positive(&format!("{f}.corner_radius"), p.corner_radius)?;
-        validate_dry(&f, &p.model)?;
-        if p.model.cylinder_length.is_some() {
-            return Err(Error::invalid(format!("{f}.stiffness_form"), "cylindrical", "is for revolute clearance joints (a pin in a bore); a slider's ends use the rounded-corner contact"));
-        }
-        if p.model.wear.is_some() {
-            return Err(Error::invalid(format!("{f}.wear"), "Archard(...)", "wear is modelled for revolute clearance joints only"));
-        }
+        prismatic_clearance(p)?;
     }
     unique("force", desc.forces.iter().map(|f| match f {
         ForceDesc::SpringDamper { name, .. }
@@ -383,11 +259,191 @@ pub(super) fn validate(desc: &MechanismDesc) -> Result<()> {
         | ForceDesc::Motor { name, .. } => name,
     }))?;
     for fd in &desc.forces {
-        validate_force(fd, nb)?;
+        force_refs(fd, nb)?;
+        force(fd)?;
     }
     point("gravity", desc.gravity)?;
     non_negative("baumgarte.alpha", desc.baumgarte[0])?;
     non_negative("baumgarte.beta", desc.baumgarte[1])?;
+    Ok(())
+}
+
+/// A body's own values.
+pub(super) fn body(b: &BodyDesc) -> Result<()> {
+    let f = format!("body '{}'", b.name);
+    positive(&format!("{f}.mass"), b.mass)?;
+    positive(&format!("{f}.inertia"), b.inertia)?;
+    point(&format!("{f}.position"), b.position)?;
+    finite(&format!("{f}.angle"), b.angle)?;
+    for (k, v) in b.velocity.iter().enumerate() {
+        finite(&format!("{f}.velocity[{k}]"), *v)?;
+    }
+    Ok(())
+}
+
+/// An ideal joint's own values (its points and axis).
+pub(super) fn joint(j: &JointDesc) -> Result<()> {
+    let f = format!("joint '{}'", j.name());
+    match j {
+        JointDesc::Revolute { point_a, point_b, .. } => {
+            point(&format!("{f}.point_a"), *point_a)?;
+            point(&format!("{f}.point_b"), *point_b)
+        }
+        JointDesc::Prismatic { point_a, axis, point_b, .. } => {
+            point(&format!("{f}.point_a"), *point_a)?;
+            point(&format!("{f}.point_b"), *point_b)?;
+            point(&format!("{f}.axis"), *axis)?;
+            if axis[0].hypot(axis[1]) < 1e-12 {
+                return Err(Error::invalid(format!("{f}.axis"), format!("{axis:?}"), "must be a non-zero direction"));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// A driver's angle law.
+pub(super) fn driver(d: &DriverDesc) -> Result<()> {
+    crate::constraints::CompiledAngleLaw::compile(&d.law, &format!("driver '{}'", d.name)).map(|_| ())
+}
+
+/// A revolute clearance joint's own values: its points, sizes and model.
+pub(super) fn clearance_joint(c: &ClearanceJointDesc) -> Result<()> {
+    let f = format!("clearance joint '{}'", c.name);
+    point(&format!("{f}.bearing_point"), c.bearing_point)?;
+    point(&format!("{f}.journal_point"), c.journal_point)?;
+    point(&format!("{f}.initial_eccentricity"), c.initial_eccentricity)?;
+    positive(&format!("{f}.journal_radius"), c.journal_radius)?;
+    finite(&format!("{f}.clearance"), c.clearance)?;
+    if c.clearance <= 0.0 {
+        return Err(Error::invalid(
+            format!("{f}.clearance"),
+            num(c.clearance),
+            format!("must be positive (c = R_b − R_j: the journal radius R_j = {} must be below the bearing radius R_b = R_j + c)", c.journal_radius),
+        ));
+    }
+    if c.clearance < 1e-9 * c.journal_radius {
+        return Err(Error::invalid(
+            format!("{f}.clearance"),
+            num(c.clearance),
+            format!(
+                "is too small against the journal radius R_j = {}: c/R_j must be at least 1e-9 (R_b = R_j + c would round to R_j and the contact stiffness diverge)",
+                c.journal_radius
+            ),
+        ));
+    }
+    let e_init = c.initial_eccentricity[0].hypot(c.initial_eccentricity[1]);
+    if e_init > 2.0 * c.clearance {
+        return Err(Error::invalid(
+            format!("{f}.initial_eccentricity"),
+            format!("{:?}", c.initial_eccentricity),
+            format!("its length must not exceed 2 × clearance = {} m (give e in metres, not in units of c)", 2.0 * c.clearance),
+        ));
+    }
+    match &c.model {
+        ClearanceModelDesc::Dry(d) => validate_dry(&f, d),
+        ClearanceModelDesc::Lubricated(l) => {
+            if c.clearance > MAX_FILM_CLEARANCE_RATIO * c.journal_radius {
+                return Err(Error::invalid(
+                    format!("{f}.clearance"),
+                    num(c.clearance),
+                    format!(
+                        "is not small against the journal radius R_j = {} m (c/R_j = {} > {MAX_FILM_CLEARANCE_RATIO}): the film laws are thin-film (Reynolds) theory, valid for c ≪ R_j; is the clearance in metres?",
+                        c.journal_radius,
+                        num(c.clearance / c.journal_radius)
+                    ),
+                ));
+            }
+            lubricated(&f, l)?;
+            if l.film == crate::laws::FilmModel::Finite {
+                check_finite_bearing_ratio(&format!("{f}.film"), l.length / (2.0 * c.journal_radius))?;
+            }
+            if let Some(sigma) = l.roughness {
+                if 4.0 * sigma >= c.clearance {
+                    return Err(Error::invalid(
+                        format!("{f}.roughness"),
+                        num(sigma),
+                        format!("must be below a quarter of the clearance c = {} m: the asperities (up to 4σ high) would touch with the journal centred; is it in metres?", num(c.clearance)),
+                    ));
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+/// A lubricated joint's model on its own (`f` names the joint, or is empty for the model alone):
+/// viscosity and heat, length, film and supply, the transition's parameters, the dry law,
+/// roughness and boundary friction. What needs the joint's sizes (c/R_j, L/D, σ against c) is
+/// [`clearance_joint`]'s.
+pub(super) fn lubricated(f: &str, l: &LubricatedDesc) -> Result<()> {
+    validate_heat(f, l)?;
+    positive(&format!("{f}.length"), l.length)?;
+    if l.film != crate::laws::FilmModel::Finite && l.supply != crate::laws::FilmSupply::WidestGap {
+        return Err(Error::invalid(
+            format!("{f}.supply"),
+            "none",
+            "applies to film = \"finite\" only: the long films' pressure is referred to the widest gap (P12) and the short film has no flow around the bearing",
+        ));
+    }
+    if l.cavitation == crate::laws::FilmCavitation::Jfo {
+        if l.film != crate::laws::FilmModel::Finite {
+            return Err(Error::invalid(
+                format!("{f}.cavitation"),
+                "jfo",
+                "applies to film = \"finite\" only: mass-conserving cavitation follows the oil over the bearing, which the closed-form films do not resolve",
+            ));
+        }
+        if l.supply != crate::laws::FilmSupply::WidestGap {
+            return Err(Error::invalid(
+                format!("{f}.supply"),
+                "none",
+                "cavitation = \"jfo\" needs the supply groove on the widest gap (supply = \"widest_gap\"): with the film ambient only at its ends no oil could come back in",
+            ));
+        }
+    }
+    within(&format!("{f}.eps0"), l.eps0, 0.0, 1.0, false, true)?;
+    within(&format!("{f}.m"), l.m, 0.0, 1.0, true, true)?;
+    if let Some(e0) = l.e0 {
+        positive(&format!("{f}.e0"), e0)?;
+    }
+    within(&format!("{f}.eps_max"), l.eps_max, 0.0, 1.0, true, true)?;
+    validate_dry(f, &l.dry)?;
+    if let Some(sigma) = l.roughness {
+        positive(&format!("{f}.roughness"), sigma)?;
+    }
+    if let Some(v) = l.boundary_slip {
+        positive(&format!("{f}.boundary_slip"), v)?;
+        if l.roughness.is_none() {
+            return Err(Error::invalid(format!("{f}.boundary_slip"), num(v), "applies with roughness only (the boundary friction's slip ramp): give roughness too"));
+        }
+    }
+    if let Some(mu_b) = l.boundary_friction {
+        non_negative(&format!("{f}.boundary_friction"), mu_b)?;
+        if l.roughness.is_none() {
+            return Err(Error::invalid(format!("{f}.boundary_friction"), num(mu_b), "applies with roughness only (the friction on the asperity load): give roughness too"));
+        }
+    }
+    Ok(())
+}
+
+/// A prismatic clearance joint's own values.
+pub(super) fn prismatic_clearance(p: &PrismaticClearanceDesc) -> Result<()> {
+    let f = format!("clearance joint '{}'", p.name);
+    point(&format!("{f}.guide_point"), p.guide_point)?;
+    point(&format!("{f}.axis"), p.axis)?;
+    if p.axis[0].hypot(p.axis[1]) < 1e-12 {
+        return Err(Error::invalid(format!("{f}.axis"), format!("{:?}", p.axis), "must be a non-zero direction"));
+    }
+    positive(&format!("{f}.clearance"), p.clearance)?;
+    positive(&format!("{f}.slider_length"), p.slider_length)?;
+    positive(&format!("{f}.corner_radius"), p.corner_radius)?;
+    validate_dry(&f, &p.model)?;
+    if p.model.stiffness_form == StiffnessForm::Cylindrical {
+        return Err(Error::invalid(format!("{f}.stiffness_form"), "cylindrical", "is for revolute clearance joints (a pin in a bore); a slider's ends use the rounded-corner contact"));
+    }
+    if p.model.wear.is_some() {
+        return Err(Error::invalid(format!("{f}.wear"), "Archard(...)", "wear is modelled for revolute clearance joints only"));
+    }
     Ok(())
 }
 
@@ -422,16 +478,18 @@ fn validate_table(f: &str, t: &Table) -> Result<()> {
     Ok(())
 }
 
-fn validate_profile(f: &str, p: &Profile, nb: usize) -> Result<()> {
+fn validate_profile(f: &str, p: &Profile) -> Result<()> {
     match p {
         Profile::Constant { value } => finite(f, *value),
-        Profile::Table { argument, table } => {
-            if let TableArgument::Angle { body } = argument {
-                body_ref(&format!("{f}.argument.body"), Some(*body), nb)?;
-            }
-            validate_table(f, table)
-        }
+        Profile::Table { table, .. } => validate_table(f, table),
         Profile::Harmonic(h) => crate::constraints::angle_law::check_harmonic(f, h),
+    }
+}
+
+fn profile_ref(f: &str, p: &Profile, nb: usize) -> Result<()> {
+    match p {
+        Profile::Table { argument: TableArgument::Angle { body }, .. } => body_ref(&format!("{f}.argument.body"), Some(*body), nb),
+        _ => Ok(()),
     }
 }
 
@@ -444,11 +502,40 @@ fn two_bodies(f: &str, a: BodyRef, b: BodyRef, nb: usize) -> Result<()> {
     Ok(())
 }
 
-fn validate_force(fd: &ForceDesc, nb: usize) -> Result<()> {
+/// A force element's references to bodies (a load table's angle argument included).
+fn force_refs(fd: &ForceDesc, nb: usize) -> Result<()> {
     let f = format!("force '{}'", fd.name());
     match fd {
-        ForceDesc::SpringDamper { body_a, point_a, body_b, point_b, stiffness, damping, free_length, force_table, .. } => {
-            two_bodies(&f, *body_a, *body_b, nb)?;
+        ForceDesc::SpringDamper { body_a, body_b, .. } | ForceDesc::RotationalSpringDamper { body_a, body_b, .. } => two_bodies(&f, *body_a, *body_b, nb),
+        ForceDesc::Force { body, fx, fy, .. } => {
+            body_ref(&format!("{f}.body"), Some(*body), nb)?;
+            profile_ref(&format!("{f}.fx"), fx, nb)?;
+            profile_ref(&format!("{f}.fy"), fy, nb)
+        }
+        ForceDesc::Torque { body, reaction, magnitude, .. } => {
+            body_ref(&format!("{f}.body"), Some(*body), nb)?;
+            body_ref(&format!("{f}.reaction"), *reaction, nb)?;
+            if *reaction == Some(*body) {
+                return Err(Error::invalid(format!("{f}.reaction"), body, "must differ from the loaded body"));
+            }
+            profile_ref(&format!("{f}.magnitude"), magnitude, nb)
+        }
+        ForceDesc::Motor { body, reaction, .. } => {
+            body_ref(&format!("{f}.body"), Some(*body), nb)?;
+            body_ref(&format!("{f}.reaction"), *reaction, nb)?;
+            if *reaction == Some(*body) {
+                return Err(Error::invalid(format!("{f}.reaction"), body, "must differ from the rotor body"));
+            }
+            Ok(())
+        }
+    }
+}
+
+/// A force element's own values.
+pub(super) fn force(fd: &ForceDesc) -> Result<()> {
+    let f = format!("force '{}'", fd.name());
+    match fd {
+        ForceDesc::SpringDamper { point_a, point_b, stiffness, damping, free_length, force_table, .. } => {
             point(&format!("{f}.point_a"), *point_a)?;
             point(&format!("{f}.point_b"), *point_b)?;
             non_negative(&format!("{f}.stiffness"), *stiffness)?;
@@ -463,34 +550,20 @@ fn validate_force(fd: &ForceDesc, nb: usize) -> Result<()> {
                 validate_table(&format!("{f}.force_table"), t)?;
             }
         }
-        ForceDesc::RotationalSpringDamper { body_a, body_b, stiffness, damping, free_angle, .. } => {
-            two_bodies(&f, *body_a, *body_b, nb)?;
+        ForceDesc::RotationalSpringDamper { stiffness, damping, angle0, .. } => {
             non_negative(&format!("{f}.stiffness"), *stiffness)?;
             non_negative(&format!("{f}.damping"), *damping)?;
-            if let Some(a) = free_angle {
-                finite(&format!("{f}.free_angle"), *a)?;
+            if let Some(a) = angle0 {
+                finite(&format!("{f}.angle0"), *a)?;
             }
         }
-        ForceDesc::Force { body, point: p, fx, fy, .. } => {
-            body_ref(&format!("{f}.body"), Some(*body), nb)?;
+        ForceDesc::Force { point: p, fx, fy, .. } => {
             point(&format!("{f}.point"), *p)?;
-            validate_profile(&format!("{f}.fx"), fx, nb)?;
-            validate_profile(&format!("{f}.fy"), fy, nb)?;
+            validate_profile(&format!("{f}.fx"), fx)?;
+            validate_profile(&format!("{f}.fy"), fy)?;
         }
-        ForceDesc::Torque { body, reaction, magnitude, .. } => {
-            body_ref(&format!("{f}.body"), Some(*body), nb)?;
-            body_ref(&format!("{f}.reaction"), *reaction, nb)?;
-            if *reaction == Some(*body) {
-                return Err(Error::invalid(format!("{f}.reaction"), body, "must differ from the loaded body"));
-            }
-            validate_profile(&format!("{f}.magnitude"), magnitude, nb)?;
-        }
-        ForceDesc::Motor { body, reaction, stall_torque, no_load_speed, .. } => {
-            body_ref(&format!("{f}.body"), Some(*body), nb)?;
-            body_ref(&format!("{f}.reaction"), *reaction, nb)?;
-            if *reaction == Some(*body) {
-                return Err(Error::invalid(format!("{f}.reaction"), body, "must differ from the rotor body"));
-            }
+        ForceDesc::Torque { magnitude, .. } => validate_profile(&format!("{f}.magnitude"), magnitude)?,
+        ForceDesc::Motor { stall_torque, no_load_speed, .. } => {
             positive(&format!("{f}.stall_torque"), *stall_torque)?;
             finite(&format!("{f}.no_load_speed"), *no_load_speed)?;
             if *no_load_speed == 0.0 {
@@ -516,14 +589,4 @@ pub fn check_finite_bearing_ratio(field: &str, l_over_d: f64) -> Result<()> {
         ));
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod num_tests {
-    #[test]
-    fn numbers_as_python_writes_them() {
-        for (v, text) in [(2.0, "2.0"), (0.0, "0.0"), (-0.001, "-0.001"), (1e-6, "1e-06"), (-1.5e-7, "-1.5e-07"), (1e20, "1e+20"), (1e-300, "1e-300"), (1e15, "1000000000000000.0"), (f64::NAN, "nan"), (f64::NEG_INFINITY, "-inf")] {
-            assert_eq!(super::num(v), text);
-        }
-    }
 }

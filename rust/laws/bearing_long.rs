@@ -764,25 +764,4 @@ mod tests {
         let (p, f) = (long_bearing_paper_closed_form(&G, s), long_bearing_force(&G, s));
         assert!(p.0 < 0.0 && f.0 > 0.0, "sign of F_ξ for ε̇ < 0: paper {p:?}, Gümbel {f:?}");
     }
-
-    #[test]
-    fn timing_report() {
-        let n = 200_000;
-        let mut acc = 0.0;
-        let t = std::time::Instant::now();
-        for i in 0..n {
-            let x = i as f64 / n as f64;
-            let f = long_bearing_force(&G, st(0.05 + 0.9 * x, (x - 0.3) * 10.0, 80.0 - 100.0 * x));
-            acc += f.0 + f.1;
-        }
-        let closed = t.elapsed().as_nanos() as f64 / n as f64;
-        let t = std::time::Instant::now();
-        for i in 0..n / 10 {
-            let x = i as f64 / (n / 10) as f64;
-            let f = long_bearing_force_quadrature(&G, st(0.05 + 0.9 * x, (x - 0.3) * 10.0, 80.0 - 100.0 * x));
-            acc += f.0 + f.1;
-        }
-        let gl = t.elapsed().as_nanos() as f64 / (n / 10) as f64;
-        eprintln!("long bearing: closed form {closed:.0} ns/call, graded GL {gl:.0} ns/call ({acc:.3e})");
-    }
 }

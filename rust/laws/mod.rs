@@ -1,4 +1,6 @@
-//! The laws of clearance joints (docs/physics.md §3–§4, §12): pure functions of kinematic inputs and parameters.
+//! The laws of clearance joints (docs/physics.md §3–§4, §12): functions of kinematic inputs and
+//! parameters, without state. One exception keeps state: the finite bearing's tables, solved once
+//! per L/D and supply and kept in the process and in a folder on disk ([`bearing_finite_cache`]).
 //!
 //! - [`contact`]: normal impact force (Hertz, Lankarani–Nikravesh, Hunt–Crossley, Flores) and
 //!   contact stiffness (docs/physics.md §3, P3–P4); [`contact_line`]: a pin as a line contact.

@@ -34,6 +34,11 @@ pub struct Model {
     /// Per clearance joint: the depths \[m\] worn before the run around the bearing and the
     /// journal (empty: unworn; docs/physics.md §12).
     pub initial_wear: Vec<(Vec<f64>, Vec<f64>)>,
+    /// The pose given assembled at t = 0 (positions q, 3 per body), or why it did not assemble:
+    /// done once when the model compiles ([`crate::assembly::pose_at_zero`]); every run and
+    /// initial state starts from it (`None`: not assembled yet, [`crate::assembly::assemble`]
+    /// does it then).
+    pub start: Option<crate::error::Result<Vec<f64>>>,
 }
 
 impl Model {

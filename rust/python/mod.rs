@@ -20,9 +20,10 @@ use crate::error::Error;
 use crate::integrate::OdeSystem;
 use crate::description::{MechanismDesc, ELEMENTS};
 use crate::model::Model;
+use crate::error::Warning;
 use crate::record::{Channels, JOINT_COLUMNS};
 use crate::settings::RunSettingsDesc;
-use crate::simulate::{simulate, MechanismSystem, RunOutput, RunSettings};
+use crate::simulate::{simulate, MechanismSystem, RunSettings};
 use crate::system::Workspace;
 
 // ---------------------------------------------------------------- errors (the one mapping)
@@ -46,6 +47,17 @@ fn to_pyerr(py: Python<'_>, e: &Error) -> PyErr {
             }
             Error::Assembly { t, .. } => {
                 kwargs.set_item("t", t)?;
+                "AssemblyError"
+            }
+            Error::PoseMoved { body, joint, moved, turned, field, value, .. } => {
+                kwargs.set_item("t", 0.0)?;
+                kwargs.set_item("body", body)?;
+                kwargs.set_item("joint", joint)?;
+                kwargs.set_item("moved", moved)?;
+                kwargs.set_item("turned", turned)?;
+                kwargs.set_item("field", field)?;
+                kwargs.set_item("value", value)?;
+                kwargs.set_item("result", py.None())?;
                 "AssemblyError"
             }
             Error::Interrupted { t } => {
@@ -74,10 +86,19 @@ fn input_error(py: Python<'_>, field: &str, value: impl std::fmt::Display, reaso
     to_pyerr(py, &Error::invalid(field, value, reason))
 }
 
+/// `v` (row-major, `cols` a row) as a numpy array of shape (rows, cols).
+fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, PyAny>> {
+    let rows = if cols == 0 { 0 } else { v.len() / cols };
+    Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
+}
+
 // ---------------------------------------------------------------- reading plain data
 
 mod de;
 mod film;
+mod output;
+
+use output::output_to_dict;
 
 /// Run settings from Python plain data (the dict `Mechanism.run_settings` builds), through serde
 /// ([`crate::settings::RunSettingsDesc`]) and validated. A key or value that does not fit is an
@@ -94,15 +115,16 @@ fn read_settings(d: &Bound<'_, PyAny>) -> PyResult<RunSettings> {
     desc.into_settings().map_err(|e| to_pyerr(py, &e))
 }
 
-/// A description from Python: a JSON string, or plain data (dicts, lists, numbers, strings).
-/// Either way it enters the core through serde ([`crate::description::from_value`]), the one path.
+/// A description from Python: a JSON string, or plain data (dicts, lists, numbers, strings),
+/// elements referring to one another by name. Either way it enters the core through serde
+/// ([`crate::description::from_value`], names resolved there), the one path.
 fn read_description(d: &Bound<'_, PyAny>) -> PyResult<MechanismDesc> {
     let py = d.py();
     let v = match d.extract::<String>() {
         Ok(text) => return crate::description::from_json(&text).map_err(|e| to_pyerr(py, &e)),
         Err(_) => plain_value(d, "", true)?,
     };
-    crate::description::from_value(&v).map_err(|e| to_pyerr(py, &e))
+    crate::description::from_value(v).map_err(|e| to_pyerr(py, &e))
 }
 
 /// Python plain data as a JSON value. A number that is not finite (JSON has no NaN) is an
@@ -165,187 +187,6 @@ fn plain_value(obj: &Bound<'_, PyAny>, field: &str, top: bool) -> PyResult<serde
     Err(input_error(py, if field.is_empty() { "description" } else { field }, obj.repr()?, "must be plain data (dicts, lists, numbers, strings)"))
 }
 
-// ---------------------------------------------------------------- results
-
-fn array2<'py>(py: Python<'py>, v: &[f64], cols: usize) -> PyResult<Bound<'py, PyAny>> {
-    let rows = if cols == 0 { 0 } else { v.len() / cols };
-    Ok(PyArray1::from_slice(py, v).reshape([rows, cols])?.into_any())
-}
-
-/// The channels of a recording into `d` (`t`, `q`, `qd`, `qdd`, `lambda`, `joints`,
-/// `temperature`, `violation`, `energy`: those it holds).
-fn recording_into<'py>(py: Python<'py>, d: &Bound<'py, PyDict>, rec: &crate::record::Recording) -> PyResult<()> {
-    let n = rec.coordinates;
-    let ch = rec.channels.unwrap_or_default();
-    d.set_item("t", PyArray1::from_slice(py, &rec.t))?;
-    if ch.states {
-        d.set_item("q", array2(py, &rec.q, n)?)?;
-        d.set_item("qd", array2(py, &rec.qd, n)?)?;
-    }
-    if ch.accelerations {
-        d.set_item("qdd", array2(py, &rec.qdd, n)?)?;
-    }
-    if ch.reactions {
-        d.set_item("lambda", array2(py, &rec.lambda, rec.constraint_rows)?)?;
-        let rows = rec.t.len();
-        d.set_item("reactions", PyArray1::from_slice(py, &rec.reactions).reshape([rows, rec.constraints, 3])?)?;
-    }
-    if ch.joints {
-        let nj = rec.clearance_joints;
-        let w = JOINT_COLUMNS.len();
-        let rows = rec.t.len();
-        d.set_item("joints", PyArray1::from_slice(py, &rec.joints).reshape([rows, nj, w])?)?;
-    }
-    if !rec.temperature.is_empty() {
-        d.set_item("temperature", array2(py, &rec.temperature, rec.clearance_joints)?)?;
-    }
-    if ch.violation {
-        d.set_item("violation", array2(py, &rec.violation, 2)?)?;
-    }
-    if ch.energy {
-        d.set_item("energy", array2(py, &rec.energy, crate::energy::ENERGY_COLUMNS.len())?)?;
-    }
-    if ch.film {
-        film::recorded(py, rec, d)?;
-    }
-    Ok(())
-}
-
-fn output_to_dict<'py>(py: Python<'py>, out: &RunOutput) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    recording_into(py, &d, &out.recording)?;
-    if let Some(rec) = &out.sections {
-        let sd = PyDict::new(py);
-        recording_into(py, &sd, rec)?;
-        d.set_item("sections", sd)?;
-    }
-    if let Some(book) = &out.lyapunov {
-        let ld = PyDict::new(py);
-        ld.set_item("t", PyArray1::from_slice(py, &book.t))?;
-        ld.set_item("log_growth", PyArray1::from_slice(py, &book.log_growth))?;
-        ld.set_item("steps", book.steps)?;
-        ld.set_item("rhs_evaluations", book.rhs_evals)?;
-        match &book.error {
-            None => ld.set_item("error", py.None())?,
-            Some(e) => ld.set_item("error", to_pyerr(py, e).value(py))?,
-        }
-        d.set_item("lyapunov", ld)?;
-    }
-    d.set_item("q0", PyArray1::from_slice(py, &out.q0))?;
-    d.set_item("qd0", PyArray1::from_slice(py, &out.qd0))?;
-    d.set_item("impacts", out.impacts.clone())?;
-    d.set_item("max_violation", out.max_violation.to_vec())?;
-    if !out.references.is_empty() {
-        let n = out.recording.coordinates;
-        let refs = PyDict::new(py);
-        for r in &out.references {
-            let rd = PyDict::new(py);
-            rd.set_item("q", array2(py, &r.q, n)?)?;
-            rd.set_item("qd", array2(py, &r.qd, n)?)?;
-            rd.set_item("qdd", array2(py, &r.qdd, n)?)?;
-            refs.set_item(r.of.name(), rd)?;
-        }
-        d.set_item("reference", refs)?;
-    }
-    let monitors = PyList::empty(py);
-    for m in &out.monitors {
-        let md = PyDict::new(py);
-        md.set_item("peak", m.peak)?;
-        md.set_item("t_peak", m.t_peak)?;
-        md.set_item("first_passage", m.first_passage)?;
-        md.set_item("bin_max", PyArray1::from_slice(py, &m.bin_max))?;
-        md.set_item("bin_min", PyArray1::from_slice(py, &m.bin_min))?;
-        md.set_item("bin_abs", PyArray1::from_slice(py, &m.bin_abs))?;
-        md.set_item("bin_sq", PyArray1::from_slice(py, &m.bin_sq))?;
-        md.set_item("bin_time", PyArray1::from_slice(py, &m.bin_time))?;
-        md.set_item("max", m.max)?;
-        md.set_item("t_max", m.t_max)?;
-        md.set_item("min", m.min)?;
-        md.set_item("t_min", m.t_min)?;
-        monitors.append(md)?;
-    }
-    if !out.monitors.is_empty() {
-        d.set_item("monitors", monitors)?;
-    }
-    if out.wear.iter().any(Option::is_some) {
-        let wear = PyList::empty(py);
-        for w in &out.wear {
-            match w {
-                None => wear.append(py.None())?,
-                Some(w) => {
-                    let wd = PyDict::new(py);
-                    wd.set_item("bearing", PyArray1::from_slice(py, &w.bearing))?;
-                    wd.set_item("journal", PyArray1::from_slice(py, &w.journal))?;
-                    wd.set_item("volume", w.volume)?;
-                    if let Some(m) = &w.at_mark {
-                        wd.set_item("bearing_at_mark", PyArray1::from_slice(py, &m.bearing))?;
-                        wd.set_item("journal_at_mark", PyArray1::from_slice(py, &m.journal))?;
-                        wd.set_item("volume_at_mark", m.volume)?;
-                    }
-                    wear.append(wd)?;
-                }
-            }
-        }
-        d.set_item("wear", wear)?;
-    }
-    if !out.bearings.is_empty() {
-        // Per clearance joint: the bearing summary (RunSettings::bearings), None for a dry joint.
-        let bearings = PyList::empty(py);
-        for b in &out.bearings {
-            match b {
-                None => bearings.append(py.None())?,
-                Some(b) => {
-                    let bd = PyDict::new(py);
-                    bd.set_item("window_start", b.window_start)?;
-                    bd.set_item("window_end", b.window_end)?;
-                    bd.set_item("min_film_thickness", b.min_film_thickness)?;
-                    bd.set_item("t_min_film", b.t_min_film)?;
-                    bd.set_item("peak_power_loss", b.peak_power_loss)?;
-                    bd.set_item("t_peak_power_loss", b.t_peak_power_loss)?;
-                    bd.set_item("mean_power_loss", b.mean_power_loss())?;
-                    bd.set_item("energy_loss", b.energy_loss)?;
-                    bearings.append(bd)?;
-                }
-            }
-        }
-        d.set_item("bearings", bearings)?;
-    }
-    let s = PyDict::new(py);
-    s.set_item("steps", out.stats.steps_accepted)?;
-    s.set_item("rejected_steps", out.stats.steps_rejected)?;
-    s.set_item("steps_to_switch", out.stats.steps_to_switch)?;
-    s.set_item("rhs_evaluations", out.stats.rhs_evals)?;
-    s.set_item("jacobians", out.stats.jacobians)?;
-    s.set_item("force_evaluations", out.force_evaluations)?;
-    s.set_item("min_step", out.stats.h_min_used)?;
-    s.set_item("max_step", out.stats.h_max_used)?;
-    s.set_item("t_reached", out.stats.t_reached)?;
-    s.set_item("wall_time", out.wall_time)?;
-    s.set_item("integrator", out.method.name())?;
-    d.set_item("stats", s)?;
-    match &out.error {
-        None => d.set_item("error", py.None())?,
-        Some(e) => {
-            let err = to_pyerr(py, e);
-            let value = err.value(py);
-            if let Some((joint, eps)) = &out.failure_joint {
-                value.setattr("joint", joint)?;
-                value.setattr("eccentricity", eps)?;
-                // Failures whose message carries no diagnosis (singular Jacobian, step budget)
-                // still name the joint nearest contact, so a blown-up state is recognisable.
-                let msg = e.to_string();
-                if !msg.contains(&format!("joint '{joint}'")) {
-                    let full = format!("{msg}; joint '{joint}' at eccentricity ε = {eps:.6}");
-                    value.setattr("reason", &full)?;
-                    value.setattr("args", (full,))?;
-                }
-            }
-            d.set_item("error", value)?;
-        }
-    }
-    Ok(d)
-}
-
 /// The check polled during long runs (at most every 50 ms): runs Python's signal handlers
 /// (Ctrl-C interrupts the run) and reports the simulated time reached to `progress(t)` if given
 /// (an exception raised there also stops the run).
@@ -392,12 +233,17 @@ fn make_stop(py: Python<'_>, progress: Option<Py<PyAny>>) -> impl Fn(f64) -> boo
 
 // ---------------------------------------------------------------- the Python classes
 
-/// A validated, compiled mechanism (built by `clearsim.Mechanism`).
+/// A validated, compiled mechanism (built by `clearsim.Mechanism`), assembled at t = 0 once,
+/// with what looks wrong in it (`warnings`) and the pose check's verdict (raised before a run).
 #[pyclass(module = "clearsim._core", frozen)]
 pub struct CompiledModel {
     model: Model,
+    /// What it was compiled from: the runs its monitors measure it against are made from it.
     desc: MechanismDesc,
     rhs_ws: Mutex<(Workspace, Vec<ImpactMemory>)>,
+    warnings: Vec<Warning>,
+    /// The pose given moved too far by its assembly ([`crate::pose::check`]).
+    pose: Option<Error>,
 }
 
 #[pymethods]
@@ -426,6 +272,20 @@ impl CompiledModel {
     #[getter]
     fn dof(&self) -> isize {
         self.model.dof()
+    }
+
+    /// What is valid but looks like a mistake, as `(field, message)`: a size that looks like
+    /// millimetres against the mechanism's span ([`crate::compile::plausibility`]), a pose given
+    /// that assembles but looks wrong ([`crate::pose`]).
+    #[getter]
+    fn warnings(&self) -> Vec<(String, String)> {
+        self.warnings.iter().map(|w| (w.field.clone(), w.message.clone())).collect()
+    }
+
+    /// Raise the pose check's `AssemblyError` if the assembly moved a body too far (as
+    /// `simulate` does before it runs).
+    fn check_pose(&self, py: Python<'_>) -> PyResult<()> {
+        self.pose.as_ref().map_or(Ok(()), |e| Err(to_pyerr(py, e)))
     }
 
     /// Contact stiffness K of each clearance joint [N/m^n].
@@ -491,6 +351,7 @@ impl CompiledModel {
     /// nominal design, against its ideal) get their reference run here (`crate::batch::run_one`).
     #[pyo3(signature = (settings, progress=None, nominal=None))]
     fn simulate<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, progress: Option<Py<PyAny>>, nominal: Option<Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyDict>> {
+        self.check_pose(py)?;
         let rs = read_settings(settings.as_any())?;
         let nominal = nominal.map(|d| read_description(&d)).transpose()?;
         let (model, desc) = (&self.model, &self.desc);
@@ -517,11 +378,6 @@ impl CompiledModel {
         let y = self.state_vector(py, &y)?;
         film::film_field(py, &self.model, joint, &y, temperature, content)
     }
-
-    /// The ideal counterpart: every clearance joint made a revolute joint.
-    fn idealized(&self, py: Python<'_>) -> PyResult<CompiledModel> {
-        CompiledModel::build(py, self.desc.idealized())
-    }
 }
 
 impl CompiledModel {
@@ -535,21 +391,76 @@ impl CompiledModel {
         Ok(y.iter().copied().collect())
     }
 
-    fn build(py: Python<'_>, desc: MechanismDesc) -> PyResult<Self> {
+    /// Compile `desc` and check it: its plausibility against its own size, and its pose given
+    /// against the assembly at t = 0 with the assembly `tolerance` (`None` accepts any pose).
+    fn build(py: Python<'_>, desc: MechanismDesc, tolerance: Option<f64>) -> PyResult<Self> {
         // Without the GIL: a finite-bearing table built here takes seconds, and other Python
         // threads (the runs of a thread pool, their stop checks) must not wait for it.
         let model = py.detach(|| Model::compile(&desc)).map_err(|e| to_pyerr(py, &e))?;
+        let mut warnings = crate::compile::plausibility::findings(&desc);
+        // A pose that does not assemble at all is the run's to report (with its diagnosis).
+        let pose = match &model.start {
+            Some(Ok(q0)) => match crate::pose::check(&desc, q0, tolerance) {
+                Ok(w) => {
+                    warnings.extend(w);
+                    None
+                }
+                Err(e) => Some(e),
+            },
+            _ => None,
+        };
         let ws = Workspace::new(&model);
         let mem = vec![ImpactMemory::default(); model.clearance.len()];
-        Ok(CompiledModel { model, desc, rhs_ws: Mutex::new((ws, mem)) })
+        Ok(CompiledModel { model, desc, rhs_ws: Mutex::new((ws, mem)), warnings, pose })
     }
 }
 
-/// Validate and compile a mechanism description (a dict).
+/// Validate and compile a mechanism description (a dict, bodies named), assemble its pose given
+/// and check it against the assembly `tolerance` (a fraction of the span; `None`: any pose).
 #[pyfunction]
-fn compile(py: Python<'_>, description: &Bound<'_, PyAny>) -> PyResult<CompiledModel> {
+#[pyo3(signature = (description, assembly_tolerance = Some(crate::pose::ASSEMBLY_TOLERANCE)))]
+fn compile(py: Python<'_>, description: &Bound<'_, PyAny>, assembly_tolerance: Option<f64>) -> PyResult<CompiledModel> {
     let desc = read_description(description)?;
-    CompiledModel::build(py, desc)
+    CompiledModel::build(py, desc, assembly_tolerance)
+}
+
+/// Check one element (`group`: `"bodies"`, `"joints"`, `"drivers"`, `"clearance_joints"`,
+/// `"prismatic_clearance_joints"`, `"forces"`) or a clearance model alone (`"dry"`,
+/// `"lubricated"`) as it is added: its own values, by the compile's checks
+/// ([`crate::compile::check_element`]); its references by name are the compile's.
+#[pyfunction]
+fn check_element(group: &str, entry: &Bound<'_, PyAny>) -> PyResult<()> {
+    let py = entry.py();
+    // How a non-finite number's field is named, as in a description: `body 'crank'.mass`.
+    let name = entry.get_item("name").ok().and_then(|n| n.extract::<String>().ok());
+    let what = match (ELEMENTS.iter().find(|(l, _)| *l == group), name) {
+        (Some((_, what)), Some(n)) => format!("{what} '{n}'"),
+        _ => String::new(),
+    };
+    let v = plain_value(entry, &what, false)?;
+    crate::compile::check_element(group, &v).map_err(|e| to_pyerr(py, &e))
+}
+
+/// A description (bodies named) with its references resolved into body indices (the ground:
+/// `None`) and every default filled in, as plain data: how the core reads it (for drawings).
+#[pyfunction]
+fn resolve<'py>(py: Python<'py>, description: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+    to_plain(py, &read_description(description)?)
+}
+
+/// What looks like a unit slip against the size of a description not yet valid as a whole
+/// (`crate::compile::plausibility::findings`, as `(field, message)`): what explains an element
+/// refused as it is added (a journal radius in mm gives a film outside the finite bearing's range).
+#[pyfunction]
+fn findings(description: &Bound<'_, PyAny>) -> PyResult<Vec<(String, String)>> {
+    let desc = read_description(description)?;
+    Ok(crate::compile::plausibility::findings(&desc).into_iter().map(|w| (w.field, w.message)).collect())
+}
+
+/// Poses given assembled by this process (one per compiled model; for tests).
+#[pyfunction]
+fn assembly_count() -> usize {
+    crate::assembly::assembly_count()
 }
 
 /// Check run settings (the dict `Mechanism.run_settings` writes) as a run does, without running:
@@ -560,12 +471,15 @@ fn check_settings(settings: &Bound<'_, PyAny>) -> PyResult<()> {
 }
 
 /// The ideal counterpart of a description ([`MechanismDesc::idealized`], the one implementation
-/// of idealisation): read through serde, idealised, and handed back as plain data (written by
-/// serde with every default filled in, read by Python's `json`: floats round-trip exactly).
+/// of idealisation): read through serde, idealised, and handed back as plain data with bodies
+/// named again ([`crate::names::unresolve`]; written by serde with every default filled
+/// in, read by Python's `json`: floats round-trip exactly).
 #[pyfunction]
 fn idealize<'py>(py: Python<'py>, description: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
     let desc = read_description(description)?.idealized();
-    to_plain(py, &desc)
+    let mut v = serde_json::to_value(&desc).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    crate::names::unresolve(&mut v);
+    to_plain(py, &v)
 }
 
 /// A serde-serialisable value as Python plain data (dicts, lists, floats, strings, None).
@@ -606,9 +520,9 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
 /// `nominal`, the nominal design's description, for monitors measured against its ideal
 /// (`crate::batch::run_batch` makes each distinct reference run once). Returns one result dict
 /// per description, or the exception that prevented that run.
-#[pyfunction]
+#[pyfunction(name = "run_batch")]
 #[pyo3(signature = (descriptions, settings, threads=0, nominal=None))]
-fn run_batch_py<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize, nominal: Option<Bound<'py, PyAny>>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+fn batch<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &Bound<'py, PyAny>, threads: usize, nominal: Option<Bound<'py, PyAny>>) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let descs = descriptions.iter().map(|d| read_description(d)).collect::<PyResult<Vec<_>>>()?;
     let nominal = nominal.map(|d| read_description(&d)).transpose()?;
     let settings: Vec<RunSettings> = if let Ok(d) = settings.cast::<PyDict>() {
@@ -688,11 +602,15 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<CompiledModel>()?;
     m.add_function(wrap_pyfunction!(compile, m)?)?;
     m.add_function(wrap_pyfunction!(idealize, m)?)?;
+    m.add_function(wrap_pyfunction!(check_element, m)?)?;
+    m.add_function(wrap_pyfunction!(resolve, m)?)?;
+    m.add_function(wrap_pyfunction!(assembly_count, m)?)?;
+    m.add_function(wrap_pyfunction!(findings, m)?)?;
+    m.add("MICROMETRE_FILM_RATIO", crate::simulate::MICROMETRE_FILM_RATIO)?;
     m.add_function(wrap_pyfunction!(check_settings, m)?)?;
     m.add("DEFAULTS", defaults(m.py())?)?;
-    m.add_function(wrap_pyfunction!(run_batch_py, m)?)?;
+    m.add_function(wrap_pyfunction!(batch, m)?)?;
     m.add_function(wrap_pyfunction!(film_force, m)?)?;
     m.add_function(wrap_pyfunction!(finite_table_counts, m)?)?;
-    m.add("run_batch", m.getattr("run_batch_py")?)?;
     Ok(())
 }

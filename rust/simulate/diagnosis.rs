@@ -1,9 +1,12 @@
-//! What a failed run says about where it stood: the clearance joint nearest contact, and a
-//! lock-up (a dead centre) when the constraint Jacobian has lost rank at the last accepted state.
+//! What a failed run says about where it stood: the clearance joint nearest contact, a lock-up
+//! (a dead centre) when the constraint Jacobian has lost rank at the last accepted state, and
+//! what to try when a lubricated run stalls ([`failure_hint`]).
 
 use super::MechanismSystem;
 use crate::clearance::JointKinematics;
 use crate::error::Error;
+use crate::laws::FilmModel;
+use crate::model::Model;
 use crate::rank;
 
 impl MechanismSystem<'_> {
@@ -56,4 +59,52 @@ impl MechanismSystem<'_> {
         }
         out
     }
+}
+
+/// R_j/c from which a lubricated joint counts as a µm film: a long-bearing film there can crawl
+/// in a whirl near the centre, and a journal released at rest against the wall can stall at
+/// once (measured at R_j = 9.5 mm: docs/hard_cases.md, *µm films*).
+pub const MICROMETRE_FILM_RATIO: f64 = 4000.0;
+
+/// What to try when a lubricated run stalls ([`Error::is_stall`]) where the film model, not the
+/// solver, sets the pace (docs/hard_cases.md, after the table), chosen by the kind of failure and
+/// the state of `failure` (the clearance joint nearest contact and its ε): a journal released at
+/// rest against the wall that cannot leave it (any clearance), and in a µm film
+/// (R/c ≥ [`MICROMETRE_FILM_RATIO`]) a half-speed whirl along the wall or the long film's whirl
+/// near the centre. `None` when none of these fits.
+pub fn failure_hint(model: &Model, error: &Error, failure: Option<&(String, f64)>) -> Option<String> {
+    let (name, eps) = failure?;
+    let joint = model.clearance.iter().find(|c| &c.name == name)?;
+    let film = joint.film.as_ref()?;
+    if !error.is_stall() {
+        return None;
+    }
+    let (r, c) = (joint.journal_radius, joint.clearance);
+    let ratio = r / c;
+    let kind = match film.model {
+        FilmModel::LongBearing => "long",
+        FilmModel::ShortBearing => "short",
+        FilmModel::LongBearingPaperClosedForm => "long_paper",
+        FilmModel::Finite => "finite",
+    };
+    let at = format!("joint '{name}' has a {} µm '{kind}' film (R/c = {ratio:.0})", crate::text::g(c * 1e6, 3));
+    if *eps >= 0.9 && error.time() == Some(0.0) {
+        return Some(format!(
+            "hint: {at} and its journal was released at rest against the wall with the drive already at speed: the film pushes with a force so large and so nonlinear that the first steps cannot converge: start it centred or off the wall (docs/hard_cases.md lists the clearances each film releases from)"
+        ));
+    }
+    if ratio < MICROMETRE_FILM_RATIO {
+        return None;
+    }
+    if *eps >= 0.9 {
+        return Some(format!(
+            "hint: {at} and its journal sits against the wall, likely whirling along it at half the shaft speed (wedge ≈ 0, no load capacity) where the squeeze film is as stiff as at contact: start it centred or off the wall (docs/hard_cases.md)"
+        ));
+    }
+    if film.model == FilmModel::LongBearing && *eps < 0.5 {
+        return Some(format!(
+            "hint: {at}; a journal whirling near the centre of a µm long-bearing (half-Sommerfeld) film meets a negative squeeze damping and the run crawls: film='finite', supply='none' (the periodic film) damps it; the default supply line crawls like the long film (docs/hard_cases.md)"
+        ));
+    }
+    None
 }

@@ -248,7 +248,7 @@ mod tests {
         d.baumgarte = [5.0, 5.0];
         d.bodies.push(BodyDesc { name: "bob".into(), mass: 1.0, inertia: 0.75, position: [0.5 * 0.2f64.sin(), -0.5 * 0.2f64.cos()], angle: 0.2, velocity: [0.0; 3] });
         d.joints.push(JointDesc::Revolute { name: "pivot".into(), body_a: None, point_a: [0.0, 0.0], body_b: Some(0), point_b: [0.0, 0.5] });
-        d.forces.push(ForceDesc::RotationalSpringDamper { name: "damper".into(), body_a: None, body_b: Some(0), stiffness: 0.0, damping: 0.5, free_angle: Some(0.0) });
+        d.forces.push(ForceDesc::RotationalSpringDamper { name: "damper".into(), body_a: None, body_b: Some(0), stiffness: 0.0, damping: 0.5, angle0: Some(0.0) });
         d.forces.push(ForceDesc::Torque { name: "drive".into(), body: 0, reaction: None, magnitude: Profile::Harmonic(Harmonic { amplitude: g, omega: 2.0 / 3.0, phase: 0.0, offset: 0.0 }) });
         d
     }

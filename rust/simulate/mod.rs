@@ -37,6 +37,7 @@ use sections::Sections;
 
 pub use bearings::BearingSummary;
 pub use crate::settings::RunSettings;
+pub use diagnosis::{failure_hint, MICROMETRE_FILM_RATIO};
 
 /// Polled between steps (about every 64 accepted steps) with the time reached \[s\]; returning
 /// `true` interrupts the run ([`Error::Interrupted`]). The Python glue uses it for Ctrl-C and
@@ -63,6 +64,8 @@ pub struct RunOutput {
     pub failure_joint: Option<(String, f64)>,
     /// What each monitor found (over the part of the run completed).
     pub monitors: Vec<MonitorResult>,
+    /// For a stalled lubricated run: what to try ([`failure_hint`]).
+    pub hint: Option<String>,
     /// Wear per clearance joint (`None` where it is not modelled).
     pub wear: Vec<Option<WearBook>>,
     /// Evaluations of the clearance joints' force laws over the run, by every caller (a count
@@ -362,6 +365,7 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
                 failure_joint: None,
                 monitors: Vec::new(),
                 wear: Vec::new(),
+                hint: None,
                 force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
                 bearings: Vec::new(),
                 references: Vec::new(),
@@ -413,6 +417,7 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
             (s, Some(e.with_detail(&detail)), joint)
         }
     };
+    let hint = error.as_ref().and_then(|e| failure_hint(model, e, failure_joint.as_ref()));
     let mut max_violation = [0.0f64; 2];
     for v in sys.recording.violation.chunks(2) {
         max_violation[0] = max_violation[0].max(v[0]);
@@ -437,6 +442,7 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
         failure_joint,
         monitors: sys.monitors.into_iter().map(|m| m.result).collect(),
         wear: sys.wear,
+        hint,
         force_evaluations: crate::clearance::force_evaluations() - evaluations_before,
         bearings: sys.bearings.iter().map(|b| b.map(|b| b.summary)).collect(),
         sections: sys.sections.map(|s| s.recording),

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import clearsim
+from walks import PUMP
 
 R, C, MU, OMEGA = 0.02, 4e-5, 0.05, 100.0
 
@@ -307,9 +308,21 @@ def test_roughness_replaces_the_transition_band_and_is_checked() -> None:
     with pytest.raises(clearsim.InputError, match="boundary_friction"):
         in_a_joint(clearsim.Lubricated(boundary_friction=0.1))
     m = rotor("short", 0.01)
-    m.clearance_joint("pin2", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=clearsim.Lubricated(length=0.01, film="short", roughness=C / 3))
-    with pytest.raises(clearsim.InputError, match=r"clearance joint 'pin2'.roughness.*quarter of the clearance"):
-        m.simulate(0.001, progress=False)
+    with pytest.raises(clearsim.InputError, match=r"clearance joint 'pin2'.roughness.*quarter of the clearance"):  # as it is added
+        m.clearance_joint("pin2", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=clearsim.Lubricated(length=0.01, film="short", roughness=C / 3))
+
+
+def test_a_dry_joint_is_not_a_bearing_with_a_film():
+    """The pump (lubricated crank pin A, dry saddle O4) run with ``extremes=True, bearings=True``: the bearing
+    summary, the summary and the repr list A only, whose film is positive; O4's gap minimum (its
+    penetration, negative) stays in ``extremes``. Before: ``bearings`` listed O4 with
+    ``min_film_thickness`` −9.0 µm and the repr printed "O4: h_min -9.01 µm"."""
+    m = clearsim.load_scene(PUMP)
+    res = m.simulate(0.05, dt_out=1e-3, extremes=True, bearings=True, progress=False)
+    assert list(res.bearing_summary()) == ["A"] and list(res.summary()["bearings"]) == ["A"]
+    assert res.bearing_summary()["A"]["min_film_thickness"] > 0.0
+    assert "O4: h_min" not in repr(res) and "A: h_min" in repr(res)
+    assert res.extremes("O4", "film_thickness").min < 0.0  # the penetration, under its own name
 
 
 def test_the_summary_comes_with_a_point_among_the_extremes() -> None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import sys
 import types
+import warnings
 from pathlib import Path
 
 import pytest
@@ -124,3 +125,25 @@ def test_a_clearsim_error_keeps_exit_code_2_and_one_line(tmp_path, capsys, monke
     err = capsys.readouterr().err.strip()
     assert err == "clearsim: error: step size underflow at t = 0.01 s"
     assert "step size underflow" in (out / "report.md").read_text()
+
+
+def test_a_scene_error_comes_after_the_unit_slip_that_caused_it(tmp_path, capsys):
+    """The compressor's crank pin given as ``journal_radius = 10`` (mm as m): the finite film's
+    L/D = 0.0006 stops the scene, and the warning that names the real cause (a journal radius of
+    the order of the mechanism: mm?) is printed before that error. Before: the warning, caught
+    while the file was read, was dropped with the error, which advises another film model."""
+    from pathlib import Path
+
+    from clearsim.cli import main
+
+    text = (Path(__file__).resolve().parents[2] / "scenes" / "compressor.toml").read_text(encoding="utf-8")
+    assert text.count("journal_radius = 10e-3 ") == 1
+    path = tmp_path / "mm.toml"
+    path.write_text(text.replace("journal_radius = 10e-3 ", "journal_radius = 10 "), encoding="utf-8")
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")  # conftest makes a PlausibilityWarning an error
+        assert main(["run", str(path), "-o", str(tmp_path / "out"), "-q", "--no-plots"]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    mm = next(k for k, line in enumerate(lines) if "journal_radius = 10 m" in line and "did you give mm?" in line)
+    assert lines[mm].startswith(f"clearsim: warning: {path}:") and lines[-1].startswith("clearsim: error: ") and mm < len(lines) - 1
+    assert "L/D" in lines[-1]

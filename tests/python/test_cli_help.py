@@ -4,7 +4,7 @@ listed six of eight, without ak_mcs and ak_is)."""
 import subprocess
 import sys
 
-from clearsim.reliability.scene import METHODS
+from clearsim.scene.study import METHODS
 
 
 def test_reliability_help_lists_every_study_method():

@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from clearsim import cli
+from walks import WIPER, read_csv as _csv
 
 R, C, L, OMEGA, MU, SIGMA = 0.02, 4e-5, 0.01, 100.0, 0.03, 1e-6
 T_AMB, CAP, HA, T_END = 313.15, 0.05, 0.2, 0.05
@@ -91,3 +92,22 @@ def test_the_summary_names_the_integrator_that_ran(tmp_path: Path) -> None:
     summary = json.loads((tmp_path / "summary.json").read_text(encoding="utf-8"))
     assert (summary["integrator"], summary["integrator_setting"]) == ("radau", "auto")
     assert "integrator radau (auto)" in (tmp_path / "summary.md").read_text(encoding="utf-8")
+
+
+def test_a_scene_run_from_a_later_t0_says_where_it_started(tmp_path):
+    """``clearsim run`` of a scene with ``t0 = 0.25`` (``cycles = 2``: t_end = t0 + 2 s): summary.json
+    and summary.md give the window the run covered, t0 as well as t_end, and the first output
+    time is t0. Before: both said only ``t_end = 2.25 s``, so a reader took it for a 2.25 s run."""
+    import json
+
+    from clearsim.cli import main
+
+    path = tmp_path / "wiper_t0.toml"
+    path.write_text(WIPER.read_text(encoding="utf-8").replace("cycles = 2 ", "t0 = 0.25\ncycles = 2 "), encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["run", str(path), "-o", str(out), "-q", "--no-plots"]) == 0
+    summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    assert summary["t0"] == 0.25 and summary["t_end"] == pytest.approx(2.25, abs=1e-12)
+    head, data = _csv(out / "bodies.csv")
+    assert data[0, 0] == summary["t0"]
+    assert "t0 = 0.25 s, t_end = 2.25 s" in (out / "summary.md").read_text(encoding="utf-8")

@@ -96,6 +96,7 @@ def test_mechanism_repr_and_drawing():
     # A mechanism that does not assemble shows its text only (no exception in the notebook).
     broken = m.copy()
     broken._joints[0]["point_a"] = [50.0, 0.0]
+    broken._changed()  # (changed behind the API's back: forget the cached description)
     assert broken._repr_png_() is None and repr(broken).startswith("<clearsim.Mechanism")
 
 

@@ -11,10 +11,11 @@ import pytest
 from PIL import Image
 
 import clearsim
-from clearsim import draw, plots
+from clearsim import draw, models, plots
 from clearsim.cli import main
 from clearsim.errors import InputError
 from clearsim.scene import load_scene
+from walks import PUMP
 
 SCENES = __import__("pathlib").Path(__file__).resolve().parents[2] / "scenes"
 
@@ -36,6 +37,46 @@ def test_a_mechanism_picture_is_cropped_to_its_drawing():
             ink = np.asarray(im.convert("L")) < 250
         rows, cols = np.flatnonzero(ink.any(axis=1)), np.flatnonzero(ink.any(axis=0))
         assert (rows[-1] - rows[0] + 1) / ink.shape[0] > 0.9 and (cols[-1] - cols[0] + 1) / ink.shape[1] > 0.9, ink.shape
+
+
+def test_each_clearance_joint_is_drawn_at_its_own_bearing():
+    """A drawing of a mechanism with two revolute clearance joints (the nine-bar's A and B, at
+    t = 0 and mid-run) puts each joint's magnified bearing at its own bearing point and its
+    journal inside it. Before: every joint's bearing was drawn at the last joint's (the update
+    closure looked up the loop's last ``centre``), the others' journals metres away."""
+    from matplotlib.patches import Circle
+
+    m = models.nine_bar("dry", clearance=0.5e-3)
+    res = m.simulate(0.05, dt_out=0.01, progress=False)
+    desc = res.description  # as the core read it: bodies by index
+    names = [b["name"] for b in desc["bodies"]]
+    for t in (0.0, 0.05):
+        fig = res.plot_mechanism(t, magnify=10)
+        circles = [p for p in fig.axes[0].patches if isinstance(p, Circle)]
+        for c in desc["clearance_joints"]:
+            body = names[c["bearing_body"]]
+            q = res.position(body)[np.searchsorted(res.t, t)]
+            rot = np.array([[math.cos(q[2]), -math.sin(q[2])], [math.sin(q[2]), math.cos(q[2])]])
+            centre = q[:2] + rot @ np.asarray(c["bearing_point"])
+            label = next(x for x in fig.axes[0].texts if x.get_text().startswith(f"{c['name']} (c ="))
+            assert np.allclose(label.xy, centre, atol=1e-9), c["name"]
+            bearing = [p for p in circles if np.allclose(p.center, centre, atol=1e-9) and p.zorder == 4]
+            journal = [p for p in circles if p.zorder == 5 and np.hypot(*(np.asarray(p.center) - centre)) <= 10 * c["clearance"] * 1.01]
+            assert len(bearing) == 1 and len(journal) == 1, c["name"]
+
+
+def test_plot_mechanism_outside_the_run_echoes_the_time_given():
+    """``res.plot_mechanism(t)`` at a t outside the run (or NaN) is an InputError that names the
+    t given and the run's span. Before: ``invalid t: the run covers [0, 0.05] s`` (which t?), and
+    NaN drew a figure of NaN positions."""
+    res = clearsim.load_scene(PUMP).simulate(0.05, dt_out=1e-3, progress=False)
+    with pytest.raises(clearsim.InputError, match=r"invalid t = 0\.7 s: outside the run, which covers \[0, 0\.05\] s") as info:
+        res.plot_mechanism(0.7)
+    assert info.value.value == 0.7
+    with pytest.raises(clearsim.InputError, match=r"invalid t = -0\.01 s: outside the run"):
+        res.plot_mechanism(-0.01)
+    with pytest.raises(clearsim.InputError, match=r"invalid t = nan: must be a finite time"):
+        res.plot_mechanism(float("nan"))
 
 
 def _label_boxes(fig):

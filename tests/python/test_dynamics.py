@@ -62,9 +62,8 @@ def test_a_harmonic_driver_moves_the_body_by_its_law_and_a_force_component_is_on
 )
 def test_a_bad_harmonic_is_an_input_error_naming_element_field_and_value(build, field):
     m = models.driven_pendulum(1.0)
-    build(m)
     with pytest.raises(clearsim.InputError) as err:
-        m.compile()
+        build(m)  # named where it is made: the core checks each element as it is added
     assert err.value.field == field, err.value
 
 
@@ -82,7 +81,7 @@ def test_harmonic_loads_and_laws_in_a_scene(tmp_path):
     text = SCENE.read_text().replace(
         "[simulation]",
         '[[force]]\ntype = "force"\nname = "shake"\nbody = "bob"\nvalue = [{ amplitude = 2.0, omega = 3.0, phase = 0.5 }, 1.0]\n\n'
-        '[[body]]\nname = "wheel"\nmass = 1.0\ninertia = 0.1\nposition = [2.0, 0.0]\n\n'
+        '[[body]]\nname = "wheel"\nmass = 1.0\ninertia = 0.1\nposition = [2.0, 0.0]\nangle = 0.3\n\n'
         '[[joint]]\ntype = "revolute"\nbodies = ["ground", "wheel"]\npoints = [[2.0, 0.0], [0.0, 0.0]]\n\n'
         '[[driver]]\nname = "rock"\nbody = "wheel"\nharmonic = { amplitude = 0.2, omega = 5.0, offset = 0.1 }\n\n[simulation]',
     )  # fmt: skip

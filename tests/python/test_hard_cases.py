@@ -88,8 +88,7 @@ def with_initial_eccentricity(m: cs.Mechanism, joint: str, e: tuple) -> cs.Mecha
     """Rebuild ``m``'s clearance joint ``joint`` through the public API with a start offset."""
     out = cs.Mechanism(gravity=tuple(m.gravity), baumgarte=tuple(m.baumgarte))
     d = m.description()
-    names = [b["name"] for b in d["bodies"]]
-    ref = lambda i: "ground" if i is None else names[i]  # noqa: E731
+    ref = lambda b: b  # noqa: E731  # the description names bodies (the ground "ground")
     for b in d["bodies"]:
         out.add_body(b["name"], mass=b["mass"], inertia=b["inertia"], position=b["position"], angle=b["angle"])
     for j in d["joints"]:
@@ -99,7 +98,7 @@ def with_initial_eccentricity(m: cs.Mechanism, joint: str, e: tuple) -> cs.Mecha
             out.prismatic(ref(j["body_a"]), j["point_a"], ref(j["body_b"]), j["point_b"], axis=j["axis"], name=j["name"])
     for dr in d["drivers"]:
         law = dr["law"]
-        out.driver(names[dr["body"]], omega=law["omega"], angle0=law["angle0"], name=dr["name"])
+        out.driver(dr["body"], omega=law["omega"], angle0=law["angle0"], name=dr["name"])
     src = {c["name"]: c for c in m._clearance}  # model objects are not in the plain description
     for c in d["clearance_joints"]:
         out.clearance_joint(
@@ -114,11 +113,10 @@ def with_initial_eccentricity(m: cs.Mechanism, joint: str, e: tuple) -> cs.Mecha
 def _model_of(d: Dict) -> object:
     def dry(x: Dict) -> Dry:
         return Dry(
-            normal_law=x["normal_law"], youngs_modulus=x["youngs_bearing"], poisson_ratio=x["poisson_bearing"],
-            journal_youngs_modulus=x["youngs_journal"], journal_poisson_ratio=x["poisson_journal"],
+            normal_law=x["normal_law"], youngs_modulus=x["youngs_modulus"], poisson_ratio=x["poisson_ratio"],
+            journal_youngs_modulus=x["journal_youngs_modulus"], journal_poisson_ratio=x["journal_poisson_ratio"],
             restitution=x["restitution"], exponent=x["exponent"], stiffness=x["stiffness"],
-            stiffness_form="cylindrical" if x.get("cylinder_length") else ("paper_printed" if x["stiffness_paper_printed"] else "internal"),
-            length=x.get("cylinder_length"),
+            stiffness_form=x["stiffness_form"], length=x.get("length"),
             friction=x["friction"], v0=x["v0"], v1=x["v1"], impact_speed_floor=x["impact_speed_floor"],
         )
 

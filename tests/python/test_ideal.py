@@ -8,6 +8,9 @@ import pytest
 import clearsim
 from clearsim import models
 
+def _dry(clearance: float) -> clearsim.Mechanism:
+    return models.slider_crank("dry", clearance=clearance)
+
 R, L = 0.05, 0.12
 OMEGA = 5000 * 2 * math.pi / 60
 
@@ -129,3 +132,12 @@ def test_only_requested_outputs_are_stored():
     assert res.position("slider").shape == (1001, 3)
     with pytest.raises(clearsim.InputError, match="accelerations"):
         res.acceleration("slider")
+
+
+def test_simulate_with_ideal_takes_the_options_of_simulate():
+    """``progress=False``, which every ``simulate`` call in a script carries, is accepted by
+    ``simulate_with_ideal`` too. Before: ``TypeError: Running.run_settings() got an unexpected
+    keyword argument 'progress'``."""
+    m = _dry(0.5e-3)
+    res, ideal = m.simulate_with_ideal(0.002, progress=False, dt_out=1e-4)
+    assert res.completed and ideal.completed and len(res.t) == len(ideal.t) == 21

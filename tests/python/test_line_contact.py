@@ -83,6 +83,5 @@ def test_cylindrical_form_is_checked_by_name():
         compile_with(Dry(stiffness_form="cylindrical", length=0.02, exponent=1.1))
     m = clearsim.Mechanism()
     m.add_body("s", mass=1.0, inertia=1e-3, position=(0, 0))
-    m.prismatic_clearance("ground", (0, 0), "s", (1, 0), 1e-3, 0.05, Dry(stiffness_form="cylindrical", length=0.02))
     with pytest.raises(InputError, match="revolute"):
-        m.compile()
+        m.prismatic_clearance("ground", (0, 0), "s", (1, 0), 1e-3, 0.05, Dry(stiffness_form="cylindrical", length=0.02))

@@ -7,7 +7,13 @@ import pytest
 
 import clearsim
 from clearsim import models
-from clearsim.reliability import Normal, Uniform
+from clearsim.reliability import Normal, Output, Study, Uniform
+
+OMEGA = 5000 * 2 * math.pi / 60  # [rad/s] the slider-crank model's crank
+
+
+def _dry(clearance: float) -> clearsim.Mechanism:
+    return models.slider_crank("dry", clearance=clearance)
 
 
 def build(clearance, omega):
@@ -157,6 +163,38 @@ def test_answers_do_not_depend_on_the_output_density():
     p = coarse.first_passage["acceleration"].p
     assert 0 < p < 1
     assert (coarse_grid_peak > 2.8e5).mean() < p
+
+
+@pytest.mark.parametrize("cycles", [0.1, 0.5])
+def test_a_window_shorter_than_a_turn_leaves_its_unseen_bins_empty(cycles):
+    """clearsim.monte_carlo and Study.fosm over less than a turn: the crank-angle bins the window
+    never reaches hold no sample (NaN, as fosm() leaves empty bins), the others are analysed.
+    Before: ``InputError: invalid mu_s = nan: must be a number`` (the unseen bins' 0/0 mean
+    reached the reliability index), and the per-bin Monte Carlo reliability said R = 1 there."""
+    mc = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, omega=OMEGA, cycles=cycles, body="slider",
+                              component="x", allowable={"displacement": (0.0, 1e-3)}, progress=False)  # fmt: skip
+    bins = mc.bins["displacement"]
+    n_seen = int(round(cycles * 360 / 18))
+    assert np.all(np.isfinite(bins.reliability[:n_seen])) and np.all(np.isnan(bins.reliability[n_seen:]))
+    assert np.all(bins.n_samples[n_seen:] == 0) and np.all(bins.n_samples[:n_seen] == 2)
+    assert np.all(np.isfinite(bins.fosm.beta[:n_seen])) and np.all(np.isnan(bins.fosm.beta[n_seen:]))
+    assert bins.fosm.min_angle < cycles * 360
+    study = Study(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3,
+                  omega=OMEGA, cycles=cycles, progress=False)  # fmt: skip
+    fosm = study.fosm()
+    assert np.all(np.isfinite(fosm.reliability[:n_seen])) and np.all(np.isnan(fosm.reliability[n_seen:]))
+
+
+def test_monte_carlo_without_omega_takes_the_driver_speed_as_study_does():
+    """``clearsim.monte_carlo`` without ``omega`` (and no input named omega) takes the nominal
+    mechanism's constant-speed driver's, as ``Study`` does: the same bins as ``omega=OMEGA``.
+    Before: ``invalid omega = 'omega': not a sampled input`` for an omega never given."""
+    kwargs = dict(body="slider", component="x", allowable={"displacement": (0.0, 1e-3)}, cycles=0.25, progress=False)
+    mc = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, **kwargs)
+    given = clearsim.monte_carlo(_dry, {"clearance": Normal(0.5e-3, 0.01e-3)}, 2, omega=OMEGA, **kwargs)
+    np.testing.assert_array_equal(mc.bins["displacement"].reliability, given.bins["displacement"].reliability)
+    for q in mc.peaks:
+        np.testing.assert_array_equal(mc.peaks[q], given.peaks[q])
 
 
 def test_error_traces_are_kept_only_when_asked():

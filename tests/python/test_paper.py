@@ -222,19 +222,11 @@ def test_a_stopped_run_is_counted_with_its_reason(study):
     assert ideal.failure is None and len(ideal.result.t) == 181
 
 
-def test_old_module_paths_are_kept():
-    """clearsim.study.* (deprecated) re-export clearsim.paper's names; ``import clearsim`` loads
-    neither package."""
+def test_import_clearsim_leaves_the_paper_study_unloaded():
+    """``import clearsim`` loads no part of the paper study (``clearsim paper`` imports it)."""
     import subprocess
     import sys
 
-    from clearsim.paper import analysis, cases, files, report, trends, values
-    from clearsim.study import paper as old_paper, paper_files, paper_report, paper_runs, paper_trends, paper_values
-
-    assert old_paper.run_paper_study is paper.run_paper_study and old_paper.RELIABILITY_HEADER is files.RELIABILITY_HEADER
-    assert paper_runs.Case is cases.Case and paper_runs.Analysis is analysis.Analysis and paper_runs.FILMS is cases.FILMS
-    assert paper_files._write_csv is files._write_csv and paper_report._report is report._report
-    assert paper_trends.Trend is trends.Trend and paper_values.PEAKS is values.PEAKS
-    code = "import sys, clearsim; assert not {'clearsim.study', 'clearsim.paper'} & set(sys.modules)"
+    code = "import sys, clearsim; assert 'clearsim.paper' not in sys.modules"
     done = subprocess.run([sys.executable, "-W", "error", "-c", code], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr

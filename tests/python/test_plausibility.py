@@ -34,7 +34,7 @@ def test_a_journal_radius_in_millimetres():
 
 def test_a_bearing_length_in_millimetres():
     m = models.slider_crank("lubricated", lubricated=Lubricated(viscosity=0.4, length=20))
-    _, found = _caught(m.description)
+    _, found = _caught(m.compile)
     assert len(found) == 1 and found[0].startswith("clearance joint 'rod-slider'.length = 20 m (the bearing's length) is more than 2 × the mechanism's span 0.17 m")
     assert found[0].endswith("did you give mm? clearsim takes metres")
 
@@ -69,18 +69,18 @@ def test_plausible_values_pass_silently():
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
         for c, lub in ((5e-6, Lubricated(viscosity=0.4, length=0.04)), (6e-4, Lubricated(viscosity=1e-3, length=0.02, film="short"))):
-            models.slider_crank("lubricated", clearance=c, lubricated=lub).description()
-        models.nine_bar("dry", journal_radius=0.05).description()
+            models.slider_crank("lubricated", clearance=c, lubricated=lub).compile()
+        models.nine_bar("dry", journal_radius=0.05).compile()
 
 
 def test_no_shipped_model_or_scene_warns():
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
         for kind in models.JOINT_KINDS:
-            models.slider_crank(kind).description()
-            models.nine_bar(kind).description()
+            models.slider_crank(kind).compile()
+            models.nine_bar(kind).compile()
         for path in sorted(SCENES.glob("*.toml")):
-            clearsim.scene.load_scene_file(path).mechanism.description()
+            clearsim.scene.load_scene_file(path).mechanism.compile()
 
 
 def test_a_scene_warning_names_the_file_and_line(tmp_path):
@@ -90,3 +90,92 @@ def test_a_scene_warning_names_the_file_and_line(tmp_path):
     line = 1 + next(k for k, ln in enumerate(text.splitlines()) if ln.startswith("viscosity = 20.0"))
     _, found = _caught(lambda: clearsim.scene.load_scene_file(path))
     assert len(found) == 1 and found[0].startswith(f"{path}:{line}: clearance joint 'crank-pin'.viscosity = 20 Pa·s")
+
+
+def _crank_rod_slider(scale: float, inertia_scale: float = 1.0) -> clearsim.Mechanism:
+    """An offset slider-crank (crank 0.1 m, rod 0.3 m) with every coordinate × ``scale`` and the
+    inertias × ``inertia_scale``."""
+    s = scale
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("crank", mass=2.0, inertia=1.67e-3 * inertia_scale, ends=((0.0, 0.3 * s), (0.1 * s, 0.3 * s)))
+    m.add_body("rod", mass=1.0, inertia=7.5e-3 * inertia_scale, ends=((0.1 * s, 0.3 * s), (0.4 * s, 0.3 * s)))
+    m.add_body("slider", mass=1.0, inertia=1e-3 * inertia_scale, position=(0.4 * s, 0.3 * s))
+    m.revolute("ground", (0.0, 0.3 * s), "crank", (-0.05 * s, 0.0))
+    m.revolute("crank", (0.05 * s, 0.0), "rod", (-0.15 * s, 0.0))
+    m.revolute("rod", (0.15 * s, 0.0), "slider", (0.0, 0.0))
+    m.prismatic("ground", (0.0, 0.3 * s), "slider", (0.0, 0.0))
+    m.driver("crank", omega=9.42)
+    return m
+
+
+def test_coordinates_in_mm_with_inertias_in_kg_m2_are_named():
+    """A mechanism drawn in mm (crank 100, rod 300) with its inertias in kg m² ran without a word
+    as a 400 m machine. Now each link whose inertia is ~1e-6 of a bar's of its mass between its
+    joint points is a PlausibilityWarning naming the body, the inertia, the distance and the
+    unit; the same mechanism in metres (or with a flywheel's large inertia) is silent."""
+    with pytest.warns(clearsim.PlausibilityWarning) as caught:
+        _crank_rod_slider(1000.0).compile()
+    text = [str(w.message) for w in caught]
+    assert any(t.startswith("body 'rod'.inertia = 0.0075 kg m² is 1e-06 × a uniform bar's") and "300 m apart" in t and "in mm?" in t for t in text)
+    assert any(t.startswith("body 'crank'.inertia") for t in text) and not any("'slider'" in t for t in text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", clearsim.PlausibilityWarning)
+        _crank_rod_slider(1.0).compile()
+        _crank_rod_slider(1.0, inertia_scale=1e3).compile()
+        _crank_rod_slider(1000.0, inertia_scale=1e6).compile()  # all in mm and kg mm²: nothing tells
+
+
+def _pendulum(scale: float, load_point: tuple = (0.0, 0.0)) -> clearsim.Mechanism:
+    """A 0.3 m pendulum of 2 kg (a bar: J = m L²/12 = 0.015 kg m²) pivoted at its top end, with
+    every coordinate × ``scale`` and a 10 N load at ``load_point`` (body frame)."""
+    m = clearsim.Mechanism(gravity=(0.0, -9.81))
+    m.add_body("arm", mass=2.0, inertia=0.015, position=(0.0, -0.15 * scale), angle=0.0)
+    m.revolute("ground", (0.0, 0.0), "arm", (0.0, 0.15 * scale), name="pivot")
+    m.force("arm", load_point, (10.0, 0.0), name="push")
+    return m
+
+
+def test_a_body_drawn_in_millimetres_is_named_at_compile():
+    """A pendulum drawn in mm (its pivot 150 from its centroid) with its inertia in kg m² ran
+    silently as a 300 m pendulum: one joint, so no two joint points to measure it by. Now its
+    centroid counts as a point of the body: a PlausibilityWarning names the body and the unit
+    when the mechanism compiles (not only when it runs); in metres it is silent."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        _pendulum(1.0).compile()
+    m, found = _caught(lambda: _pendulum(1000.0))
+    assert found == []
+    _, found = _caught(m.compile)
+    assert len(found) == 1 and found[0].startswith("body 'arm'.inertia = 0.015 kg m² is 4e-06 × a uniform bar's of its mass 2 kg between its joint points 150 m apart")
+    assert "in mm?" in found[0]
+
+
+def test_a_load_point_far_outside_its_body_is_named():
+    """A load given in global coordinates (the pendulum's tip, 0.3 m below the pivot, written as
+    the global point (0, -0.3) while the body frame's tip is (0, -0.15)), or in mm, lies far
+    outside the body: a PlausibilityWarning names the force, its point and the unit. A load at
+    the body's tip, or a little beyond its joints, is silent."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        _pendulum(1.0, (0.0, -0.15)).compile()
+        _pendulum(1.0, (0.1, -0.3)).compile()  # a tool point beyond the body: 2.1 × its joint's reach
+    _, found = _caught(_pendulum(1.0, (0.0, -150.0)).compile)
+    assert found == ["force 'push'.point = (0, -150) m lies 150 m from the centroid of body 'arm', 1e+03 × as far as its joints (0.15 m): "
+                     "is it given in global coordinates or in mm? clearsim takes the point in metres in the body's frame"]  # fmt: skip
+    _, found = _caught(_pendulum(1.0, (0.0, -0.6)).compile)
+    assert len(found) == 1 and found[0].startswith("force 'push'.point = (0, -0.6) m lies 0.6 m from the centroid of body 'arm', 4 × as far")
+
+
+def test_a_rotor_in_one_bearing_is_no_mechanism_scale():
+    """A journal-bearing test rig: an unbalanced rotor (centroid 0.1 mm off its journal) in one
+    lubricated bearing, turned by a driver. Its bodies' positions span 0.1 mm, which is no scale
+    for a 20 mm journal: no "did you give mm?". Before: "journal_radius = 0.02 m is larger than
+    half the mechanism's span 0.0001 m"."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("rotor", mass=5.0, inertia=2e-3, position=(1e-4, 0.0))
+    m.clearance_joint("B", "ground", (0.0, 0.0), "rotor", (-1e-4, 0.0), journal_radius=0.02, clearance=20e-6,
+                      model=Lubricated(viscosity=0.02, length=0.02, film="short"))  # fmt: skip
+    m.driver("rotor", omega=300.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        m.compile()

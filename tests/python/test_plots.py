@@ -14,8 +14,8 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from clearsim import InputError  # noqa: E402
-from clearsim import plots  # noqa: E402
+import clearsim  # noqa: E402
+from clearsim import InputError, models, plots  # noqa: E402
 from clearsim import reliability as rel  # noqa: E402
 
 UNIT = re.compile(r"\[[^\]]+\]")
@@ -259,3 +259,40 @@ def test_minimum_labels_do_not_overlap(tmp_path):
             for j in range(i + 1, 4):
                 assert not boxes[i].overlaps(boxes[j]), (ax.get_title(), i, j)
     plots.save(fig, tmp_path / "labels.png")
+
+
+def test_a_scene_name_as_title_fits_its_figure():
+    """``clearsim run`` titles its figures with the scene's name: the shipped slider-crank's
+    (56 characters) on its one-joint orbit figure, and a 90-character title on an error figure,
+    are wrapped inside the figure, and so is the orbit legend. Before: cut off at both edges."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from clearsim import plots
+
+    t = np.linspace(0.0, 1.0, 50)
+    figs = [
+        plots.plot_journal_orbits({"rod-slider (dry)": (1e-4 * np.cos(t), 1e-4 * np.sin(t))}, 5e-4,
+                                  title="slider-crank, dry clearance joint rod-slider, c = 0.5 mm"),  # fmt: skip
+        plots.plot_error_histories(t, {"dry": {"displacement": 1e-4 * t}}, quantities=["displacement"], title="x" * 45 + " " + "y" * 44),
+    ]
+    for fig in figs:
+        FigureCanvasAgg(fig).draw()
+        renderer = fig.canvas.get_renderer()
+        width = fig.bbox.width
+        boxes = [fig._suptitle.get_window_extent(renderer)] + [leg.get_window_extent(renderer) for leg in fig.legends]
+        for box in boxes:
+            assert box.x0 >= 0.0 and box.x1 <= width, (box, width)
+
+
+def test_journal_orbits_given_a_result_say_what_they_take():
+    """``plots.plot_journal_orbits(res, c)`` (a Result where ``{label: (e_x, e_y)}`` belongs) and a
+    clearance mapping without an orbit's label are InputErrors saying what to give. Before:
+    ``TypeError: 'Result' object is not iterable`` and ``KeyError: 'pin'``."""
+    from clearsim import plots
+
+    res = models.slider_crank("dry").simulate(0.001, dt_out=1e-4, progress=False)
+    with pytest.raises(clearsim.InputError, match=r"invalid orbits = Result: must be a mapping .*res.eccentricity"):
+        plots.plot_journal_orbits(res, 0.5e-3)
+    with pytest.raises(clearsim.InputError, match="invalid clearance: no value for 'pin'"):
+        plots.plot_journal_orbits({"pin": res.eccentricity("rod-slider").T}, {"rod-slider": 0.5e-3})
+    assert plots.plot_journal_orbits({"pin": res.eccentricity("rod-slider").T}, {"pin": 0.5e-3}).axes

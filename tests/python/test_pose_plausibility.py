@@ -81,3 +81,40 @@ def test_shipped_scenes_raise_no_plausibility_warning(path):
         warnings.simplefilter("error", PlausibilityWarning)
         scene = clearsim.load_scene(path)
         getattr(scene, "mechanism", scene).check_assembly()
+
+
+def four_bar(wrong: str = "") -> clearsim.Mechanism:
+    """A parallelogram four-bar at 90°: ground pivots (0, 0) and (0.3, 0), crank and rocker 0.1 m,
+    coupler 0.3 m; the joint ``wrong`` has its first body's point given in global coordinates."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("crank", mass=0.2, inertia=2e-4, position=(0.0, 0.05), angle=math.pi / 2)
+    m.add_body("coupler", mass=0.5, inertia=4e-3, position=(0.15, 0.1))
+    m.add_body("rocker", mass=0.2, inertia=2e-4, position=(0.3, 0.05), angle=math.pi / 2)
+    local = {"P1": (-0.05, 0.0), "P2": (0.05, 0.0), "P3": (0.15, 0.0), "P4": (-0.05, 0.0)}
+    world = {"P1": (0.0, 0.0), "P2": (0.0, 0.1), "P3": (0.3, 0.1), "P4": (0.3, 0.0)}
+    p = {k: (world[k] if k == wrong else v) for k, v in local.items()}
+    m.revolute("ground", (0, 0), "crank", p["P1"], name="P1")
+    m.revolute("crank", p["P2"], "coupler", (-0.15, 0.0), name="P2")
+    m.revolute("coupler", p["P3"], "rocker", (0.05, 0.0), name="P3")
+    m.revolute("rocker", p["P4"], "ground", (0.3, 0.0), name="P4")
+    m.driver("crank", omega=10.0)
+    return m
+
+
+def test_the_joint_whose_point_is_wrong_is_named():
+    """One joint's point given in the global frame (issue 36, item 6): whatever the assembly then
+    does — fail to converge, move a body far, or assemble with a gap — the message names that
+    joint. Before: "revolute joint 'P4' is furthest from closing" for a wrong P3 (the equation
+    furthest from closing after 60 Newton iterations, wherever the error started), and for a
+    wrong P4 the coupler that moved most with none of its joints apart, so no joint at all."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        four_bar().check_assembly()
+    for wrong in ("P2", "P3"):  # the loop cannot close: Newton does not converge
+        with pytest.raises(clearsim.AssemblyError, match=rf"revolute joint '{wrong}' has its two points [0-9.]+ m apart at the pose given, the most of any joint"):
+            four_bar(wrong).check_assembly()
+    with pytest.raises(clearsim.AssemblyError, match=r"moves body 'coupler' .*; joint 'P4' has its two points 0.35 m apart") as info:
+        four_bar("P4").check_assembly()  # it closes, far from the pose given
+    assert info.value.joint == "P4" and info.value.field == "joint 'P4'" and info.value.body == "coupler"
+    with pytest.warns(PlausibilityWarning, match=r"joint 'P1' has its two points 0.05 m apart"):
+        four_bar("P1").compile()  # it closes near the pose given: a warning when it compiles

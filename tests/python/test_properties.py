@@ -79,8 +79,6 @@ LUB_FIELDS = {
 }
 
 
-#: The description's (and so the core's messages') names of fields the API names otherwise.
-CORE_NAMES = {"youngs_modulus": "youngs_bearing", "poisson_ratio": "poisson_bearing"}
 
 
 def in_a_joint(model: Any) -> None:
@@ -93,7 +91,7 @@ def in_a_joint(model: Any) -> None:
 def named(e: cs.InputError, name: str) -> bool:
     """``e`` names the field: a type where it is given (``restitution``), a range by the core
     (``clearance joint 'pin'.restitution``)."""
-    return e.field in (name, f"clearance joint 'pin'.{CORE_NAMES.get(name, name)}") and e.field in str(e)
+    return e.field in (name, f"clearance joint 'pin'.{name}") and e.field in str(e)
 
 
 @examples(150)
@@ -132,7 +130,7 @@ def test_friction_speeds_ordered(v0, v1):
     try:
         in_a_joint(Dry(v0=v0, v1=v1))
     except cs.InputError as e:
-        assert e.field in ("clearance joint 'pin'.v0", "clearance joint 'pin'.v1")
+        assert e.field in ("v0", "v1")  # the Dry model is checked as it is made, before its joint
         assert v0 < 0 or v1 <= v0 or v1 <= 0
     else:
         assert 0 <= v0 < v1

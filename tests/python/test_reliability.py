@@ -8,8 +8,16 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from clearsim import InputError
+import clearsim
+from clearsim import InputError, models
 from clearsim import reliability as rel
+from clearsim.reliability import Normal, Output, Study
+
+OMEGA = 5000 * 2 * math.pi / 60  # [rad/s] the slider-crank model's crank
+
+
+def _dry(clearance: float) -> clearsim.Mechanism:
+    return models.slider_crank("dry", clearance=clearance)
 
 
 # ---------------------------------------------------------------------------------- FOSM basics
@@ -365,3 +373,32 @@ def test_mc_bins_with_per_sample_angles_and_nominal_table():
     with pytest.raises(InputError) as info:
         rel.compare_fosm_mc(mc, rel.fosm(err[1], ang[1], (0.0, 1.0), bin_width=30.0))
     assert info.value.field == "nominal"
+
+
+def test_fosm_all_by_default_takes_the_outputs_fosm_applies_to():
+    """``Study.fosm_all()`` on a series system of an error and a film thickness (a lower limit)
+    analyses the error, bit for bit as ``fosm_all(outputs=[0])``; it analysed "every output" and
+    so raised ``invalid output = 1`` for an output the user never named."""
+    m_study = Study(lambda c: models.slider_crank("lubricated", clearance=c), {"c": Normal(0.5e-3, 0.01e-3)},
+                    [Output(body="slider", component="x", quantity="displacement"), Output(joint="rod-slider", quantity="film_thickness")],
+                    [1e-4, clearsim.reliability.Limit.below(1e-6)], cycles=0.25, progress=False)  # fmt: skip
+    (res,) = m_study.fosm_all()
+    (named,) = m_study.fosm_all(outputs=[0])
+    np.testing.assert_array_equal(res.reliability, named.reliability)
+    with pytest.raises(clearsim.InputError, match="lower limit"):
+        m_study.fosm_all(outputs=[1])
+
+
+def test_a_study_whose_build_does_not_take_an_input_says_so():
+    """``Study(lambda cA: ..., {"cB": ...})`` (an input renamed in one place) is an InputError
+    naming the inputs and build's parameters when the study is made, and a build that returns
+    something else than a Mechanism one naming what it returned. Before: ``TypeError: <lambda>()
+    got an unexpected keyword argument 'cB'``; ``AttributeError: 'tuple' object has no attribute
+    'description'`` (or ``'check_assembly'``)."""
+    with pytest.raises(clearsim.InputError, match=r"invalid inputs = \['cB'\]: build\(cA\) does not take them by name"):
+        Study(lambda cA: _dry(cA), {"cB": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
+    for omega in (None, OMEGA):  # the nominal mechanism read at once, or first built by a method
+        with pytest.raises(clearsim.InputError, match=r"invalid build: it returned a tuple, not a clearsim.Mechanism"):
+            Study(lambda cA: (_dry(cA),), {"cA": Normal(0.5e-3, 0.01e-3)}, Output(body="slider", component="x", quantity="displacement"), 1e-3, omega=omega, progress=False).fosm()
+    study = Study(lambda cA, **rest: _dry(cA), {"cA": Normal(0.5e-3, 0.01e-3), "speed": 1.0}, Output(body="slider", component="x", quantity="displacement"), 1e-3, progress=False)
+    assert study.omega == pytest.approx(OMEGA)

@@ -8,6 +8,8 @@ import pytest
 from clearsim.cli import main
 from clearsim.errors import InputError
 from clearsim.scene import load_scene_file
+from clearsim.reliability import Study
+from walks import PUMP, pump_scene as _pump_scene
 
 pytest.importorskip("openturns", reason="the rare-event methods need clearsim[uq]")
 
@@ -115,6 +117,68 @@ def test_outputs_are_given_one_way():
     path.write_text(text)
     with pytest.raises(InputError, match="either as \\[\\[study.output\\]\\] tables or by"):
         load_scene_file(path)
+
+
+def test_a_reliability_method_that_stops_keeps_what_the_others_found(tmp_path, capsys, monkeypatch):
+    """``clearsim reliability`` with methods monte_carlo, form, fosm where FORM finds no design
+    point (as on the pump's noisy plunger error, after 2 min): the Monte Carlo rows are written,
+    report.md names the method that stopped and the ones it left unrun, and the command exits
+    with the error. Before: the ReliabilityError escaped run_study, and report.md said
+    "Written before it stopped: nothing"."""
+    import csv
+
+    from clearsim.cli import main
+    from clearsim.errors import ReliabilityError
+
+    def no_design_point(self, *args, **kwargs):
+        raise ReliabilityError("FORM did not converge: no design point after 50 iterations")
+
+    monkeypatch.setattr(Study, "form", no_design_point)
+    scene = _pump_scene(tmp_path, '["monte_carlo", "form", "fosm"]')
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q", "--samples", "2", "--no-plots"]) != 0
+    assert "no design point" in capsys.readouterr().err
+    assert {r["method"] for r in csv.DictReader((out / "reliability.csv").open(encoding="utf-8"))} == {"monte_carlo"}
+    assert (out / "samples.csv").exists()
+    report = (out / "report.md").read_text(encoding="utf-8")
+    assert "Stopped at form: FORM did not converge" in report and "Not run: fosm." in report and "| monte_carlo |" in report
+
+
+def test_fosm_of_a_film_only_study_is_refused_before_anything_runs(tmp_path, capsys):
+    """A [study] whose only output is a film thickness (a lower limit) with methods = ["form",
+    "fosm"]: an InputError naming methods before any run. Before: FORM ran (12 s), then FOSM
+    stopped with ``invalid output = 0``."""
+    from clearsim.cli import EXIT_ERROR, main
+
+    text = _pump_scene(tmp_path, '["form", "fosm"]').read_text(encoding="utf-8")
+    start = text.index('[[study.output]]\nbody = "plunger"')
+    text = text[:start] + text[text.index("[[study.output]]", start + 1) :]
+    scene = tmp_path / "film.toml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "-q"]) == EXIT_ERROR
+    err = capsys.readouterr().err
+    assert "invalid methods = ['form', 'fosm']: fosm compares an error" in err and len(err.strip().splitlines()) == 1
+    assert not (out / "reliability.csv").exists()
+
+
+def test_the_reliability_report_says_fosm_skipped_the_film_output(tmp_path, capsys):
+    """``clearsim reliability`` on the pump's series [study] (the plunger's error and the crank
+    pin's film thickness, a lower limit) with ``--methods fosm``: FOSM analyses the error and
+    says, on stdout and in report.md, that it skipped ``A.film_thickness`` and why. Before: the
+    film output vanished from the FOSM results without a word."""
+    from clearsim.cli import main
+
+    text = PUMP.read_text(encoding="utf-8")
+    scene = tmp_path / "pump.toml"
+    scene.write_text(text[: text.index("\n[study.life]")], encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["reliability", str(scene), "-o", str(out), "--methods", "fosm", "--no-plots"]) == 0
+    said = capsys.readouterr().out
+    assert "fosm                 skips A.film_thickness (film thickness of joint A ≥ 5e-06 m): FOSM compares an error" in said
+    report = (out / "report.md").read_text(encoding="utf-8")
+    assert "FOSM skipped `A.film_thickness` (film thickness of joint A ≥ 5e-06 m): FOSM compares an error with an allowable range [0, limit]" in report
+    assert "FOSM `plunger.y.displacement` (nominal mechanism, 18° bins" in report
 
 
 def test_sobol_alone_draws_its_panel(tmp_path):

@@ -10,6 +10,7 @@ from scipy import special, stats
 import clearsim
 from clearsim import reliability as rel
 from clearsim.errors import InputError
+from clearsim.reliability import Normal
 
 ot = pytest.importorskip("openturns", reason="the rare-event methods need clearsim[uq]")
 
@@ -182,15 +183,7 @@ def test_limits_and_outputs_are_required_and_named():
     assert rel.Study(nine_bar, inputs={"cA": 1e-3, "cB": 1e-3}, output=rel.Output(body="slider9", component="y"), limit=1e-3).omega == OMEGA
 
 
-def test_the_old_name_axis_still_works_with_a_warning_and_not_beside_component():
-    """One word for x, y, theta throughout: ``component`` (scenes, Output, monte_carlo,
-    state_index); ``axis=`` is accepted with a DeprecationWarning, and giving both is an error."""
-    with pytest.warns(DeprecationWarning, match="Output.axis= is now called component="):
-        out = rel.Output(body="slider9", axis="y")
-    assert out == rel.Output(body="slider9", component="y") and out.component == "y" and out.axis is None
-    with pytest.raises(clearsim.InputError) as e:
-        rel.Output(body="slider9", axis="y", component="x")
-    assert e.value.field == "Output.axis"
+def test_an_output_component_is_one_of_x_y_theta():
     with pytest.raises(clearsim.InputError, match="must be one of x, y, theta"):
         rel.Output(body="slider9", component="z")
 
@@ -214,3 +207,46 @@ def test_an_acceleration_output_does_not_depend_on_the_other_outputs_watched():
         alone = make(o, 1e4).fosm()
         np.testing.assert_array_equal(together[k].mu_s, alone.mu_s, err_msg=o.label)
         np.testing.assert_array_equal(together[k].sigma_s, alone.sigma_s, err_msg=o.label)
+
+
+def test_normal_and_lognormal_inputs_stay_finite_far_in_the_tails():
+    """``x = F⁻¹(Φ(u))`` of a Normal and a LogNormal input is the closed form at any u (mean + std u,
+    exp(μ_ln + σ_ln u)). Before: Φ(u) rounded to 1 beyond u ≈ 38 and the input became inf, which a
+    FORM step handed to the user's build (``clearance joint 'A'.clearance = inf``)."""
+    from clearsim.reliability import LogNormal
+
+    u = np.array([-50.0, -40.0, 0.0, 40.0, 50.0])
+    assert np.allclose(Normal(40e-6, 4e-6).from_standard_normal(u), 40e-6 + 4e-6 * u, rtol=1e-14, atol=0.0)
+    d = LogNormal(0.1, 0.01)
+    mu, s = d.log_params
+    assert np.allclose(d.from_standard_normal(u), np.exp(mu + s * u), rtol=1e-12, atol=0.0)
+
+
+def test_form_of_a_series_system_with_a_mode_that_never_fails():
+    """The toggle press's study, in miniature: a film mode that fails at β = −0.62 and a ram-error
+    mode whose margin flattens out at g = 0.18 as the pin clearance grows (it never fails; its
+    first HL-RF step from a slope of −0.0127 jumps to u ≈ 50). FORM keeps its search within
+    |u| ≤ 37, reports the safe mode as β = 37 with a ReliabilityWarning, and the series p_f is the
+    film mode's Φ(0.62); no input it asks for is non-finite. Before: the jump to u ≈ 50 made the
+    clearance inf (then, with the closed-form transform, 50 iterations on at the tail), and the
+    study stopped with the build's ``InputError``."""
+    from clearsim.errors import ReliabilityWarning
+    from clearsim.reliability import LimitState, LogNormal
+
+    seen = []
+    mu_ln, s_ln = LogNormal(0.1, 0.01).log_params
+
+    def g(x):
+        c, mu = x["c"], x["mu"]
+        seen.append(np.concatenate([c, mu]))
+        film = -0.0986 - 0.111 * (c - 40e-6) / 4e-6 + 0.0963 * (np.log(mu) - mu_ln) / s_ln  # linear in u
+        ram = 0.18 + 0.46 * np.exp(-(c - 40e-6) / 145e-6)
+        return [film, ram]
+
+    model = LimitState(g, {"c": Normal(40e-6, 4e-6), "mu": LogNormal(0.1, 0.01)}, modes=["film", "ram"])
+    with pytest.warns(ReliabilityWarning, match=r"not reached within \|u\| ≤ 37"):
+        res = model.form()
+    assert np.all(np.isfinite(np.concatenate(seen)))
+    assert res.modes[1].beta == 37.0 and res.modes[1].pf < 1e-299
+    assert res.modes[0].beta == pytest.approx(-0.0986 / math.hypot(0.111, 0.0963), rel=1e-3)
+    assert res.pf == pytest.approx(res.modes[0].pf, rel=1e-9)

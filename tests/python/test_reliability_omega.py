@@ -11,7 +11,7 @@ import pytest
 import clearsim
 from clearsim import reliability as rel
 from clearsim.errors import InputError
-from clearsim.reliability.scene import scene_study
+from clearsim.scene.study import scene_study
 from clearsim.scene import load_scene_file
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"

@@ -12,6 +12,7 @@ import pytest
 import clearsim
 from clearsim import models
 from clearsim.scene import Scene, load_scene, load_scene_file
+from walks import PUMP
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
 NINE_BAR = SCENES / "nine_bar.toml"
@@ -266,3 +267,17 @@ friction = 0.05
     d = m.description()["prismatic_clearance_joints"][0]
     assert d["clearance"] == 0.2e-3 and d["model"]["friction"] == 0.05 and d["slider_length"] == 0.05 and d["corner_radius"] == 0.01
     assert m.simulate(0.002, progress=False).completed
+
+
+def test_a_bad_lubricated_field_in_a_scene_names_its_joint(tmp_path):
+    """A negative viscosity (or a restitution above 1) in ``[clearance_joint.lubricated]`` /
+    ``[clearance_joint.dry]`` names the joint, the field and the value, as ``with_values`` does.
+    Before: ``invalid viscosity = -0.2: must be positive`` (which of the joints?)."""
+    text = PUMP.read_text(encoding="utf-8")
+    for old, new, said in (("viscosity = 0.2 ", "viscosity = -0.2 ", "invalid clearance joint 'A'.viscosity = -0.2: must be positive"),
+                           ("restitution = 0.8", "restitution = 1.8", "invalid clearance joint 'O4'.restitution = 1.8")):  # fmt: skip
+        path = tmp_path / "bad.toml"
+        path.write_text(text.replace(old, new, 1), encoding="utf-8")
+        with pytest.raises(clearsim.InputError) as info:
+            clearsim.load_scene(path)
+        assert said in str(info.value) and str(info.value).startswith(f"{path}:")

@@ -10,8 +10,6 @@ import dataclasses
 import json
 import math
 import re
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any, Dict, List
 
@@ -22,6 +20,7 @@ from clearsim import reliability as rel
 from clearsim.cli import EXIT_ERROR, main
 from clearsim.errors import InputError
 from clearsim.scene import Scene, load_scene_file
+from walks import TOGGLE
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
 # The dry slider-crank (5000 rpm: a turn is 12 ms), two turns, with the paper's analysis of the slider.
@@ -187,48 +186,6 @@ def test_a_scene_may_hold_both_tables(tmp_path):
     assert _same(both.study_model(progress=False).fosm(), a["velocity"])
 
 
-#: The names the old clearsim.reliability.scene defined (before the [study] reader moved to clearsim.scene.study).
-OLD_STUDY_NAMES = ("METHODS", "OUTPUT_KEYS", "STUDY_KEYS", "INPUT_KEYS", "TOLERANCE_KEYS", "LIFE_KEYS", "DISTRIBUTIONS", "LifeSettings", "StudySettings", "_output", "parse_study", "scene_study", "Study")
-
-
-def test_old_import_paths_still_work():
-    import clearsim.scene_builder as old_builder
-    import clearsim.toml_reader as old_reader
-    from clearsim.scene import builder, toml_reader
-
-    assert old_builder._Builder is builder._Builder and old_reader.Table is toml_reader.Table and old_reader.read_toml is toml_reader.read_toml
-    for module in (old_builder, old_reader):
-        assert (module.__doc__ or "").startswith("Deprecated")
-
-
-def test_the_old_study_path_is_registered_from_above():
-    """clearsim.reliability.scene has no file of its own (a module there looking up
-    clearsim.scene.study ran an import upward): clearsim.scene registers the study module under
-    the old name. In a fresh interpreter, with warnings as errors: ``import clearsim`` is silent,
-    and the old imports give the new module's objects."""
-    import clearsim
-
-    assert not (Path(clearsim.__file__).parent / "reliability" / "scene.py").exists()
-    script = f"""
-import warnings
-warnings.simplefilter("error")
-import clearsim
-import clearsim.reliability.scene
-import clearsim.scene.study as new
-from clearsim.reliability.scene import StudySettings
-from clearsim.reliability import scene as attribute
-import importlib
-assert clearsim.reliability.scene is new and attribute is new and importlib.import_module("clearsim.reliability.scene") is new
-assert StudySettings is new.StudySettings
-from clearsim.reliability.scene import {", ".join(OLD_STUDY_NAMES)}
-assert METHODS is new.METHODS and scene_study is new.scene_study and LifeSettings is new.LifeSettings
-print("ok")
-"""
-    for source in (script, "import clearsim.reliability.scene as old; import warnings; print('ok' if old.StudySettings else '')"):
-        done = subprocess.run([sys.executable, "-W", "error", "-c", source], capture_output=True, text=True, cwd=Path(clearsim.__file__).parents[2], timeout=120)
-        assert done.returncode == 0 and done.stdout.strip() == "ok" and not done.stderr, done.stderr
-
-
 @pytest.mark.parametrize("integrator", ["rk45", "radau"])
 def test_one_monitored_run_gives_every_quantity_bit_for_bit(tmp_path, monkeypatch, integrator):
     """[reliability] makes one monitored run for all its quantities (it made one each), and each
@@ -323,3 +280,14 @@ def _alias_start(scene: Scene) -> float:
 
     settings = alias_study(scene.reliability, scene.simulation)
     return settings.skip_cycles * _period(scene)
+
+
+def test_a_series_study_states_that_every_output_must_hold():
+    """The repr of a study of several outputs (a series system: it fails when any passes its
+    limit) states what holds when it is safe: each output within its limit, joined by "and".
+    Before: "film thickness of joint A ≥ 5e-07 m or y displacement error ≤ 0.0005 m"."""
+    from clearsim.scene.study import scene_study
+    from clearsim.scene import load_scene_file
+
+    text = repr(scene_study(load_scene_file(TOGGLE), progress=False))
+    assert "film thickness of joint A ≥ 5e-07 m and y displacement error of ram ≤ 0.0005 m" in text and " or " not in text

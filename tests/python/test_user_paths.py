@@ -34,7 +34,7 @@ import clearsim
 from clearsim import models
 from clearsim.cli import main
 from clearsim.reliability import Normal, Output, Study
-from clearsim.reliability.scene import scene_study
+from clearsim.scene.study import scene_study
 from clearsim.scene import load_scene_file
 
 if sys.version_info >= (3, 11):
@@ -270,10 +270,13 @@ def _check_result(res: Any, t0: float, t_end: float) -> None:
 
 
 def _driver_angle(scene: Any, driver: str, t: float) -> float:
-    """θ(t) = angle0 + ω t of a constant-speed driver [rad] (the closed form the pose at t0 must meet)."""
-    d = next(d for d in scene.mechanism.description()["drivers"] if d["name"] == driver)
+    """θ(t) = angle0 + ω t of a constant-speed driver [rad] (the closed form the pose at t0 must meet;
+    angle0 not given: the driven body's angle as drawn)."""
+    desc = scene.mechanism.description()
+    d = next(d for d in desc["drivers"] if d["name"] == driver)
     law = d["law"]
-    return float(law["angle0"] + law["omega"] * t)
+    angle0 = law["angle0"] if law["angle0"] is not None else next(b.get("angle", 0.0) for b in desc["bodies"] if b["name"] == d["body"])
+    return float(angle0 + law["omega"] * t)
 
 
 def _run_scene_path(tmp_path: Path, capsys: Any, name: str, kind: str, t0: str, path: str) -> None:
@@ -317,8 +320,7 @@ def _run_scene_path(tmp_path: Path, capsys: Any, name: str, kind: str, t0: str, 
         _check_result(res, sim.t0, sim.t_end)
         _check_point(res, body)
         if driver is not None:  # the pose at t0 follows the driver (closed form)
-            desc = scene.mechanism.description()
-            driven = desc["bodies"][next(d["body"] for d in desc["drivers"] if d["name"] == driver)]["name"]
+            driven = next(d["body"] for d in scene.mechanism.description()["drivers"] if d["name"] == driver)
             theta = res.position(driven)[0, 2]
             assert math.remainder(theta - _driver_angle(scene, driver, sim.t0), 2 * math.pi) == pytest.approx(0.0, abs=1e-6)
     elif path == "simulate_with_ideal":

@@ -1,15 +1,18 @@
-"""Validation once (issue 29, criterion 3): a value's range is checked by the Rust core when the
-mechanism compiles (rust/compile/validate.rs) or when a run's settings arrive (rust/settings.rs),
-not again in Python. The mistake must still reach the user as a clear InputError naming the
-element, the field and the value, before anything runs."""
+"""Validation once (issue 29, criterion 3): a value's range is checked by the Rust core
+(rust/compile/validate.rs) — as each element is added (issue 36, item 6: ``_core.check_element``,
+the same checks), its references to other elements when the mechanism compiles — or when a run's
+settings arrive (rust/settings.rs), not again in Python. The mistake must still reach the user as
+a clear InputError naming the element, the field and the value, before anything runs."""
 
 from __future__ import annotations
 
 import math
+import re
 from typing import Any, Callable, List, Tuple
 
 import pytest
 
+import clearsim
 import clearsim as cs
 from clearsim import Archard, Dry, Lubricated, Thermal, Vogel, models
 
@@ -33,7 +36,9 @@ def slider(**kw: Any) -> cs.Mechanism:
     return m.prismatic_clearance("ground", (0, 0), "block", name="guide", **args)
 
 
-# (id, what the user writes (no error yet), the field the core names, the value as written)
+# (id, what the user writes, the field the core names, the value as written). A model's values are
+# checked as the model is made (Dry(...), Lubricated(...)): named without its joint, which it
+# does not know yet (a scene names the joint: scene/builder.py).
 CASES: List[Tuple[str, Callable[[], cs.Mechanism], str, str]] = [
     ("mass", lambda: pendulum(mass=-2.0), "body 'arm'.mass", "-2.0"),
     ("inertia", lambda: pendulum(inertia=0.0), "body 'arm'.inertia", "0.0"),
@@ -42,16 +47,16 @@ CASES: List[Tuple[str, Callable[[], cs.Mechanism], str, str]] = [
     ("clearance", lambda: pinned(clearance=-1e-4), "clearance joint 'pin'.clearance", "-0.0001"),
     ("journal radius", lambda: pinned(journal_radius=0.0), "clearance joint 'pin'.journal_radius", "0.0"),
     ("eccentricity", lambda: pinned(initial_eccentricity=(0.5, 0.0)), "clearance joint 'pin'.initial_eccentricity", "[0.5, 0.0]"),
-    ("restitution", lambda: pinned(Dry(restitution=1.2)), "clearance joint 'pin'.restitution", "1.2"),
-    ("v1 below v0", lambda: pinned(Dry(v0=1e-2, v1=1e-3)), "clearance joint 'pin'.v1", "0.001"),
-    ("wear coefficient", lambda: pinned(Dry(wear=Archard(coefficient=-1e-4, hardness=2e9, length=0.02))), "clearance joint 'pin'.wear.coefficient", "-0.0001"),
-    ("wear depths", lambda: pinned(Dry(wear=Archard(1e-4, 2e9, 0.02, initial_bearing=[0.0] * 10))), "clearance joint 'pin'.wear.initial_bearing", "10 depths"),
-    ("viscosity", lambda: pinned(Lubricated(viscosity=-0.4)), "clearance joint 'pin'.viscosity", "-0.4"),
-    ("eps0", lambda: pinned(Lubricated(eps0=1.5)), "clearance joint 'pin'.eps0", "1.5"),
-    ("boundary friction alone", lambda: pinned(Lubricated(boundary_friction=0.1)), "clearance joint 'pin'.boundary_friction", "0.1"),
-    ("vogel without thermal", lambda: pinned(Lubricated(viscosity=Vogel(1e-4, 900.0, 150.0))), "clearance joint 'pin'.thermal", "None"),
-    ("thermal ambient", lambda: pinned(Lubricated(thermal=Thermal(-1.0, 10.0, 1.0))), "clearance joint 'pin'.thermal.ambient", "-1.0"),
-    ("film", lambda: pinned(Lubricated(film="medium")), "clearance joint 'pin'.model.film", "medium"),
+    ("restitution", lambda: pinned(Dry(restitution=1.2)), "restitution", "1.2"),
+    ("v1 below v0", lambda: pinned(Dry(v0=1e-2, v1=1e-3)), "v1", "0.001"),
+    ("wear coefficient", lambda: pinned(Dry(wear=Archard(coefficient=-1e-4, hardness=2e9, length=0.02))), "wear.coefficient", "-0.0001"),
+    ("wear depths", lambda: pinned(Dry(wear=Archard(1e-4, 2e9, 0.02, initial_bearing=[0.0] * 10))), "wear.initial_bearing", "10 depths"),
+    ("viscosity", lambda: pinned(Lubricated(viscosity=-0.4)), "viscosity", "-0.4"),
+    ("eps0", lambda: pinned(Lubricated(eps0=1.5)), "eps0", "1.5"),
+    ("boundary friction alone", lambda: pinned(Lubricated(boundary_friction=0.1)), "boundary_friction", "0.1"),
+    ("vogel without thermal", lambda: pinned(Lubricated(viscosity=Vogel(1e-4, 900.0, 150.0))), "thermal", "None"),
+    ("thermal ambient", lambda: pinned(Lubricated(thermal=Thermal(-1.0, 10.0, 1.0))), "thermal.ambient", "-1.0"),
+    ("film", lambda: pinned(Lubricated(film="medium")), "film", "medium"),
     ("slider length", lambda: slider(slider_length=0.0), "clearance joint 'guide'.slider_length", "0.0"),
     ("corner radius", lambda: slider(corner_radius=-1e-3), "clearance joint 'guide'.corner_radius", "-0.001"),
     ("spring stiffness", lambda: pendulum().spring("ground", (0, 0), "arm", (0, 0), stiffness=-5.0, name="s"), "force 's'.stiffness", "-5.0"),
@@ -69,16 +74,18 @@ CASES: List[Tuple[str, Callable[[], cs.Mechanism], str, str]] = [
 
 @pytest.mark.parametrize("make, field, value", [c[1:] for c in CASES], ids=[c[0] for c in CASES])
 def test_the_core_names_element_field_and_value(make: Callable[[], cs.Mechanism], field: str, value: str) -> None:
-    m = make()  # Python writes the description without judging the value ...
+    made: List[cs.Mechanism] = []
     with pytest.raises(cs.InputError) as info:
-        m.compile()  # ... the core checks it, once, before anything runs
+        made.append(make())  # the core checks each element's values as it is added ...
+        made[0].compile()  # ... and what it refers to when the mechanism compiles, before anything runs
     err = info.value
     assert err.field == field, (err.field, str(err))
     assert str(err).startswith(f"invalid {field} = "), str(err)
     assert value in str(err), (value, str(err))
-    with pytest.raises(cs.InputError) as again:
-        m.simulate(1e-3, progress=False)
-    assert again.value.field == field
+    if made:  # a reference: the run says the same
+        with pytest.raises(cs.InputError) as again:
+            made[0].simulate(1e-3, progress=False)
+        assert again.value.field == field
 
 
 @pytest.mark.parametrize(
@@ -109,9 +116,9 @@ def test_run_settings_checked_by_the_core(options: Any, field: str, value: str) 
 def test_plausibility_waits_for_valid_sizes() -> None:
     """An invalid size is the core's InputError, not first a PlausibilityWarning computed from it
     (the test suite turns those into errors)."""
-    for m in (pinned(Lubricated(viscosity=-0.4)), pinned(clearance=-1e-4), pendulum(inertia=-1e-3)):
+    for make in (lambda: pinned(Lubricated(viscosity=-0.4)), lambda: pinned(clearance=-1e-4), lambda: pendulum(inertia=-1e-3)):
         with pytest.raises(cs.InputError):
-            m.compile()
+            make()
 
 
 def test_numbers_are_still_numbers_at_once() -> None:
@@ -138,3 +145,47 @@ def test_run_defaults_are_the_cores() -> None:
     assert (schema.RTOL, schema.ATOL, schema.H_MIN, schema.MAX_STEPS) == (core["rtol"], core["atol"], core["h_min"], core["max_steps"])
     sig = inspect.signature(Mechanism.run_settings).parameters
     assert (sig["rtol"].default, sig["atol"].default, sig["h_min"].default, sig["max_steps"].default) == (1e-6, 1e-9, 1e-14, 50_000_000)
+
+
+@pytest.mark.parametrize(("options", "field", "value"), [({"t_out": [0.0, 0.05, 0.2]}, "t_out[2]", 0.2), ({"t0": 0.05, "t_out": [0.0, 0.1]}, "t_out[0]", 0.0)])
+def test_output_times_the_run_would_drop_are_refused(options, field, value):
+    """``simulate(0.1, t_out=...)`` with a time past t_end or before t0: an InputError naming the
+    field and value before anything runs. Before: the run dropped the times outside [t0, t_end]
+    without a word (a Result of 1 output for t_out = [0, 0.2])."""
+    m = models.slider_crank("dry", clearance=0.5e-3)
+    with pytest.raises(clearsim.InputError, match=re.escape(f"invalid {field} = {value}")) as info:
+        m.simulate(0.1, progress=False, **options)
+    assert info.value.field == field
+
+
+def test_mistakes_are_named_at_the_call_that_makes_them() -> None:
+    """A value out of range is an InputError at the call that gives it (issue 36, item 6), by the
+    core's checks of that element alone (one validator: the compile's), naming the element, the
+    field and the value. Before: each was accepted and failed only at ``simulate``."""
+    m = cs.Mechanism()
+    with pytest.raises(cs.InputError, match=re.escape("invalid body 'crank'.mass = -1.0: must be positive")) as info:
+        m.add_body("crank", mass=-1, inertia=1e-3)
+    assert info.value.field == "body 'crank'.mass" and m.body_names == []
+    with pytest.raises(cs.InputError, match=re.escape("invalid viscosity = -0.1: must be positive")) as info:
+        Lubricated(viscosity=-0.1)
+    assert info.value.field == "viscosity"
+    with pytest.raises(cs.InputError, match=re.escape("invalid clearance joint 'A'.clearance = -0.001: must be positive")):
+        models.nine_bar("dry", clearance=-1e-3)
+    with pytest.raises(cs.InputError, match=re.escape("invalid force 'k'.stiffness = -5.0: must not be negative")):
+        pendulum().spring("ground", (0, 0), "arm", (0, 0), stiffness=-5.0, name="k")
+    with pytest.raises(cs.InputError, match=re.escape("invalid clearance joint 'B'.clearance = -0.0002")):
+        models.nine_bar("dry").with_values({"B.clearance": -2e-4})
+    # Names still resolve when the mechanism compiles: elements may come in any order.
+    later = cs.Mechanism().revolute("ground", (0, 0), "arm", (0, 0.1), name="pivot")
+    later.add_body("arm", mass=1.0, inertia=1e-3, position=(0.0, -0.1))
+    assert later.compile().dof == 1
+
+
+def test_a_keyword_typo_names_the_method_called() -> None:
+    """``simulate(dt_ot=...)`` is a TypeError naming ``simulate`` and the keyword it nearly is.
+    Before: ``Running.run_settings() got an unexpected keyword argument 'dt_ot'``, an internal
+    method the user never called."""
+    m = models.slider_crank("dry")
+    for method in (m.simulate, m.simulate_with_ideal):
+        with pytest.raises(TypeError, match=re.escape(f"Mechanism.{method.__name__}() got an unexpected keyword argument 'dt_ot'; did you mean 'dt_out'?")):
+            method(0.001, dt_ot=1e-4, progress=False)  # type: ignore[call-arg]

@@ -19,9 +19,6 @@ from .reliability import plot_fosm_vs_mc, plot_reliability, plot_reliability_pan
 from .theme import OKABE_ITO, QUANTITIES, RC, new_figure, save, series_style, style, suptitle
 from .wear import plot_wear
 
-#: Old name of :func:`new_figure` (deprecated).
-_new_figure = new_figure
-
 __all__ = [
     "OKABE_ITO",
     "QUANTITIES",

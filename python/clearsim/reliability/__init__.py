@@ -38,7 +38,7 @@ from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reason
 from .fosm import PAPER_ALLOWABLE, FosmResult, allowable_statistics, fosm, normal_cdf, normal_ppf, reliability_index
 from .form import FormResult, SystemFormResult
 from .life import LifeModel, LifeResult
-from .model import LimitState, Model, ReliabilityModel
+from .model import LimitState, ReliabilityModel
 from .outputs import Limit, Output
 from .sampling import SamplingResult
 from .sobol import SobolResult
@@ -60,7 +60,6 @@ __all__ = [
     "LimitState",
     "LogNormal",
     "ModeEstimate",
-    "Model",
     "MonteCarloBins",
     "MonteCarloEstimate",
     "Normal",

@@ -19,7 +19,7 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from .. import display
-from ..errors import InputError, SimulationError, check_choice, check_positive, renamed
+from ..errors import InputError, SimulationError, check_choice, check_positive
 from ..mechanism import Mechanism
 from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, RTOL
 from .bridge import check_on_failure
@@ -170,7 +170,6 @@ def monte_carlo(
     integrator: str = "auto",
     rtol: float = RTOL,
     atol: float = ATOL,
-    axis: Optional[str] = None,
     reference: str = "own_ideal",
     threads: Optional[int] = None,
     keep_errors: Union[bool, int] = False,
@@ -197,7 +196,7 @@ def monte_carlo(
         from t = 0, as :meth:`Study.fosm <clearsim.reliability.Study.fosm>`'s.
     body, component:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
-        error against the reference. (``axis=`` is the old name of ``component=``.)
+        error against the reference.
     reference:
         What the errors are measured against: ``"own_ideal"`` (default: each sample's own
         mechanism with ideal joints, what the clearances add) or ``"nominal"`` (the nominal
@@ -245,7 +244,6 @@ def monte_carlo(
         raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
     if body is None:
         raise InputError("missing body: name the body whose error is analysed (there is no default)", field="body", value=None)
-    component = renamed("axis", "component", axis, component)
     check_choice("component", component, COMPONENTS, "(there is no default)")
     check_on_failure(on_failure)
     if not allowable:

@@ -289,11 +289,6 @@ class FosmResult:
         self.min_centre = float(self.bin_centres[k])
         self.min_beta = float(self.beta[k])
 
-    @property
-    def angle(self) -> np.ndarray:
-        """Alias of :attr:`bin_starts` [deg]."""
-        return self.bin_starts
-
     def cycle_minima(self) -> List[Dict[str, float]]:
         """Minimum reliability of each cycle: ``cycle``, ``angle`` (bin start [deg]),
         ``centre`` [deg], ``beta``, ``reliability`` (like the paper's Fig. 11a discussion)."""

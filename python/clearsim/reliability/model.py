@@ -23,7 +23,7 @@ from .sampling import SamplingResult, importance_sampling, subset
 from .sobol import SobolResult, sobol
 from .tolerance import ToleranceResult, tolerance
 
-__all__ = ["ReliabilityModel", "Model", "LimitState", "ON_FAILURE", "check_on_failure"]
+__all__ = ["ReliabilityModel", "LimitState", "ON_FAILURE", "check_on_failure"]
 
 
 class ReliabilityModel:
@@ -218,7 +218,3 @@ class _Mode(ReliabilityModel):
     def with_input(self, name: str, value: Any) -> "ReliabilityModel":
         return _Mode(self.parent.with_input(name, value), self.index)
 
-
-#: Old name of :class:`ReliabilityModel` (deprecated: "model" also names the compiled mechanism,
-#: ``Mechanism.compile()``, and the mechanisms of :mod:`clearsim.models`).
-Model = ReliabilityModel

@@ -13,7 +13,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from ..errors import InputError, check_choice, check_finite, check_positive, renamed
+from ..errors import InputError, check_choice, check_finite, check_positive
 from ..points import check_point
 from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, POINT_MONITOR_COMPONENTS, body_unit
 
@@ -32,7 +32,7 @@ class Output:
 
     ``Output(body="slider9", component="y", quantity="displacement" | "velocity" | "acceleration")``:
     |response − reference response| of the body's centroid in m, m/s, m/s² (``component="x"``/``"y"``)
-    or rad, rad/s, rad/s² (``component="theta"``). ``axis=`` is the old name of ``component=``.
+    or rad, rad/s, rad/s² (``component="theta"``).
 
     ``Output(body="coupler", point=(0.1, 0.02), component="x" | "y" | "magnitude", quantity=...)``:
     the error of a point fixed on the body (body frame [m], as joints take their points): its
@@ -49,14 +49,10 @@ class Output:
     component: Optional[str] = None
     joint: Optional[str] = None
     quantity: str = "displacement"
-    #: Old name of ``component``.
-    axis: Optional[str] = None
     #: A point fixed on ``body`` (body frame [m]); ``None``: the body's centroid.
     point: Optional[Tuple[float, float]] = None
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "component", renamed("axis", "component", self.axis, self.component, "Output."))
-        object.__setattr__(self, "axis", None)
         if (self.body is None) == (self.joint is None):
             raise InputError("invalid Output: give exactly one of body= (with component=) or joint=", field="Output.body", value=self.body)
         if self.body is not None:

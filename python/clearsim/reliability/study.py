@@ -400,7 +400,8 @@ class Study(ReliabilityModel, Modes):
                 stop = min(n, start + CHUNK)
                 jobs = self._chunk_jobs(cols, start, stop, keep_traces, points_per_cycle, trace_outputs, check_assembly, raw_traces)
                 errors: Dict[int, str] = {}
-                descriptions = [j.mechanism.description() for j in jobs]
+                # The core only reads them (no copy), unless on_job may change them.
+                descriptions = [j.mechanism.description() if on_job is not None else j.mechanism._description() for j in jobs]
                 if on_job is not None:
                     for job, d in zip(jobs, descriptions):
                         on_job(job.k, d, job.settings)

@@ -235,31 +235,17 @@ answers.
 
 from __future__ import annotations
 
-import sys
-
-from .. import reliability as _reliability
 from ..schema import COMPONENTS
 from .alias import RELIABILITY_QUANTITIES, ReliabilitySettings
 from .loader import PathLike, Scene, SceneRun, load_scene, load_scene_file
-from .settings import BODY_CHANNELS, BODY_QUANTITIES, ERROR_QUANTITIES, JOINT_CHANNELS, JOINT_QUANTITIES, OutputSettings, SimulationSettings
-from . import study as _study
+from .settings import BODY_CHANNELS, ERROR_QUANTITIES, JOINT_CHANNELS, OutputSettings, SimulationSettings
 from .study import StudySettings
-
-# Deprecated path: ``clearsim.reliability.scene`` was the [study] reader's home before it moved
-# here. Its name now denotes this package's study module itself, registered from above (this
-# package imports the reliability rooms, never the reverse: issue 29, every import runs
-# downward), so ``import clearsim.reliability.scene`` and ``from clearsim.reliability.scene
-# import StudySettings`` keep working once ``clearsim`` is imported, as any import of it does.
-sys.modules[f"{_reliability.__name__}.scene"] = _study
-setattr(_reliability, "scene", _study)
 
 __all__ = [
     "BODY_CHANNELS",
-    "BODY_QUANTITIES",
     "COMPONENTS",
     "ERROR_QUANTITIES",
     "JOINT_CHANNELS",
-    "JOINT_QUANTITIES",
     "OutputSettings",
     "PathLike",
     "RELIABILITY_QUANTITIES",

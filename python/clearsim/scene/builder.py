@@ -37,7 +37,7 @@ _CLEARANCE_KEYS = (
 )  # fmt: skip
 # Builder field → scene key, for errors raised by Mechanism methods.
 _FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "point_b": "points", "driver": None}
-# How error messages name an element (clearsim.references.label) → its scene table.
+# How error messages name an element (the core's rust/names.rs, label) → its scene table.
 _ELEMENT_KINDS = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint", "spring": "force", "rotational spring": "force", "torque": "force", "motor": "force"}
 
 

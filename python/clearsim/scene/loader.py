@@ -248,10 +248,14 @@ def _located_build(src: Source, data: Dict[str, Any], overrides: Optional[Mappin
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
 
     failed: Optional[InputError] = None
+    refused: Optional[InputError] = None  # an element refused as it was added (located already)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        mech = builder.build()
-        if overrides is None:
+        try:
+            mech = builder.build()
+        except InputError as err:
+            refused = err
+        if refused is None and overrides is None:
             try:
                 # The Rust core's checks, located in the file; the compiled model is cached on the
                 # mechanism, so the scene's own run does not compile it again (Mechanism.copy()
@@ -262,6 +266,8 @@ def _located_build(src: Source, data: Dict[str, Any], overrides: Optional[Mappin
     # The warnings first: a unit slip they name (a journal radius in mm) is often the cause
     # of the error that follows (an L/D outside the finite film's table).
     emit(caught)
+    if refused is not None:
+        raise refused
     if failed is not None:
         raise builder.relocate(failed, None) from None
     return builder, mech

@@ -46,10 +46,6 @@ JOINT_CHANNELS: Dict[str, Tuple[Tuple[str, str], ...]] = {
 #: :meth:`Result.error` and the reliability analysis).
 ERROR_QUANTITIES: Dict[str, str] = {"position": "displacement", "velocity": "velocity", "acceleration": "acceleration"}
 RELIABILITY_QUANTITIES: Tuple[str, ...] = tuple(ERROR_QUANTITIES.values())
-#: Old names of :data:`BODY_CHANNELS` and :data:`JOINT_CHANNELS` (deprecated: the reliability
-#: package and :mod:`clearsim.schema` use these names for output quantities).
-BODY_QUANTITIES = BODY_CHANNELS
-JOINT_QUANTITIES = JOINT_CHANNELS
 _CHANNEL_OF = {"position": "states", "velocity": "states", "acceleration": "accelerations"}
 
 

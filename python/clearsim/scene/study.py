@@ -180,7 +180,7 @@ def _input_name(it: Any, mech: Any) -> Tuple[str, str]:
     if "." not in path and path in it.src.parameters:
         raise it.error("path", f"invalid study.input path {path!r}: a parameter is randomised by parameter = {path!r}", path)
     try:
-        mech.with_values({path: 0.0})
+        mech.value(path)
     except Exception as err:  # an InputError naming the path
         raise it.error("path", str(err), path) from None
     return path, "path"

@@ -1,0 +1,171 @@
+//! Plausibility of a whole mechanism's numbers: what is valid but looks like a unit slip against
+//! the mechanism's own size — lengths in millimetres where clearsim takes metres, a load point
+//! far outside its body. Each finding names the element, the field, the value and the unit
+//! clearsim expected ([`Warning`]); the Python layer shows them as `PlausibilityWarning`s when
+//! the mechanism compiles. (One joint's numbers on their own — a viscosity in cP, a clearance in
+//! mm — are checked as the joint is added: `python/clearsim/plausibility.py`.)
+
+use crate::assembly::extent;
+use crate::description::*;
+use crate::error::Warning;
+
+use crate::text::g;
+
+/// A journal radius above this fraction of the mechanism's span, or a bearing length above this
+/// multiple of it, is more likely millimetres than metres.
+pub const JOURNAL_SPAN_RATIO: f64 = 0.5;
+pub const LENGTH_SPAN_RATIO: f64 = 2.0;
+/// A body's inertia below this fraction of a uniform bar's, m d²/12 over the spread d of its
+/// centroid and attachment points, is more likely coordinates in mm with the inertia in kg m²
+/// (a ratio of about 1e-6).
+pub const BAR_INERTIA_RATIO: f64 = 1e-3;
+/// A load point further from its body's centroid than this multiple of the body's reach (its
+/// attachment points' largest distance from the centroid) is more likely given in global
+/// coordinates or in mm.
+pub const LOAD_REACH_RATIO: f64 = 3.0;
+
+/// A body-frame point of body `body` (or the ground) in the global frame at the pose given.
+pub(crate) fn global(desc: &MechanismDesc, body: BodyRef, p: [f64; 2]) -> (f64, f64) {
+    match body {
+        None => (p[0], p[1]),
+        Some(b) => {
+            let b = &desc.bodies[b];
+            let (s, c) = b.angle.sin_cos();
+            (b.position[0] + c * p[0] - s * p[1], b.position[1] + s * p[0] + c * p[1])
+        }
+    }
+}
+
+/// A joint's two bodies and points: (body a, point a, body b, point b).
+pub(crate) fn ends(j: &JointDesc) -> (BodyRef, [f64; 2], BodyRef, [f64; 2]) {
+    match j {
+        JointDesc::Revolute { body_a, point_a, body_b, point_b, .. } => (*body_a, *point_a, *body_b, *point_b),
+        JointDesc::Prismatic { body_a, point_a, body_b, point_b, .. } => (*body_a, *point_a, Some(*body_b), *point_b),
+    }
+}
+
+/// The points where bodies meet — each joint's two points, a clearance joint's bearing centre
+/// (its journal lies within the clearance of it, or at its initial eccentricity: no length of
+/// the mechanism) — at the pose given, global frame.
+fn joint_points(desc: &MechanismDesc) -> Vec<(f64, f64)> {
+    let mut pts = Vec::new();
+    for j in &desc.joints {
+        let (a, pa, b, pb) = ends(j);
+        pts.push(global(desc, a, pa));
+        pts.push(global(desc, b, pb));
+    }
+    for c in &desc.clearance_joints {
+        pts.push(global(desc, c.bearing_body, c.bearing_point));
+    }
+    pts
+}
+
+/// The mechanism's scale \[m\] for the size checks: the span ([`crate::assembly::extent`], x
+/// extent plus y extent) of the points where its bodies meet. A mechanism whose joints all sit at
+/// one place (a rotor in one bearing) has none (0): its bodies' sizes are not a scale.
+pub fn scale(desc: &MechanismDesc) -> f64 {
+    extent(joint_points(desc).into_iter())
+}
+
+/// Per body, the points attached to it (body frame): its joints', clearance joints' and
+/// springs' points.
+fn attachments(desc: &MechanismDesc) -> Vec<Vec<[f64; 2]>> {
+    let mut points = vec![Vec::new(); desc.bodies.len()];
+    let mut add = |b: BodyRef, p: [f64; 2]| {
+        if let Some(b) = b {
+            points[b].push(p);
+        }
+    };
+    for j in &desc.joints {
+        let (a, pa, b, pb) = ends(j);
+        add(a, pa);
+        add(b, pb);
+    }
+    for c in &desc.clearance_joints {
+        add(c.bearing_body, c.bearing_point);
+        add(c.journal_body, c.journal_point);
+    }
+    for f in &desc.forces {
+        if let ForceDesc::SpringDamper { body_a, point_a, body_b, point_b, .. } = f {
+            add(*body_a, *point_a);
+            add(*body_b, *point_b);
+        }
+    }
+    points
+}
+
+/// What looks wrong against the mechanism's size (a resolved description): a body far lighter in
+/// inertia than a bar over its centroid and attachment points (lengths in mm, inertia in kg m²),
+/// a load point far outside its body, a journal radius or a bearing length of the order of the
+/// whole mechanism.
+pub fn findings(desc: &MechanismDesc) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let attached = attachments(desc);
+    for (b, points) in desc.bodies.iter().zip(&attached) {
+        // The spread of the centroid (the origin of the body frame) and the attached points.
+        let mut with_centroid = points.clone();
+        with_centroid.push([0.0, 0.0]);
+        let d = with_centroid.iter().flat_map(|p| with_centroid.iter().map(move |q| (p[0] - q[0]).hypot(p[1] - q[1]))).fold(0.0, f64::max);
+        let bar = b.mass * d * d / 12.0;
+        if bar > 0.0 && 0.0 < b.inertia && b.inertia < BAR_INERTIA_RATIO * bar {
+            let field = format!("body '{}'.inertia", b.name);
+            out.push(Warning {
+                message: format!(
+                    "{field} = {} kg m² is {} × a uniform bar's of its mass {} kg between its joint points {} m apart (m d²/12 = {} kg m²): are the points and positions in mm? clearsim takes metres (and kg m²)",
+                    g(b.inertia, 6),
+                    g(b.inertia / bar, 1),
+                    g(b.mass, 6),
+                    g(d, 3),
+                    g(bar, 3)
+                ),
+                field,
+            });
+        }
+    }
+    for f in &desc.forces {
+        let ForceDesc::Force { name, body, point, .. } = f else { continue };
+        let reach = attached[*body].iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max);
+        let d = point[0].hypot(point[1]);
+        if reach > 0.0 && d > LOAD_REACH_RATIO * reach {
+            let field = format!("force '{name}'.point");
+            out.push(Warning {
+                message: format!(
+                    "{field} = ({}, {}) m lies {} m from the centroid of body '{}', {} × as far as its joints ({} m): is it given in global coordinates or in mm? clearsim takes the point in metres in the body's frame",
+                    g(point[0], 4),
+                    g(point[1], 4),
+                    g(d, 3),
+                    desc.bodies[*body].name,
+                    g(d / reach, 3),
+                    g(reach, 3)
+                ),
+                field,
+            });
+        }
+    }
+    let size = scale(desc);
+    if !(size > 0.0) {
+        return out;
+    }
+    for cj in &desc.clearance_joints {
+        let j = format!("clearance joint '{}'", cj.name);
+        if cj.journal_radius > JOURNAL_SPAN_RATIO * size {
+            let field = format!("{j}.journal_radius");
+            out.push(Warning { message: format!("{field} = {} m is larger than half the mechanism's span {} m: did you give mm? clearsim takes metres", g(cj.journal_radius, 6), g(size, 3)), field });
+        }
+        if let ClearanceModelDesc::Lubricated(l) = &cj.model {
+            if l.length > LENGTH_SPAN_RATIO * size {
+                let field = format!("{j}.length");
+                out.push(Warning {
+                    message: format!(
+                        "{field} = {} m (the bearing's length) is more than {} × the mechanism's span {} m: did you give mm? clearsim takes metres",
+                        g(l.length, 6),
+                        g(LENGTH_SPAN_RATIO, 6),
+                        g(size, 3)
+                    ),
+                    field,
+                });
+            }
+        }
+    }
+    out
+}
