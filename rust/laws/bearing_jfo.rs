@@ -278,6 +278,19 @@ impl JfoFilm {
         &self.fill
     }
 
+    /// The oil in the gap \[in units of c R L\] of `fill` measured against the gaps `h` (cell
+    /// means of H; the supply groove full): Σ θ_f H over the control volumes.
+    pub fn oil_of(fill: &[f64], h: &[f64]) -> f64 {
+        let mut oil = 0.0;
+        for i in 0..NT {
+            for j in 0..NZ {
+                let f = if i == 0 { 1.0 } else { fill[i * NZ + j].clamp(0.0, 1.0) };
+                oil += zw(j) * DZ * DTH * h[i] * f;
+            }
+        }
+        oil
+    }
+
     /// The fill of every node at the last solve (N values, row-major in θ; see [`Self::solve`]).
     pub fn fill(&self) -> &[f64] {
         &self.fill
