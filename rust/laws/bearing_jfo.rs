@@ -225,8 +225,9 @@ impl JfoFilm {
     }
 
     /// The fill now of the partly filled nodes from the pressure of the last LCP: backward Euler
-    /// m θ… H θ = m + since (Couette(θ) + ½ L P), upwind, swept from the supply groove (full) with
-    /// the flow; a node the LCP pressurises is full. `true` if a fill moved by more than 1e-12.
+    /// θ H = m + since · (Couette(θ) + ½ L P), the Couette flux upwind, swept from the supply
+    /// groove (full) with the flow; a node the LCP pressurises is full. `true` if a fill moved by
+    /// more than 1e-12.
     fn sweep(&mut self, fill: &[f64], h_ref: &[f64], since: f64, eps: f64, w2: f64) -> bool {
         let mut moved = false;
         let k = since * w2.abs() / DTH;
