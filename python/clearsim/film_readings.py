@@ -56,8 +56,20 @@ class FilmReadings:
     def _joint(self, joint: str) -> int:  # pragma: no cover - Result's
         raise NotImplementedError
 
+    def _film_model(self, joint: str) -> Dict[str, Any]:
+        """The model of lubricated joint ``joint``; an :class:`InputError` naming a joint that has
+        no film (a dry one: its channel holds zeros, which would read as a film that leaks nothing)."""
+        self._joint(joint)
+        models = {c["name"]: c["model"] for c in (self.description or {}).get("clearance_joints", [])}
+        model = models.get(joint)
+        if model is None or model.get("kind") != "lubricated":
+            raise InputError(f"invalid joint = {joint!r}: it has no film (a lubricated revolute clearance joint has)", field="joint", value=joint)
+        return model
+
     def _film_column(self, joint: str, column: str) -> np.ndarray:
         j = self._joint(joint)
+        if self.description is not None:
+            self._film_model(joint)
         data = self._raw.get("film")
         if data is None:
             raise InputError("invalid output = 'film': this run did not store it (pass outputs=[..., 'film'])", field="outputs", value="film")
@@ -99,10 +111,7 @@ class FilmReadings:
         solved from the state stored there: θ × z for the finite film, θ for the long and short
         films (:class:`FilmPressure`). Computed when asked: a run pays nothing for it."""
         j = self._joint(joint)
-        models = {c["name"]: c["model"] for c in (self.description or {}).get("clearance_joints", [])}
-        model = models.get(joint)
-        if model is None or model.get("kind") != "lubricated":
-            raise InputError(f"invalid joint = {joint!r}: it has no film (a lubricated revolute clearance joint has)", field="joint", value=joint)
+        model = self._film_model(joint)
         q, qd = self._raw.get("q"), self._raw.get("qd")
         if q is None or qd is None:
             raise InputError("invalid output = 'states': this run did not store it (pass outputs=[..., 'states'])", field="outputs", value="states")

@@ -188,3 +188,17 @@ def test_pressure_at_an_output_time_and_its_picture(tmp_path: Path) -> None:
 
     path = plots.save(plots.plot_film_pressure(field), tmp_path / "p.png")
     assert path.stat().st_size > 10_000
+
+
+def test_a_dry_joint_has_no_flow_or_pressure_to_read() -> None:
+    """A dry joint beside a lubricated one (a dry wrist pin, a lubricated big end) has no film:
+    its flow and peak pressure are an InputError naming it, as its pressure field is, not a
+    column of zeros that reads as a bearing that leaks nothing."""
+    m = rotor("short", 0.01, load=100.0)
+    m.add_body("arm", mass=0.1, inertia=1e-5, position=(0.05, 0.0))
+    m.clearance_joint("dry-pin", "rotor", (0.05, 0.0), "arm", (0.0, 0.0), journal_radius=5e-3, clearance=2e-5, model=clearsim.Dry())
+    res = m.simulate(0.002, dt_out=1e-3, outputs=["states", "joints", "film"], progress=False)
+    assert res.flow("pin")[-1, 0] > 0  # the lubricated one reads
+    for read in (lambda: res.flow("dry-pin"), lambda: res.peak_pressure("dry-pin"), lambda: res.peak_pressure_angle("dry-pin"), lambda: res.pressure("dry-pin", 0.002)):
+        with pytest.raises(clearsim.InputError, match="'dry-pin': it has no film"):
+            read()
