@@ -178,23 +178,30 @@ def film_columns(res: FilmReadings, joint: str) -> List[Tuple[str, str, np.ndarr
             ("peak_pressure", "Pa", res.peak_pressure(joint)), ("peak_pressure_angle", "rad", res.peak_pressure_angle(joint))]  # fmt: skip
 
 
-def film_summary(res: FilmReadings, joint: str) -> Dict[str, Any]:
+def film_summary(res: FilmReadings, joint: str, window: Optional[Tuple[float, float]] = None) -> Dict[str, Any]:
     """The film readings' part of :meth:`clearsim.Result.bearing_summary` for ``joint`` when the
     run stored the ``film`` channel (else empty): ``peak_pressure`` [Pa] with ``t_peak_pressure``
     [s] and ``peak_pressure_angle_deg`` (from the widest gap), ``mean_side_leakage`` and
-    ``mean_supply_flow`` [m³/s] (trapezoidal means over the outputs)."""
+    ``mean_supply_flow`` [m³/s] (trapezoidal means over the outputs), over the outputs inside
+    ``window`` = (start, end) [s], the summary's (default: all)."""
     if res._raw.get("film") is None or len(res.t) == 0:
         return {}
-    p = res.peak_pressure(joint)
-    q = res.flow(joint)
+    inside = np.ones(len(res.t), dtype=bool)
+    if window is not None:
+        tol = 1e-9 * max(1.0, abs(float(res.t[-1])))
+        inside = (res.t >= window[0] - tol) & (res.t <= window[1] + tol)
+        if not inside.any():
+            return {}
+    p = res.peak_pressure(joint)[inside]
+    q = res.flow(joint)[inside]
     k = int(np.argmax(p))
-    t = res.t
+    t = res.t[inside]
     span = float(t[-1] - t[0])
 
     def mean(v: np.ndarray) -> float:
         return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(t)) / span) if span > 0 else float(v[0])
 
-    angle = float(res.peak_pressure_angle(joint)[k])
+    angle = float(res.peak_pressure_angle(joint)[inside][k])
     return {
         "peak_pressure": float(p[k]),
         "t_peak_pressure": float(t[k]),

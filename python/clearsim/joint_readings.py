@@ -156,7 +156,7 @@ class JointReadings(FilmReadings):
         run, or from ``simulate(extremes_from=)`` on (the window of :meth:`Result.extremes` too).
         With the ``film`` output as well (``outputs=[..., "film"]``) also ``peak_pressure`` [Pa]
         (its time and angle from the widest gap), ``mean_side_leakage`` and ``mean_supply_flow``
-        [m³/s] over the outputs (:func:`clearsim.film_readings.film_summary`); without it none.
+        [m³/s] over the outputs in the window (:func:`clearsim.film_readings.film_summary`); without it none.
 
         Tracked only when the run asks for it, ``simulate(..., bearings=True)`` (``clearsim run``
         does): a mechanism with a lubricated joint run without it raises an :class:`InputError`
@@ -196,7 +196,7 @@ class JointReadings(FilmReadings):
             temps = self._raw.get("temperature")
             if models.get(name, {}).get("thermal") and temps is not None and len(temps):
                 entry["temperature_start"], entry["temperature_end"] = float(temps[0, j]), float(temps[-1, j])
-            entry.update(film_summary(self, name))
+            entry.update(film_summary(self, name, (entry["window_start"], entry["window_end"])))
             out[name] = entry
         return out
 

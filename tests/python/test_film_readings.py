@@ -202,3 +202,20 @@ def test_a_dry_joint_has_no_flow_or_pressure_to_read() -> None:
     for read in (lambda: res.flow("dry-pin"), lambda: res.peak_pressure("dry-pin"), lambda: res.peak_pressure_angle("dry-pin"), lambda: res.pressure("dry-pin", 0.002)):
         with pytest.raises(clearsim.InputError, match="'dry-pin': it has no film"):
             read()
+
+
+def test_the_film_summary_keeps_to_the_summary_window() -> None:
+    """``bearing_summary`` names its window (``extremes_from`` on): its peak pressure and mean
+    flows come from the outputs inside it, like its minimum film. A rotor loaded by 2 kN for the
+    first 10 ms, then by 200 N: from 0.02 s on the peak pressure is the light load's and the mean
+    leakage the trapezoids' over the outputs from 0.02 s. Before, both were taken over the whole
+    run: the peak sat at t < window_start, in the heavy start."""
+    m = rotor("finite", 0.02)
+    m.force("rotor", (0, 0), {"t": [0.0, 0.01, 0.0101, 0.04], "fy": [-2000.0, -2000.0, -200.0, -200.0]})
+    res = m.simulate(0.04, dt_out=5e-4, outputs=["states", "joints", "film"], bearings=True, extremes_from=0.02, progress=False)
+    b = res.bearing_summary()["pin"]
+    inside = res.t >= 0.02 - 1e-12
+    t, p, q = res.t[inside], res.peak_pressure("pin")[inside], res.flow("pin")[inside]
+    assert b["window_start"] <= b["t_peak_pressure"] <= b["window_end"]
+    assert b["peak_pressure"] == p.max() < 0.5 * res.peak_pressure("pin").max()
+    assert b["mean_side_leakage"] == pytest.approx(np.sum(0.5 * (q[1:, 0] + q[:-1, 0]) * np.diff(t)) / (t[-1] - t[0]), rel=1e-12)
