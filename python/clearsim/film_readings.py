@@ -15,14 +15,14 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from . import _core
+from . import _core, display
 from .errors import InputError, check_choice
 
 #: Column of each reading in the ``film`` channel (per joint and output time).
 _FILM_COL = {name: k for k, name in enumerate(_core.FILM_COLUMNS)}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class FilmPressure:
     """The film pressure of a lubricated joint at one output time (:meth:`FilmReadings.pressure`).
 
@@ -43,6 +43,16 @@ class FilmPressure:
     supply_flow: float  # [m³/s]
     joint: str
     film: str
+
+    def __repr__(self) -> str:
+        return display.text(self, *_SHOWN)
+
+    def _repr_html_(self) -> str:
+        return display.html(self, *_SHOWN)
+
+
+#: What a :class:`FilmPressure` shows of itself (its field by shape only).
+_SHOWN = ("joint", "t", "film", "peak_pressure", "peak_angle", "side_leakage", "supply_flow", "p")
 
 
 class FilmReadings:
