@@ -192,7 +192,7 @@ class _Shown:
         return g
 
     def note(self, iteration: int, u: np.ndarray, g: float, h: float) -> None:
-        self._bar.set_postfix_str(f"iteration {iteration}, |u| {float(np.linalg.norm(u)):.4g}, g {g:.3g}, step {h:.3g}", refresh=False)
+        self._bar.set_postfix_str(f"iteration {iteration}, |u| {float(np.linalg.norm(u)):.4g}, g {g:.3g}, step {h:.3g}", refresh=True)  # once an iteration: shown at once
 
     def close(self) -> None:
         self._bar.close()
