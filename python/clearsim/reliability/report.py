@@ -387,6 +387,11 @@ def _report(scene: Any, study: Any, rows: List[Dict[str, Any]], found: Dict[str,
         fr = found["form"]
         lines += ["", "FORM design point: " + ", ".join(f"`{k}` = {v:.6g}" for k, v in fr.design_point.items()),
                   "importance factors: " + ", ".join(f"`{k}` {v:.2f}" for k, v in fr.importance.items())]  # fmt: skip
+        for i in getattr(fr, "mirrored", []):
+            m = fr.modes[i]
+            lines += ["", f"A second FORM design point on the other side of the inputs' means (`{fr.mode_names[i]}`: the limit state fails on both sides, "
+                      f"as a tolerance does against the nominal design), β = {m.beta:.4g}: " + ", ".join(f"`{k}` = {v:.6g}" for k, v in m.design_point.items()),
+                      "p_f below is the union of both sides; importance sampling samples around both design points."]  # fmt: skip
         if hasattr(fr, "modes"):
             lines += ["", f"Series system, first order: p_f = {fr.pf:.4g} (Ditlevsen's bounds [{fr.bounds[0]:.4g}, {fr.bounds[1]:.4g}]); "
                       "the design point above is the dominant mode's. Correlation of the modes' linearised margins ρ = α_i·α_j:", ""]
