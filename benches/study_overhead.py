@@ -14,8 +14,10 @@ distort) of ``Study.monte_carlo`` locally and through ``client.get_executor()``,
 compared bit for bit. ``bytes``: the pickled arguments of the tasks an executor gets
 (what crosses to a worker), per task and per sample. ``instructions``: the same comparison as
 ``overhead`` on one thread by instructions executed (``valgrind --tool=cachegrind
---cache-sim=no``, four processes: the common start, the start with the descriptions built, the
-bare batch, the study), the repeatable figure on a shared machine.
+--cache-sim=no``, six processes: the common start, the start with the descriptions built, the
+bare batch, the study's own jobs built, those jobs run, the study), the repeatable figure on a
+shared machine, with the difference split into building the samples, the monitors with their
+reference runs, and the study's Python around the batch.
 """
 
 from __future__ import annotations
@@ -72,13 +74,21 @@ def overhead(n: int) -> None:
 
 def part(which: str, n: int) -> None:
     """One of the processes ``instructions`` counts: the start, the start with the descriptions
-    and settings built (``built``), the bare batch (``bare``) or the study (``study``), one thread."""
+    and settings built (``built``), the bare batch (``bare``), the study's own jobs built (its
+    mechanisms, descriptions and run settings with monitors: ``jobs``) and run through the same
+    batch (``monitored``), or the study (``study``), one thread."""
     st = study(threads=1)
     st.monte_carlo(8, seed=99)
     if which == "study":
         st.monte_carlo(n, seed=1)
         return
     if which == "start":
+        return
+    if which in ("jobs", "monitored"):
+        jobs = st._chunk_jobs(st.values(np.random.default_rng(1).standard_normal((n, 1))), 0, n, 0, 360, None, True)
+        descs = [j.mechanism._description() for j in jobs]
+        if which == "monitored":
+            _core.run_batch(descs, [j.settings for j in jobs], 1)
         return
     values = st.values(np.random.default_rng(1).standard_normal((n, 1)))["clearance"]
     descs = [build(float(c)).description() for c in values]
@@ -93,7 +103,7 @@ def instructions(n: int) -> None:
     import subprocess
 
     counts = {}
-    for which in ("start", "built", "bare", "study"):
+    for which in ("start", "built", "bare", "jobs", "monitored", "study"):
         out = subprocess.run(
             ["valgrind", "--tool=cachegrind", "--cache-sim=no", "--cachegrind-out-file=/dev/null", sys.executable, __file__, "part", which, str(n)],
             capture_output=True, text=True, check=True,
@@ -102,6 +112,13 @@ def instructions(n: int) -> None:
     bare = (counts["bare"] - counts["built"]) / n
     full = (counts["study"] - counts["start"]) / n
     print(f"dry slider-crank, n = {n}, one thread: bare run_batch {bare / 1e6:.2f} M instructions a sample, Study.monte_carlo {full / 1e6:.2f} M: {full / bare:.3f}×")
+    # Where the difference goes: building the sample (the user's build(**inputs), its description
+    # and the study's run settings), the monitors with their reference runs in the core, and the
+    # study's own Python around the batch (reading results back, the estimate).
+    building = (counts["jobs"] - counts["start"]) / n
+    monitoring = (counts["monitored"] - counts["jobs"]) / n - bare
+    rest = (counts["study"] - counts["monitored"]) / n
+    print(f"  of a bare run: building the sample {building / bare:+.3f}, monitors and reference runs {monitoring / bare:+.3f}, the study's Python around the batch {rest / bare:+.3f}")
 
 
 def tasks(n: int) -> List[tuple]:

@@ -41,6 +41,49 @@ def test_form_is_exact_for_a_linear_limit_state():
     assert fr.n_runs > 0
 
 
+# A limit state that fails on both sides of the mean point (as a link length does against the
+# nominal design): g = 2.2 − |a − 0.3|, a standard normal, b idle. Failure for a ≥ 2.5 or
+# a ≤ −1.9: p_f = Φ(−2.5) + Φ(−1.9) exactly, the nearer side alone Φ(−1.9) = 82 % of it.
+TWO_SIDED_PF = float(special.ndtr(-2.5) + special.ndtr(-1.9))
+
+
+def two_sided() -> rel.LimitState:
+    return rel.LimitState(lambda x: 2.2 - np.abs(x["a"] - 0.3) + 0.0 * x["b"], {"a": rel.Normal(0.0, 1.0), "b": rel.Normal(0.0, 1.0)})
+
+
+def test_form_finds_the_second_side_of_a_two_sided_limit_state():
+    """FORM converges on the nearer side (a = −1.9); g at the mirrored point a = 1.9 is 0.6 against
+    1.9 at the mean, so a second search starts on that side and finds a = 2.5: the answer is the
+    series system of the two design points (ρ = −1: the union's p_f is the sum), within 1e-3 of
+    the closed form. On main FORM gave Φ(−1.9) = 0.0287 against 0.0349."""
+    res = two_sided().form()
+    assert isinstance(res, rel.SystemFormResult), res
+    assert res.mirrored == [1] and res.mode_names == ["g", "g (mirrored)"]
+    assert sorted(float(m.design_point["a"]) for m in res.modes) == pytest.approx([-1.9, 2.5], abs=1e-3)
+    assert res.rho[0, 1] == pytest.approx(-1.0, abs=1e-6)
+    assert res.pf == pytest.approx(TWO_SIDED_PF, rel=1e-3)
+    assert res.bounds[0] <= res.pf * (1 + 1e-9) and res.pf <= res.bounds[1] * (1 + 1e-9)
+    # Importance sampling around FORM's answer samples both sides (a mixture of two centres).
+    is_ = rel.uq.importance_sampling(two_sided(), cov=0.05, seed=1)
+    assert is_.extra["centres"] == 2
+    assert is_.interval[0] <= TWO_SIDED_PF <= is_.interval[1], (is_.pf, is_.interval, TWO_SIDED_PF)
+
+
+def test_the_mirrored_check_adds_nothing_to_a_one_sided_limit_state():
+    """One run at −u*, nothing else, where the other side does not fail (the linear limit state:
+    g rises towards −u*) or fails too rarely to count (g = min(3 − a, (a + 6)/2): the other side at
+    a = −6 adds Φ(−6)/Φ(−3) = 7e-7 of p_f, below the 1 % share that starts a second search)."""
+    plain, checked = linear(), linear()
+    off = plain.form(mirror=False)
+    on = checked.form()
+    assert isinstance(on, rel.FormResult) and on.beta == off.beta
+    assert checked.n_runs == plain.n_runs + 1
+    far = rel.LimitState(lambda x: np.minimum(3.0 - x["a"], 0.5 * (x["a"] + 6.0)) + 0.0 * x["b"], {"a": rel.Normal(0.0, 1.0), "b": rel.Normal(0.0, 1.0)})
+    res = far.form()
+    assert isinstance(res, rel.FormResult) and res.beta == pytest.approx(3.0, rel=1e-4)
+    assert far.n_runs == res.n_runs  # the check's run counted in the result's
+
+
 def test_importance_sampling_reaches_its_cov_and_brackets_the_exact_pf():
     res = rel.uq.importance_sampling(linear(), cov=0.05, max_runs=50000, seed=1)
     assert res.cov <= 0.05

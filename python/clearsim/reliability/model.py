@@ -93,17 +93,20 @@ class ReliabilityModel:
         return _Mode(self, int(k))
 
     # ------------------------------------------------------------------ methods
-    def form(self, *, start: Optional[Sequence[float]] = None, step: Union[float, str] = "auto", max_iterations: int = 50, on_failure: str = "fail") -> Any:
+    def form(self, *, start: Optional[Sequence[float]] = None, step: Union[float, str] = "auto", max_iterations: int = 50, on_failure: str = "fail", mirror: bool = True) -> Any:
         """FORM: design point, Hasofer–Lind β, p_f ≈ Φ(−β) and importance factors
         (:func:`clearsim.reliability.form.form`); on a series system FORM per mode and the
         system's first-order probability with Ditlevsen's bounds (a
         :class:`~clearsim.reliability.form.SystemFormResult`). ``step``: the gradient step in u,
-        ``"auto"`` (from the limit state's measured noise) or a number."""
+        ``"auto"`` (from the limit state's measured noise) or a number. ``mirror``: also look on
+        the other side of the mean point (a limit state failing on both sides, as against the
+        nominal design); a second design point found there makes the answer a series system of
+        the two."""
         if len(self.mode_names) > 1:
             if start is not None:
                 raise InputError("invalid start: a series system runs FORM per mode from the mean point", field="start", value=start)
-            return system_form(self, step=step, max_iterations=max_iterations, on_failure=on_failure)
-        return form(self, start=start, step=step, max_iterations=max_iterations, on_failure=on_failure)
+            return system_form(self, step=step, max_iterations=max_iterations, on_failure=on_failure, mirror=mirror)
+        return form(self, start=start, step=step, max_iterations=max_iterations, on_failure=on_failure, mirror=mirror)
 
     def importance_sampling(self, cov: float = 0.1, max_runs: int = 20000, seed: Optional[int] = 0, *, design_point: Any = None, block: int = 64, on_failure: str = "fail", step: Union[float, str] = "auto") -> SamplingResult:
         """Importance sampling around the FORM design point(s) until the estimate's coefficient

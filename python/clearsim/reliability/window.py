@@ -29,8 +29,10 @@ def at_window_start(t_peak: float, t_start: float, span: float, bin_max: Any, bi
     span]`` [s]: within :data:`EDGE_SHARE` of its start, and its first time bin's extreme (from the
     monitor's per-bin ``bin_max``, ``bin_min``) :data:`STANDS_OUT` times every later bin's. A
     window of one bin cannot tell: no."""
+    if not t_peak - t_start <= EDGE_SHARE * span:  # the common case, decided without the bins
+        return False
     extremes = np.maximum(np.abs(np.asarray(bin_max, dtype=float)), np.abs(np.asarray(bin_min, dtype=float)))
-    if extremes.size < 2 or not t_peak - t_start <= EDGE_SHARE * span:
+    if extremes.size < 2:
         return False
     return bool(extremes[0] > STANDS_OUT * np.max(extremes[1:]))
 
