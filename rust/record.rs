@@ -163,8 +163,8 @@ impl Recording {
             for (j, ((k, f), mem)) in ws.joint_kin.iter().zip(&ws.joint_force).zip(memory).enumerate() {
                 let r = self.readers[j].flow_and_peak(k, f, mem, self.film_scratch[j].as_mut());
                 self.film.extend_from_slice(&[r.side_leakage, r.supply, r.peak_pressure, r.peak_angle]);
-                if let Some(content) = &mem.film {
-                    self.film_content.extend_from_slice(content.lock().unwrap_or_else(|e| e.into_inner()).content(mem.film_generation));
+                if let Some(fill) = crate::clearance::cavitation::recorded_fill(&self.readers[j], k, mem) {
+                    self.film_content.extend_from_slice(&fill);
                 }
             }
         }

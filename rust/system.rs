@@ -183,6 +183,8 @@ impl Workspace {
         }
         for (j, joint) in model.clearance.iter().enumerate() {
             let k = joint.kinematics(&self.kin);
+            // A mass-conserving film advances its partly filled nodes to the evaluation's time.
+            crate::clearance::cavitation::set_time(&memory[j], t);
             let f = match joint.heat() {
                 None => joint.force(&k, &memory[j]),
                 Some(h) => {

@@ -93,6 +93,12 @@ fn zw(j: usize) -> f64 {
     if j == 0 { 0.5 } else { 1.0 }
 }
 
+/// The oil m = θ_f H_ref of node n (in cell i) of `fill` measured against `h_ref` (empty: `h`).
+#[inline]
+fn oil(fill: &[f64], h_ref: &[f64], h: &[f64], i: usize, n: usize) -> f64 {
+    fill[n].clamp(0.0, 1.0) * if h_ref.is_empty() { h[i] } else { h_ref[i] }
+}
+
 impl JfoFilm {
     /// The film of a bearing with diameter-to-length ratio `k` = D/L.
     pub fn new(k: f64) -> Self {
@@ -140,11 +146,24 @@ impl JfoFilm {
     }
 
     /// Solve the film with the fill `fill` (the fraction θ_f ∈ [0, 1] of each node's gap the oil
-    /// fills; N = [`JFO_THETA`] × [`JFO_ZETA`] values, row-major in θ) at eccentricity ratio `eps`,
-    /// its rate `eps_dot` \[1/s\] and the wedge speed `wedge` \[rad/s\]: the pressure P \[1/s\] and the
-    /// oil's rate [`Self::rate`] (m = θ_f H, in units of c per second). A full node (θ_f = 1) stays
-    /// full while the gap moves within a step (the pressure holds it so, or lets it go: the LCP).
-    pub fn solve(&mut self, fill: &[f64], eps: f64, eps_dot: f64, wedge: f64) {
+    /// fills; N = [`JFO_THETA`] × [`JFO_ZETA`] values, row-major in θ, measured against the gaps
+    /// `h_ref`, H per cell, or with `h_ref` empty against the gaps at `eps`) a time `since` \[s\]
+    /// after the fill was taken, at eccentricity ratio `eps`, its rate `eps_dot` \[1/s\] and the
+    /// wedge speed `wedge` \[rad/s\]: the pressure P \[1/s\], the oil's rate [`Self::rate`] (m = θ_f H,
+    /// in units of c per second) and the fill now, [`Self::fill`].
+    ///
+    /// A full node (θ_f = 1) stays full while the gap moves (the pressure holds it so, or lets
+    /// it go: the LCP with ∂H/∂t). A partly filled node's oil m is advanced over `since` by
+    /// backward Euler, m + since · rate ≤ H with P ≥ 0 and equality where P > 0: the same LCP
+    /// with q = (H − m)/since − Couette; so it fills, and carries pressure continuously from 0,
+    /// within the step as the gap closes on it and the full film's pressure pushes oil into it
+    /// (`since` ≤ 0 or NaN: at the fill's own time, a partly filled node carries no pressure
+    /// unless the gap has closed below its oil).
+    ///
+    /// (With the fill frozen over a step, as before, the reformation front's nodes filled only at
+    /// the step's end: a jump of the force at every step's start, and steps of ~1 µs through the
+    /// reformation of an engine cycle's film.)
+    pub fn solve(&mut self, fill: &[f64], h_ref: &[f64], since: f64, eps: f64, eps_dot: f64, wedge: f64) {
         let w2 = 0.5 * wedge;
         for i in 0..NT {
             let hf = 1.0 + eps * self.cos_face[i];
@@ -153,12 +172,34 @@ impl JfoFilm {
             self.hf3[i] = hf * hf * hf;
             self.hc3[i] = hc * hc * hc;
         }
-        for i in 0..NT {
-            for j in 0..NZ {
-                let n = i * NZ + j;
-                self.fill[n] = if i == 0 { 1.0 } else { fill[n].clamp(0.0, 1.0) };
+        self.effective_fill(fill, h_ref);
+        let secant = since > 0.0;
+        // A partly filled node whose pressure would need more than this rate is left empty of it.
+        let cap = 1e3 * (wedge.abs() + eps_dot.abs() + 1.0);
+        // With a time since the fill (backward Euler), the partly filled nodes' fill now and the
+        // pressure are found together: the LCP at the fill of the last pass, then the fill from
+        // the pressure (an upwind sweep), until the fill stops moving.
+        for pass in 0..if secant { 4 } else { 1 } {
+            self.couette_and_q(fill, h_ref, since, eps, eps_dot, w2, cap);
+            self.solve_lcp();
+            for i in 0..NT {
+                for j in 0..NZ {
+                    self.pressure_rate[i * NZ + j] = 0.5 * self.laplacian(i, j);
+                }
+            }
+            if !secant || !self.sweep(fill, h_ref, since, eps, w2) || pass == 3 {
+                break;
             }
         }
+        for n in 0..N {
+            self.rate[n] = self.couette[n] + self.pressure_rate[n];
+        }
+    }
+
+    /// The Couette rate of every node at the fill [`Self::fill`] and the LCP's q and eligible set
+    /// (module doc; [`Self::solve`]).
+    #[allow(clippy::too_many_arguments)]
+    fn couette_and_q(&mut self, fill: &[f64], h_ref: &[f64], since: f64, eps: f64, eps_dot: f64, w2: f64, cap: f64) {
         for i in 0..NT {
             let (e, wst) = ((i + 1) % NT, (i + NT - 1) % NT);
             let dhdt = eps_dot * self.cos_mean[i];
@@ -170,18 +211,90 @@ impl JfoFilm {
                 let flux_e = up_e * (1.0 + eps * self.cos_face[i]);
                 let flux_w = up_w * (1.0 + eps * self.cos_face[wst]);
                 self.couette[n] = -w2 * (flux_e - flux_w) / DTH;
-                self.q[n] = dhdt - self.couette[n];
-                self.eligible[n] = i > 0 && fill[n] >= 1.0 - FULL;
+                let full = i == 0 || fill[n] >= 1.0 - FULL;
+                if full || since <= 0.0 {
+                    self.q[n] = dhdt - self.couette[n];
+                    self.eligible[n] = i > 0 && self.fill[n] >= 1.0 - FULL;
+                } else {
+                    let m = oil(fill, h_ref, &self.h, i, n);
+                    self.q[n] = ((self.h[i] - m) / since - self.couette[n]).min(cap);
+                    self.eligible[n] = true;
+                }
             }
         }
-        self.solve_lcp();
-        for i in 0..NT {
+    }
+
+    /// The fill now of the partly filled nodes from the pressure of the last LCP: backward Euler
+    /// θ H = m + since · (Couette(θ) + ½ L P), the Couette flux upwind, swept from the supply
+    /// groove (full) with the flow; a node the LCP pressurises is full. `true` if a fill moved by
+    /// more than 1e-12.
+    fn sweep(&mut self, fill: &[f64], h_ref: &[f64], since: f64, eps: f64, w2: f64) -> bool {
+        let mut moved = false;
+        let k = since * w2.abs() / DTH;
+        for step in 1..NT {
+            // With the flow: the upwind neighbour comes first (the groove, cell 0, is full).
+            let (i, up) = if w2 >= 0.0 { (step, step - 1) } else { (NT - step, (NT - step + 1) % NT) };
+            // Faces: the one the oil leaves by and the one it comes in by.
+            let (f_out, f_in) = if w2 >= 0.0 { (i, up) } else { (i - 1, i) };
+            let (h_out, h_in) = (1.0 + eps * self.cos_face[f_out], 1.0 + eps * self.cos_face[f_in]);
             for j in 0..NZ {
                 let n = i * NZ + j;
-                self.pressure_rate[n] = 0.5 * self.laplacian(i, j);
-                self.rate[n] = self.couette[n] + self.pressure_rate[n];
+                if fill[n] >= 1.0 - FULL {
+                    continue;
+                }
+                let theta = if self.pressure[n] > 0.0 {
+                    1.0
+                } else {
+                    let m = oil(fill, h_ref, &self.h, i, n) + since * self.pressure_rate[n] + k * self.fill[up * NZ + j] * h_in;
+                    (m / (self.h[i] + k * h_out)).clamp(0.0, 1.0)
+                };
+                moved |= (theta - self.fill[n]).abs() > 1e-12;
+                self.fill[n] = theta;
             }
         }
+        moved
+    }
+
+    /// The fill of each node at the gaps [`Self::h`] of this solve from `fill` measured against
+    /// the gaps `h_ref` (empty: the same gaps): full nodes stay full, a partly filled node keeps
+    /// its oil (θ_f H_ref / H, at most 1), the supply groove is full.
+    fn effective_fill(&mut self, fill: &[f64], h_ref: &[f64]) {
+        for i in 0..NT {
+            let ratio = if h_ref.is_empty() { 1.0 } else { h_ref[i] / self.h[i] };
+            for j in 0..NZ {
+                let n = i * NZ + j;
+                let f = fill[n].clamp(0.0, 1.0);
+                self.fill[n] = if i == 0 || f >= 1.0 - FULL { 1.0 } else { (f * ratio).min(1.0) };
+            }
+        }
+    }
+
+    /// The fill of every node at eccentricity ratio `eps` from `fill` measured against the gaps
+    /// `h_ref` (as [`Self::solve`] takes them), without solving.
+    pub fn fill_at(&mut self, fill: &[f64], h_ref: &[f64], eps: f64) -> &[f64] {
+        for i in 0..NT {
+            self.h[i] = 1.0 + eps * self.cos_mean[i];
+        }
+        self.effective_fill(fill, h_ref);
+        &self.fill
+    }
+
+    /// The oil in the gap \[in units of c R L\] of `fill` measured against the gaps `h` (cell
+    /// means of H; the supply groove full): Σ θ_f H over the control volumes.
+    pub fn oil_of(fill: &[f64], h: &[f64]) -> f64 {
+        let mut oil = 0.0;
+        for i in 0..NT {
+            for j in 0..NZ {
+                let f = if i == 0 { 1.0 } else { fill[i * NZ + j].clamp(0.0, 1.0) };
+                oil += zw(j) * DZ * DTH * h[i] * f;
+            }
+        }
+        oil
+    }
+
+    /// The fill of every node at the last solve (N values, row-major in θ; see [`Self::solve`]).
+    pub fn fill(&self) -> &[f64] {
+        &self.fill
     }
 
     /// (L P) at node (i, j): the discrete ∂θ(H³∂θP) + k²∂ζ(H³∂ζP).
@@ -337,8 +450,9 @@ impl JfoFilm {
     }
 
     /// Force, flows, peak and oil of the last solve for a bearing of journal radius `r`,
-    /// clearance `c`, length `l` \[m\] and viscosity `mu` \[Pa s\], with the fill it was solved for.
-    pub fn reading(&self, fill: &[f64], r: f64, c: f64, l: f64, mu: f64, eps_dot: f64) -> JfoReading {
+    /// clearance `c`, length `l` \[m\] and viscosity `mu` \[Pa s\] (the oil from the fill it was
+    /// solved with, [`Self::fill`]).
+    pub fn reading(&self, r: f64, c: f64, l: f64, mu: f64, eps_dot: f64) -> JfoReading {
         let p_scale = 6.0 * mu * r * r / (c * c);
         let (mut ix, mut iy, mut leak, mut supply, mut oil) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (mut peak, mut at) = (0.0, usize::MAX);
@@ -347,7 +461,7 @@ impl JfoFilm {
             for j in 0..NZ {
                 let n = i * NZ + j;
                 col += zw(j) * self.pressure[n] * DZ;
-                oil += zw(j) * DZ * DTH * self.h[i] * if i == 0 { 1.0 } else { fill[n].clamp(0.0, 1.0) };
+                oil += zw(j) * DZ * DTH * self.h[i] * self.fill[n];
                 if j == 0 && self.pressure[n] > peak {
                     peak = self.pressure[n];
                     at = i;
@@ -373,37 +487,24 @@ impl JfoFilm {
         }
     }
 
-    /// Advance the fill over a (sub-)step of `dt` \[s\]: the oil m = θ_f H (H at the step's
-    /// start, `h_start`) gains `dt` × `pressure_rate` (the mean of the step's solves'
-    /// [`Self::pressure_rate`]) and is carried `shift` \[rad\] around the bearing with the mean
-    /// surface speed (upwind in θ_f; |shift| ≤ ½ cell keeps it stable and positive); the new fill
-    /// is m over the gap at the last solve's ε (the step's end), the supply groove and the nodes
-    /// the last solve held full (P > 0) full, every other within [0, 1].
-    pub fn apply(&self, fill: &mut [f64], h_start: &[f64], pressure_rate: &[f64], dt: f64, shift: f64, scratch: &mut Vec<f64>) {
-        scratch.clear();
-        scratch.extend(fill.iter().enumerate().map(|(n, v)| if n < NZ { 1.0 } else { v.clamp(0.0, 1.0) }));
-        let c = shift / DTH;
+    /// The fill a step of `dt` \[s\] leaves, from the last solve (made at the step's end with
+    /// `since` = `dt` and the step's start fill `fill`): the supply groove and the nodes the solve
+    /// held full (P > 0) full, a partly filled node's the solve's ([`Self::fill`], backward Euler),
+    /// a full node the solve let go (P = 0, so the gap outran the oil by the slack s = q − ½LP)
+    /// 1 − dt·s/H; into `out`.
+    pub fn step_fill(&self, fill: &[f64], dt: f64, out: &mut [f64]) {
         for i in 0..NT {
-            let (e, w) = ((i + 1) % NT, (i + NT - 1) % NT);
-            let (hf_e, hf_w) = (self.hf3[i].cbrt(), self.hf3[w].cbrt());
             for j in 0..NZ {
                 let n = i * NZ + j;
-                if i == 0 || (self.free[n] && self.pressure[n] > 0.0) {
-                    fill[n] = 1.0;
-                    continue;
-                }
-                let up_e = if c >= 0.0 { scratch[n] } else { scratch[e * NZ + j] };
-                let up_w = if c >= 0.0 { scratch[w * NZ + j] } else { scratch[n] };
-                let m = scratch[n] * h_start[i] + dt * pressure_rate[n] - c * (up_e * hf_e - up_w * hf_w);
-                fill[n] = (m / self.h[i]).clamp(0.0, 1.0);
+                out[n] = if i == 0 || (self.free[n] && self.pressure[n] > 0.0) {
+                    1.0
+                } else if fill[n] >= 1.0 - FULL {
+                    (1.0 - dt * (self.q[n] - self.pressure_rate[n]) / self.h[i]).clamp(0.0, 1.0)
+                } else {
+                    self.fill[n]
+                };
             }
         }
-    }
-
-    /// The largest |W|/2 · dt / Δθ a step of `dt` \[s\] at wedge speed `wedge` \[rad/s\] may take
-    /// for the upwind transport to stay stable and positive: ½.
-    pub fn courant(wedge: f64, dt: f64) -> f64 {
-        0.5 * wedge.abs() * dt / DTH
     }
 }
 
@@ -435,9 +536,9 @@ mod tests {
                     continue;
                 }
                 let m = vec![1.0; N];
-                film.solve(&m, eps, 0.0, 100.0);
+                film.solve(&m, &[], 0.0, eps, 0.0, 100.0);
                 let (r, c, l, mu) = (0.01, 1e-5, 0.02 / k, 0.01);
-                let f = film.reading(&m, r, c, l, mu, 0.0).force;
+                let f = film.reading(r, c, l, mu, 0.0).force;
                 let psi = c / r;
                 let so = f.0.hypot(f.1) * psi * psi / (l * 2.0 * r * mu * 100.0);
                 let beta = f.1.abs().atan2(-f.0).to_degrees();

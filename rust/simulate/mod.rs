@@ -249,7 +249,7 @@ impl OdeSystem for MechanismSystem<'_> {
         let changed = self.update_contacts(t0, y0, t1, y1, dense)?;
         // The film content of mass-conserving joints moves on (rust/simulate/cavitation.rs):
         // f(t1, y1) changed with it, an explicit method's last stage is stale.
-        let moved = self.memory.iter().any(|m| m.film.is_some()) && self.cavitation_step(t0, t1, dense);
+        let moved = self.memory.iter().any(|m| m.film.is_some()) && self.cavitation_step(t0, t1, y1);
         if self.sections.is_some() {
             self.record_sections(t1, dense)?;
         }
@@ -379,7 +379,7 @@ pub fn simulate_measured(model: &Model, rs: &RunSettings, references: &Reference
     let mut sys = MechanismSystem::new(model, rs.channels, t_out.len(), stop);
     sys.budget = rs.max_wall_time.map(|b| (start, b));
     sys.gap_resolution = rs.ode.atol;
-    sys.cavitation_start();
+    sys.cavitation_start(rs.t0);
     sys.monitors = monitors;
     if !sys.monitors.is_empty() {
         sys.observe_start(rs.t0, &y0)?;
