@@ -80,21 +80,11 @@ pub fn reference_runs(descs: &[MechanismDesc], settings: &[RunSettings], nominal
 /// step limits and budgets at a tenth of its tolerances, to the grid's end, storing states and
 /// accelerations on the grid, with no monitors of its own.
 pub fn reference_settings(rs: &RunSettings, grid: &ReferenceGrid) -> RunSettings {
+    let ode = Settings { rtol: rs.ode.rtol / 10.0, atol: rs.ode.atol / 10.0, ..rs.ode };
     RunSettings {
-        method: rs.method,
-        ode: Settings { rtol: rs.ode.rtol / 10.0, atol: rs.ode.atol / 10.0, ..rs.ode },
-        t0: rs.t0,
-        t_end: grid.t_end,
-        t_out: grid.times(),
         channels: Channels { states: true, accelerations: true, reactions: false, joints: false, violation: false, energy: false, film: false },
         max_wall_time: rs.max_wall_time,
-        monitors: Vec::new(),
-        reference: None,
-        wear_mark: None,
-        bearings: false,
-        bearings_from: None,
-        sections: None,
-        lyapunov: None,
+        ..RunSettings::plain(rs.method, ode, rs.t0, grid.t_end, grid.times())
     }
 }
 
@@ -226,7 +216,7 @@ fn body_names(d: &MechanismDesc) -> Vec<String> {
 /// The settings of a sample that its reference run depends on ([`reference_settings`] without
 /// the grid expanded).
 fn reference_settings_key(rs: &RunSettings) -> RunSettings {
-    RunSettings { t_out: Vec::new(), monitors: Vec::new(), reference: None, wear_mark: None, bearings: false, bearings_from: None, channels: Channels::default(), sections: None, lyapunov: None, ..rs.clone() }
+    RunSettings { max_wall_time: rs.max_wall_time, ..RunSettings::plain(rs.method, rs.ode, rs.t0, rs.t_end, Vec::new()) }
 }
 
 /// A hash of the structure and every value of an ideal description and its run: fed from their

@@ -138,6 +138,29 @@ fn g3(v: f64) -> String {
 }
 
 impl RunSettings {
+    /// A run of `method` (`None`: `auto`) with `ode` over [t0, t_end] \[s\], the default channels
+    /// stored at `t_out`, and nothing more read: no budget, monitors, references, wear mark,
+    /// bearing summary, sections or shadow. The one list of those fields' "off"; a run that asks
+    /// for more says so and takes the rest from here (`..RunSettings::plain(…)`).
+    pub fn plain(method: Option<Method>, ode: Settings, t0: f64, t_end: f64, t_out: Vec<f64>) -> Self {
+        RunSettings {
+            method,
+            ode,
+            t0,
+            t_end,
+            t_out,
+            channels: Channels::default(),
+            max_wall_time: None,
+            monitors: Vec::new(),
+            reference: None,
+            wear_mark: None,
+            bearings: false,
+            bearings_from: None,
+            sections: None,
+            lyapunov: None,
+        }
+    }
+
     /// The integrator this run uses on `model`: the one named, or [`default_method`]'s.
     pub fn method_for(&self, model: &Model) -> Method {
         self.method.unwrap_or_else(|| default_method(model))

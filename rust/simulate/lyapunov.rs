@@ -260,22 +260,7 @@ mod tests {
             let model = Model::compile(&pendulum(g)).unwrap();
             let ode = Settings { rtol: 1e-10, atol: 1e-12, ..Settings::default() };
             let spec = LyapunovSpec { start: 30.0 * period, interval: period, d0: 1e-8, velocity_scale: 2.0 / 3.0 };
-            let rs = crate::settings::RunSettings {
-                method: Some(Method::Dop853),
-                ode,
-                t0: 0.0,
-                t_end: 130.0 * period,
-                t_out: vec![],
-                channels: Channels::default(),
-                max_wall_time: None,
-                monitors: vec![],
-                reference: None,
-                wear_mark: None,
-                bearings: false,
-                bearings_from: None,
-                sections: None,
-                lyapunov: Some(spec),
-            };
+            let rs = crate::settings::RunSettings { lyapunov: Some(spec), ..crate::settings::RunSettings::plain(Some(Method::Dop853), ode, 0.0, 130.0 * period, vec![]) };
             let out = super::super::simulate(&model, &rs, None).unwrap();
             let book = out.lyapunov.unwrap();
             assert!(book.error.is_none(), "{:?}", book.error);

@@ -27,23 +27,9 @@ pub fn cycle(name: &str) -> f64 {
 /// The benches' run: `method` from 0 to `t_end` [s] at rtol 1e-6, atol 1e-9, with `outputs`
 /// evenly spaced output times, the default channels and no monitors.
 pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize) -> clearsim::simulate::RunSettings {
-    use clearsim::simulate::RunSettings;
-    RunSettings {
-        method: Some(method),
-        ode: clearsim::integrate::Settings { rtol: 1e-6, atol: 1e-9, ..Default::default() },
-        t0: 0.0,
-        t_end,
-        t_out: RunSettings::grid(0.0, t_end, t_end / outputs as f64).unwrap(),
-        channels: clearsim::record::Channels::default(),
-        max_wall_time: None,
-        monitors: Vec::new(),
-        reference: None,
-        wear_mark: None,
-        bearings: false,
-        bearings_from: None,
-        sections: None,
-        lyapunov: None,
-    }
+    let ode = clearsim::integrate::Settings { rtol: 1e-6, atol: 1e-9, ..Default::default() };
+    let t_out = clearsim::simulate::RunSettings::grid(0.0, t_end, t_end / outputs as f64).unwrap();
+    clearsim::simulate::RunSettings::plain(Some(method), ode, 0.0, t_end, t_out)
 }
 
 /// Exact monitors of the film thickness and power loss of every lubricated clearance joint over
