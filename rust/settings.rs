@@ -293,9 +293,9 @@ impl RunSettings {
     /// [`Self::validate`]).
     pub fn validate_for(&self, model: &Model) -> Result<()> {
         if self.lyapunov.is_some() {
-            if let Some(c) = model.clearance.iter().find(|c| c.wear.is_some() || c.film.is_some_and(|f| f.heat.is_some())) {
-                let why = "a Lyapunov exponent follows (q, q̇) alone: this joint's wear or oil temperature is state outside it";
-                return Err(Error::invalid(format!("clearance joint '{}'", c.name), "wear or thermal model", why));
+            if let Some(c) = model.clearance.iter().find(|c| c.wear.is_some()) {
+                let why = "a Lyapunov exponent follows the state of the run: this joint's wear changes its geometry outside it";
+                return Err(Error::invalid(format!("clearance joint '{}'", c.name), "wear model", why));
             }
         }
         let nb = model.n_bodies();
