@@ -69,6 +69,19 @@ pub fn run_one(model: &Model, desc: &MechanismDesc, settings: &RunSettings, nomi
     simulate_measured(model, settings, &refs, stop)
 }
 
+/// Run a compiled model with `settings` ([`run_one`], its description `desc`) and, beside it on
+/// a second thread, its ideal twin `ideal` compiled here and run with `ideal_settings`: a run
+/// and the twin it is compared with (`clearsim.Mechanism.simulate_with_ideal`), the model's
+/// pose assembled once (when it was compiled) and the twin's once, the numbers those of
+/// [`run_batch`] on the two descriptions.
+pub fn run_with_twin(model: &Model, desc: &MechanismDesc, settings: &RunSettings, ideal: &MechanismDesc, ideal_settings: &RunSettings, stop: Option<StopCheck<'_>>) -> (Result<RunOutput>, Result<RunOutput>) {
+    std::thread::scope(|scope| {
+        let twin = scope.spawn(|| Model::compile(ideal).and_then(|m| simulate(&m, ideal_settings, stop)));
+        let own = run_one(model, desc, settings, None, stop);
+        (own, twin.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+    })
+}
+
 /// How many reference runs [`run_batch`] makes for these runs: one per distinct ideal mechanism
 /// and run settings.
 pub fn reference_runs(descs: &[MechanismDesc], settings: &[RunSettings], nominal: Option<&MechanismDesc>) -> usize {
