@@ -43,3 +43,44 @@ def fixed_point(h_a: float) -> float:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if mid - T_AMB - petroff_loss(OIL.viscosity(mid)) / h_a < 0 else (lo, mid)
     return lo
+
+
+def rotor_scene(viscosity: str, heat_capacity: float, heat_transfer: float, t_end: float, simulation: str = "", film: str = "") -> str:
+    """The unloaded rotor of :func:`rotor` as a scene file's text: its oil's ``viscosity`` as
+    TOML (a number [Pa s], or ``{vogel = [a, b, c]}``), its heat model (ambient T_AMB,
+    ``heat_capacity`` [J/K], ``heat_transfer`` [W/K]), run to ``t_end`` [s]; ``simulation``: more
+    lines of the [simulation] table and tables after it, ``film``: more keys of the lubricated
+    model."""
+    return f"""
+[mechanism]
+gravity = [0.0, 0.0]
+[simulation]
+t_end = {t_end}
+{simulation}
+[[body]]
+name = "rotor"
+mass = 1.0
+inertia = 1e-3
+[[driver]]
+body = "rotor"
+omega = {OMEGA}
+angle0 = 0.0
+[[clearance_joint]]
+name = "pin"
+bearing_body = "ground"
+bearing_point = [0.0, 0.0]
+journal_body = "rotor"
+journal_point = [0.0, 0.0]
+journal_radius = {R}
+clearance = {C}
+model = "lubricated"
+[clearance_joint.lubricated]
+viscosity = {viscosity}
+length = {L}
+film = "short"
+{film}
+[clearance_joint.lubricated.thermal]
+ambient = {T_AMB}
+heat_capacity = {heat_capacity}
+heat_transfer = {heat_transfer}
+"""

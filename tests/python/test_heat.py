@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from heat_reference import C, L, OIL, OMEGA, R, T_AMB, fixed_point, petroff_loss, rotor
+from heat_reference import C, L, OIL, OMEGA, R, T_AMB, fixed_point, petroff_loss, rotor, rotor_scene
 
 import clearsim
 
@@ -159,38 +159,7 @@ def test_the_scene_keys(tmp_path: "object") -> None:
     from pathlib import Path
 
     scene = Path(str(tmp_path)) / "heat.toml"
-    scene.write_text(
-        """
-[mechanism]
-gravity = [0.0, 0.0]
-[simulation]
-t_end = 0.01
-[[body]]
-name = "rotor"
-mass = 1.0
-inertia = 1e-3
-[[driver]]
-body = "rotor"
-omega = 100.0
-[[clearance_joint]]
-name = "pin"
-bearing_body = "ground"
-bearing_point = [0.0, 0.0]
-journal_body = "rotor"
-journal_point = [0.0, 0.0]
-journal_radius = 0.02
-clearance = 4e-5
-model = "lubricated"
-[clearance_joint.lubricated]
-viscosity = {vogel = [6.4e-5, 900.0, 164.0]}
-length = 0.01
-film = "short"
-[clearance_joint.lubricated.thermal]
-ambient = 313.15
-heat_capacity = 0.01
-heat_transfer = 0.1
-"""
-    )
+    scene.write_text(rotor_scene("{vogel = [6.4e-5, 900.0, 164.0]}", 0.01, 0.1, 0.01))
     m = clearsim.load_scene(scene)
     lub = m.description()["clearance_joints"][0]["model"]
     assert lub["viscosity"] == {"vogel": [6.4e-5, 900.0, 164.0]}
