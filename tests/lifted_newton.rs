@@ -220,7 +220,7 @@ const T_END: f64 = 0.01;
 /// `model` run by `method` from its initial state over [`T_END`] at rtol 1e-6, atol 1e-9,
 /// through the lifted form and through the dense form: `(y0, (stats, end state) lifted, (stats,
 /// end state) dense)`.
-fn lifted_and_dense(model: &Model, method: Method) -> (Vec<f64>, (Stats, Vec<f64>), (Stats, Vec<f64>)) {
+fn lifted_and_dense(model: &Model, method: Method) -> (Vec<f64>, Run, Run) {
     let y = common::initial_state(model);
     let y0 = model.initial_state(&y[..y.len() / 2], &y[y.len() / 2..]); // (q, q̇) and any T
     let s = Settings { rtol: 1e-6, atol: 1e-9, ..Settings::default() };
@@ -231,6 +231,9 @@ fn lifted_and_dense(model: &Model, method: Method) -> (Vec<f64>, (Stats, Vec<f64
     eprintln!("lifted {st_l:?}\ndense  {st_d:?}");
     (y0, (st_l, lifted.last_y.clone()), (st_d, inner.last_y.clone()))
 }
+
+/// A run's statistics and end state.
+type Run = (Stats, Vec<f64>);
 
 /// The largest difference of `y` from `reference`, in error allowances 1e-9 + 1e-6 |reference|.
 fn allowances(y: &[f64], reference: &[f64]) -> f64 {

@@ -248,9 +248,7 @@ mod tests {
     /// A pendulum (pivot at the origin, centroid 0.5 m below, J_pivot = 1 kg m², m g l = 1 N m)
     /// under a harmonic torque with damping 1/q: θ'' + θ'/q + sin θ = g cos(2t/3).
     fn pendulum(g: f64) -> MechanismDesc {
-        let mut d = MechanismDesc::default();
-        d.gravity = [0.0, -2.0];
-        d.baumgarte = [5.0, 5.0];
+        let mut d = MechanismDesc { gravity: [0.0, -2.0], baumgarte: [5.0, 5.0], ..MechanismDesc::default() };
         d.bodies.push(BodyDesc { name: "bob".into(), mass: 1.0, inertia: 0.75, position: [0.5 * 0.2f64.sin(), -0.5 * 0.2f64.cos()], angle: 0.2, velocity: [0.0; 3] });
         d.joints.push(JointDesc::Revolute { name: "pivot".into(), body_a: None, point_a: [0.0, 0.0], body_b: Some(0), point_b: [0.0, 0.5] });
         d.forces.push(ForceDesc::RotationalSpringDamper { name: "damper".into(), body_a: None, body_b: Some(0), stiffness: 0.0, damping: 0.5, angle0: Some(0.0) });

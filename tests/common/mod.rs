@@ -139,7 +139,7 @@ pub fn chain_with(n: usize, clearance: impl Fn(usize) -> Option<clearsim::descri
                 initial_eccentricity: [0.0, 0.0],
             });
         } else {
-            joints.push(JointDesc::Revolute { name: format!("j{i}"), body_a, point_a, body_b: body_b, point_b });
+            joints.push(JointDesc::Revolute { name: format!("j{i}"), body_a, point_a, body_b, point_b });
         }
     }
     MechanismDesc { bodies, joints, clearance_joints, ..MechanismDesc::default() }
