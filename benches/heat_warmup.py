@@ -20,35 +20,18 @@ run's 109 and 110; 3.1 and 7.5 s); with this change 120 and 120 (1.10× and 1.09
 from __future__ import annotations
 
 import math
+import sys
 import time
+from pathlib import Path
 from typing import Any, Dict, Optional, Tuple
 
-import clearsim
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python"))
 
-R, C, L, OMEGA = 0.02, 4e-5, 0.01, 100.0
-OIL = clearsim.Vogel(6.4e-5, 900.0, 164.0)
-T_AMB = 313.15
+from heat_reference import L, OIL, T_AMB, fixed_point, petroff_loss, rotor  # noqa: E402
+
+import clearsim  # noqa: E402
+
 REPEATS = 3
-
-
-def rotor(model: clearsim.Lubricated, mass: float, gravity: float) -> clearsim.Mechanism:
-    m = clearsim.Mechanism(gravity=(0.0, -gravity))
-    m.add_body("rotor", mass=mass, inertia=1e-3)
-    m.driver("rotor", omega=OMEGA, angle0=0.0)
-    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=model)
-    return m
-
-
-def petroff(mu: float) -> float:
-    return 2 * math.pi * mu * R**3 * L * OMEGA**2 / C
-
-
-def balance(h_a: float) -> float:
-    lo, hi = T_AMB, T_AMB + petroff(OIL.viscosity(T_AMB)) / h_a
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if mid - T_AMB - petroff(OIL.viscosity(mid)) / h_a < 0 else (lo, mid)
-    return lo
 
 
 def timed(m: clearsim.Mechanism, t_end: float, **kw: Any) -> Tuple[float, Any]:
@@ -79,7 +62,7 @@ def warm_up() -> None:
 def steady() -> None:
     print("2. a centred rotor's steady temperature after 40 C/hA (C = 1 J/K, hA = 0.1 W/K)")
     cap, h_a = 1.0, 0.1
-    want = balance(h_a)
+    want = fixed_point(h_a)
     thermal = clearsim.Thermal(T_AMB, cap, h_a)
     m = rotor(clearsim.Lubricated(viscosity=OIL, length=L, film="short", thermal=thermal), 1.0, 0.0)
     for h_max in (None, 10.0, 1.0, 0.1):
@@ -89,7 +72,7 @@ def steady() -> None:
         err = (temp - want) / (want - T_AMB)
         print(
             f"   h_max {str(h_max):>5}: {int(res.stats['steps']):5d} steps, T = {temp:.6f} K, balance {want:.6f} K:"
-            f" {100 * err:+.5f} % of the rise; P = {p:.5f} W, Petroff at T {petroff(OIL.viscosity(temp)):.5f} W"
+            f" {100 * err:+.5f} % of the rise; P = {p:.5f} W, Petroff at T {petroff_loss(OIL.viscosity(temp)):.5f} W"
         )
 
 

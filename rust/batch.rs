@@ -69,6 +69,19 @@ pub fn run_one(model: &Model, desc: &MechanismDesc, settings: &RunSettings, nomi
     simulate_measured(model, settings, &refs, stop)
 }
 
+/// Run a compiled model with `settings` ([`run_one`], its description `desc`) and, beside it on
+/// a second thread, its ideal twin `ideal` compiled here and run with `ideal_settings`: a run
+/// and the twin it is compared with (`clearsim.Mechanism.simulate_with_ideal`), the model's
+/// pose assembled once (when it was compiled) and the twin's once, the numbers those of
+/// [`run_batch`] on the two descriptions.
+pub fn run_with_twin(model: &Model, desc: &MechanismDesc, settings: &RunSettings, ideal: &MechanismDesc, ideal_settings: &RunSettings, stop: Option<StopCheck<'_>>) -> (Result<RunOutput>, Result<RunOutput>) {
+    std::thread::scope(|scope| {
+        let twin = scope.spawn(|| Model::compile(ideal).and_then(|m| simulate(&m, ideal_settings, stop)));
+        let own = run_one(model, desc, settings, None, stop);
+        (own, twin.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+    })
+}
+
 /// How many reference runs [`run_batch`] makes for these runs: one per distinct ideal mechanism
 /// and run settings.
 pub fn reference_runs(descs: &[MechanismDesc], settings: &[RunSettings], nominal: Option<&MechanismDesc>) -> usize {
@@ -80,21 +93,11 @@ pub fn reference_runs(descs: &[MechanismDesc], settings: &[RunSettings], nominal
 /// step limits and budgets at a tenth of its tolerances, to the grid's end, storing states and
 /// accelerations on the grid, with no monitors of its own.
 pub fn reference_settings(rs: &RunSettings, grid: &ReferenceGrid) -> RunSettings {
+    let ode = Settings { rtol: rs.ode.rtol / 10.0, atol: rs.ode.atol / 10.0, ..rs.ode };
     RunSettings {
-        method: rs.method,
-        ode: Settings { rtol: rs.ode.rtol / 10.0, atol: rs.ode.atol / 10.0, ..rs.ode },
-        t0: rs.t0,
-        t_end: grid.t_end,
-        t_out: grid.times(),
         channels: Channels { states: true, accelerations: true, reactions: false, joints: false, violation: false, energy: false, film: false },
         max_wall_time: rs.max_wall_time,
-        monitors: Vec::new(),
-        reference: None,
-        wear_mark: None,
-        bearings: false,
-        bearings_from: None,
-        sections: None,
-        lyapunov: None,
+        ..RunSettings::plain(rs.method, ode, rs.t0, grid.t_end, grid.times())
     }
 }
 
@@ -226,7 +229,7 @@ fn body_names(d: &MechanismDesc) -> Vec<String> {
 /// The settings of a sample that its reference run depends on ([`reference_settings`] without
 /// the grid expanded).
 fn reference_settings_key(rs: &RunSettings) -> RunSettings {
-    RunSettings { t_out: Vec::new(), monitors: Vec::new(), reference: None, wear_mark: None, bearings: false, bearings_from: None, channels: Channels::default(), sections: None, lyapunov: None, ..rs.clone() }
+    RunSettings { max_wall_time: rs.max_wall_time, ..RunSettings::plain(rs.method, rs.ode, rs.t0, rs.t_end, Vec::new()) }
 }
 
 /// A hash of the structure and every value of an ideal description and its run: fed from their

@@ -138,6 +138,29 @@ fn g3(v: f64) -> String {
 }
 
 impl RunSettings {
+    /// A run of `method` (`None`: `auto`) with `ode` over [t0, t_end] \[s\], the default channels
+    /// stored at `t_out`, and nothing more read: no budget, monitors, references, wear mark,
+    /// bearing summary, sections or shadow. The one list of those fields' "off"; a run that asks
+    /// for more says so and takes the rest from here (`..RunSettings::plain(…)`).
+    pub fn plain(method: Option<Method>, ode: Settings, t0: f64, t_end: f64, t_out: Vec<f64>) -> Self {
+        RunSettings {
+            method,
+            ode,
+            t0,
+            t_end,
+            t_out,
+            channels: Channels::default(),
+            max_wall_time: None,
+            monitors: Vec::new(),
+            reference: None,
+            wear_mark: None,
+            bearings: false,
+            bearings_from: None,
+            sections: None,
+            lyapunov: None,
+        }
+    }
+
     /// The integrator this run uses on `model`: the one named, or [`default_method`]'s.
     pub fn method_for(&self, model: &Model) -> Method {
         self.method.unwrap_or_else(|| default_method(model))
@@ -270,9 +293,9 @@ impl RunSettings {
     /// [`Self::validate`]).
     pub fn validate_for(&self, model: &Model) -> Result<()> {
         if self.lyapunov.is_some() {
-            if let Some(c) = model.clearance.iter().find(|c| c.wear.is_some() || c.film.is_some_and(|f| f.heat.is_some())) {
-                let why = "a Lyapunov exponent follows (q, q̇) alone: this joint's wear or oil temperature is state outside it";
-                return Err(Error::invalid(format!("clearance joint '{}'", c.name), "wear or thermal model", why));
+            if let Some(c) = model.clearance.iter().find(|c| c.wear.is_some()) {
+                let why = "a Lyapunov exponent follows the state of the run: this joint's wear changes its geometry outside it";
+                return Err(Error::invalid(format!("clearance joint '{}'", c.name), "wear model", why));
             }
         }
         let nb = model.n_bodies();

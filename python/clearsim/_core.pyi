@@ -150,6 +150,12 @@ class CompiledModel:
         """Run the model (after the pose check: its AssemblyError raised first); monitors
         measured against its own ideal twin (or the ideal of the ``nominal`` description) get
         their reference run here."""
+    def simulate_with_ideal(
+        self, settings: Union[RunSettings, Mapping[str, Any]], ideal: Mapping[str, Any], ideal_settings: Union[RunSettings, Mapping[str, Any]]
+    ) -> Tuple[Any, Any]:
+        """Run the model (after the pose check) and, beside it, its ideal twin (the description
+        ``ideal``, compiled in the core) with ``ideal_settings``: ``(result, ideal)``, each a
+        result dict or the exception that prevented that run."""
     @property
     def warnings(self) -> List[Tuple[str, str]]:
         """What is valid but looks like a mistake, as (field, message): sizes against the

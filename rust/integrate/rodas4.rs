@@ -16,6 +16,9 @@
 //! instructions on the lubricated nine-bar and 63 % fewer on the lubricated slider-crank (whose
 //! differenced `f` gave a Jacobian poor enough for 627 rejected steps against 33), and it costs
 //! `6·g + 2` residuals (`g`: groups of bodies, 3–5 for a chain) instead of `n + 1` right-hand sides.
+//! Oil temperatures after (q, v) (heated joints) border the lifted `E` as they border RADAU5's
+//! (`border.rs`: a Schur complement on the temperatures around the lifted solves, their rows and
+//! columns from [`OdeSystem::border_jacobian`]).
 //!
 //! In the transformed form (Hairer–Wanner IV.7.25) with `u_i` the stage increments,
 //! `(I/(hγ) − J) u_i = f(t + c_i h, y + Σ_{j<i} a_ij u_j) + Σ_{j<i} (c_ij/h) u_j + h d_i f_t`;
@@ -29,6 +32,7 @@
 
 use faer::Mat;
 
+use super::border::Border;
 use super::controller::{Decision, Predictive};
 use super::driver::{non_finite, Stepper, Trial};
 use super::lifted::Lifted;
@@ -121,10 +125,11 @@ fn weighted(out: &mut [f64], w: &[f64], u: &[f64]) {
     }
 }
 
-/// `E = I/(hγ) − J`, factorised in dense or lifted form.
+/// `E = I/(hγ) − J`, factorised in dense or lifted form (the lifted one bordered by any oil
+/// temperatures after (q, v): `border.rs`).
 enum IterationMatrix<'a> {
     Dense(&'a mut Lu),
-    Lifted(&'a mut Lifted),
+    Lifted(&'a mut Lifted, Option<&'a mut Border>),
 }
 
 impl IterationMatrix<'_> {
@@ -132,7 +137,8 @@ impl IterationMatrix<'_> {
     fn solve(&mut self, x: &mut [f64]) {
         match self {
             IterationMatrix::Dense(lu) => lu.solve(x),
-            IterationMatrix::Lifted(lifted) => lifted.solve_real(x),
+            IterationMatrix::Lifted(lifted, None) => lifted.solve_real(x),
+            IterationMatrix::Lifted(lifted, Some(border)) => border.solve_real(x, |v| lifted.solve_real(v)),
         }
     }
 }
@@ -152,6 +158,10 @@ pub(super) struct Rodas4 {
     jac: Mat<f64>,
     lu: Lu,
     lifted: Option<Lifted>,
+    /// With the lifted form, the rows and columns of the first-order states after (q, v)
+    /// ([`OdeSystem::first_order_states`]: oil temperatures), their exact derivatives from
+    /// [`OdeSystem::border_jacobian`].
+    border: Option<Border>,
     dense: RodasDense,
     need_jac: bool,
     /// Step-size control of RODAS: Gustafsson's predictive controller after the first accepted step.
@@ -169,6 +179,7 @@ impl Rodas4 {
             jac: Mat::zeros(0, 0),
             lu: Lu::new(0),
             lifted: None,
+            border: None,
             dense: RodasDense { t0: 0.0, t1: 0.0, y0: vec![0.0; n], y1: vec![0.0; n], r2: vec![0.0; n], r3: vec![0.0; n] },
             need_jac: true,
             ctrl: Predictive::rodas(),
@@ -186,6 +197,9 @@ impl Rodas4 {
         }
         if let Some(lifted) = self.lifted.as_mut() {
             stats.rhs_evals += 1 + lifted.update(sys, t, y, true)?;
+            if let Some(b) = self.border.as_mut() {
+                sys.border_jacobian(t, y, &mut b.a_z, &mut b.g_y)?;
+            }
             stats.jacobians += 1;
             return Ok(());
         }
@@ -217,8 +231,12 @@ impl<S: OdeSystem> Stepper<S> for Rodas4 {
     }
     fn start(&mut self, sys: &mut S, _t: f64, y: &[f64]) -> Result<(), Error> {
         let n = y.len();
-        match sys.lifted_pattern().filter(|p| 2 * p.coords == n) {
-            Some(pattern) => self.lifted = Some(Lifted::new(pattern, false)),
+        let extra = sys.first_order_states().min(n);
+        match sys.lifted_pattern().filter(|p| 2 * p.coords + extra == n) {
+            Some(pattern) => {
+                self.border = (extra > 0).then(|| Border::new(pattern.coords, extra));
+                self.lifted = Some(Lifted::new(pattern, false));
+            }
             None => (self.jac, self.lu) = (Mat::zeros(n, n), Lu::new(n)),
         }
         Ok(())
@@ -235,7 +253,10 @@ impl<S: OdeSystem> Stepper<S> for Rodas4 {
         let mut lu = match self.lifted.as_mut() {
             Some(lifted) => {
                 lifted.factor_real(fac);
-                IterationMatrix::Lifted(lifted)
+                if let Some(border) = self.border.as_mut() {
+                    border.factor_real(fac, |x| lifted.solve_real(x));
+                }
+                IterationMatrix::Lifted(lifted, self.border.as_mut())
             }
             None => {
                 self.lu.factor(&self.jac, fac);

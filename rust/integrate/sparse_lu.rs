@@ -210,12 +210,6 @@ impl<T: Scalar> SparseLu<T> {
         true
     }
 
-    /// Non-zeros of the factors `L` and `U` (fill-in and diagonals included).
-    #[cfg(test)]
-    pub(super) fn factor_nonzeros(&self) -> usize {
-        self.l_row.len() + self.u_row.len() + 2 * self.n
-    }
-
     /// `x ← A⁻¹ x` with the last factors (`x` of length `n`); NaN everywhere if the last
     /// factorisation failed.
     pub(super) fn solve(&mut self, x: &mut [T]) {

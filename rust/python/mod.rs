@@ -14,7 +14,7 @@ use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::batch::{run_batch, run_one};
+use crate::batch::{run_batch, run_one, run_with_twin};
 use crate::clearance::ImpactMemory;
 use crate::error::Error;
 use crate::integrate::OdeSystem;
@@ -363,6 +363,18 @@ impl CompiledModel {
         output_to_dict(py, &out)
     }
 
+    /// Run the model and its ideal twin (`ideal`: the description `clearsim.Mechanism.idealized`
+    /// gives, run with `ideal_settings`) side by side, the GIL released
+    /// ([`crate::batch::run_with_twin`]): `(result, ideal)`, each a dict of arrays or the
+    /// exception that prevented that run, as `run_batch` gives them.
+    fn simulate_with_ideal<'py>(&self, py: Python<'py>, settings: &Bound<'py, PyDict>, ideal: &Bound<'py, PyAny>, ideal_settings: &Bound<'py, PyDict>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        self.check_pose(py)?;
+        let (rs, twin, twin_rs) = (read_settings(settings.as_any())?, read_description(ideal)?, read_settings(ideal_settings.as_any())?);
+        let stop = make_stop(py, None);
+        let (own, other) = py.detach(|| run_with_twin(&self.model, &self.desc, &rs, &twin, &twin_rs, Some(&stop)));
+        Ok((dict_or_error(py, &own)?, dict_or_error(py, &other)?))
+    }
+
     /// The film pressure of clearance joint `joint` (its index) in the state `y` (docs/physics.md
     /// §4, "Oil flow and pressure"; `film.rs`); `temperature` [K] the oil's then, `content` the
     /// fill a mass-conserving joint's run recorded. `None` for a dry joint.
@@ -536,14 +548,15 @@ fn batch<'py>(py: Python<'py>, descriptions: Vec<Bound<'py, PyAny>>, settings: &
     };
     let stop = make_stop(py, None);
     let outs = py.detach(|| run_batch(&descs, &settings, nominal.as_ref(), threads, Some(&stop)));
-    let mut res = Vec::with_capacity(outs.len());
-    for o in outs {
-        match o {
-            Ok(out) => res.push(output_to_dict(py, &out)?.into_any()),
-            Err(e) => res.push(to_pyerr(py, &e).value(py).clone().into_any()),
-        }
+    outs.iter().map(|o| dict_or_error(py, o)).collect()
+}
+
+/// A run's output as a dict of arrays, or the exception that prevented it (returned, not raised).
+fn dict_or_error<'py>(py: Python<'py>, out: &crate::error::Result<crate::simulate::RunOutput>) -> PyResult<Bound<'py, PyAny>> {
+    match out {
+        Ok(out) => Ok(output_to_dict(py, out)?.into_any()),
+        Err(e) => Ok(to_pyerr(py, e).value(py).clone().into_any()),
     }
-    Ok(res)
 }
 
 /// Film force `(F_ξ, F_η)` [N] on the journal of a lubricated joint (docs/physics.md §4): `film`

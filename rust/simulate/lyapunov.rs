@@ -8,7 +8,10 @@
 //! dense output: ln(d/d_start) is booked and the shadow is put back at distance d0 along the same
 //! direction. λ = Σ ln(d/d_start) / (Σ τ). The run itself is not touched (its steps, outputs
 //! and sections are those of a run without a shadow). The distance is
-//! √(Σ δq² + Σ (δq̇/Ω)²) over the bodies' coordinates (m, rad; Ω = `velocity_scale`). A perturbed
+//! √(Σ δq² + Σ (δq̇/Ω)²) over the bodies' coordinates, the 6 · bodies components of (q, q̇)
+//! (m, rad; Ω = `velocity_scale`). Oil temperatures after them in the state (heated joints) are
+//! not perturbed and not measured: the shadow takes the run's at each start of an interval and
+//! carries its own through it, so they follow the mechanism's motion as the run's do. A perturbed
 //! state is made consistent with the ideal joints and drivers (position: δq projected onto the
 //! null space of Φq; velocity: Φq q̇ + Φt = 0 at the perturbed pose, both by the model's KKT
 //! solve), so the Baumgarte terms do not decay a violation into the measurement.
@@ -80,15 +83,16 @@ impl<'a> Shadow<'a> {
         self.spec.start + (self.k + 1) as f64 * self.spec.interval
     }
 
-    /// The weighted distance of `delta` (q then q̇).
+    /// The weighted distance of `delta` (q then q̇; any oil temperatures after them left out).
     fn norm(&self, delta: &[f64]) -> f64 {
-        let n = delta.len() / 2;
+        let n = 3 * self.sys.model.n_bodies();
         let w = 1.0 / self.spec.velocity_scale;
-        (delta[..n].iter().map(|d| d * d).sum::<f64>() + delta[n..].iter().map(|d| (d * w) * (d * w)).sum::<f64>()).sqrt()
+        (delta[..n].iter().map(|d| d * d).sum::<f64>() + delta[n..2 * n].iter().map(|d| (d * w) * (d * w)).sum::<f64>()).sqrt()
     }
 
-    /// Put the shadow at `y_ref + delta · d0/|delta|`, made consistent with the constraints at
-    /// time `t`; its distance from `y_ref` into `d_start`.
+    /// Put the shadow at `y_ref + delta · d0/|delta|` in (q, q̇), made consistent with the
+    /// constraints at time `t`, with the oil temperatures of `y_ref`; its distance from `y_ref`
+    /// into `d_start`.
     fn place(&mut self, t: f64, y_ref: &[f64], delta: &mut [f64]) -> Result<()> {
         let scale = self.spec.d0 / self.norm(delta);
         if !scale.is_finite() {
@@ -101,6 +105,7 @@ impl<'a> Shadow<'a> {
         for i in 0..2 * n {
             self.y[i] = y_ref[i] + delta[i];
         }
+        self.y[2 * n..].copy_from_slice(&y_ref[2 * n..]);
         self.d_start = self.norm(delta);
         self.t = t;
         Ok(())
@@ -243,9 +248,7 @@ mod tests {
     /// A pendulum (pivot at the origin, centroid 0.5 m below, J_pivot = 1 kg m², m g l = 1 N m)
     /// under a harmonic torque with damping 1/q: θ'' + θ'/q + sin θ = g cos(2t/3).
     fn pendulum(g: f64) -> MechanismDesc {
-        let mut d = MechanismDesc::default();
-        d.gravity = [0.0, -2.0];
-        d.baumgarte = [5.0, 5.0];
+        let mut d = MechanismDesc { gravity: [0.0, -2.0], baumgarte: [5.0, 5.0], ..MechanismDesc::default() };
         d.bodies.push(BodyDesc { name: "bob".into(), mass: 1.0, inertia: 0.75, position: [0.5 * 0.2f64.sin(), -0.5 * 0.2f64.cos()], angle: 0.2, velocity: [0.0; 3] });
         d.joints.push(JointDesc::Revolute { name: "pivot".into(), body_a: None, point_a: [0.0, 0.0], body_b: Some(0), point_b: [0.0, 0.5] });
         d.forces.push(ForceDesc::RotationalSpringDamper { name: "damper".into(), body_a: None, body_b: Some(0), stiffness: 0.0, damping: 0.5, angle0: Some(0.0) });
@@ -260,22 +263,7 @@ mod tests {
             let model = Model::compile(&pendulum(g)).unwrap();
             let ode = Settings { rtol: 1e-10, atol: 1e-12, ..Settings::default() };
             let spec = LyapunovSpec { start: 30.0 * period, interval: period, d0: 1e-8, velocity_scale: 2.0 / 3.0 };
-            let rs = crate::settings::RunSettings {
-                method: Some(Method::Dop853),
-                ode,
-                t0: 0.0,
-                t_end: 130.0 * period,
-                t_out: vec![],
-                channels: Channels::default(),
-                max_wall_time: None,
-                monitors: vec![],
-                reference: None,
-                wear_mark: None,
-                bearings: false,
-                bearings_from: None,
-                sections: None,
-                lyapunov: Some(spec),
-            };
+            let rs = crate::settings::RunSettings { lyapunov: Some(spec), ..crate::settings::RunSettings::plain(Some(Method::Dop853), ode, 0.0, 130.0 * period, vec![]) };
             let out = super::super::simulate(&model, &rs, None).unwrap();
             let book = out.lyapunov.unwrap();
             assert!(book.error.is_none(), "{:?}", book.error);

@@ -75,7 +75,6 @@ mod tests {
     use crate::description::{BodyDesc, ForceDesc, Harmonic, JointDesc, MechanismDesc, Profile};
     use crate::integrate::{Method, Settings};
     use crate::model::Model;
-    use crate::record::Channels;
     use crate::settings::{RunSettings, SectionSpec};
     use crate::simulate::simulate;
 
@@ -87,22 +86,9 @@ mod tests {
         d.joints.push(JointDesc::Revolute { name: "pivot".into(), body_a: None, point_a: [0.0, 0.0], body_b: Some(0), point_b: [0.0, 0.5] });
         d.forces.push(ForceDesc::Torque { name: "drive".into(), body: 0, reaction: None, magnitude: Profile::Harmonic(Harmonic { amplitude: 1.2, omega: 2.0, phase: 0.0, offset: 0.0 }) });
         let model = Model::compile(&d).unwrap();
-        let rs = RunSettings {
-            method: Some(Method::Dop853),
-            ode: Settings { rtol: 1e-9, atol: 1e-11, ..Settings::default() },
-            t0: 0.0,
-            t_end: 7.0,
-            t_out,
-            channels: Channels::default(),
-            max_wall_time: None,
-            monitors: vec![],
-            reference: None,
-            wear_mark: None,
-            bearings: false,
-            bearings_from: None,
-            sections: Some(SectionSpec { period: 0.7, phase: std::f64::consts::FRAC_PI_2 }),
-            lyapunov: None,
-        };
+        let ode = Settings { rtol: 1e-9, atol: 1e-11, ..Settings::default() };
+        let sections = Some(SectionSpec { period: 0.7, phase: std::f64::consts::FRAC_PI_2 });
+        let rs = RunSettings { sections, ..RunSettings::plain(Some(Method::Dop853), ode, 0.0, 7.0, t_out) };
         rs.validate().unwrap();
         simulate(&model, &rs, None).unwrap()
     }

@@ -27,23 +27,9 @@ pub fn cycle(name: &str) -> f64 {
 /// The benches' run: `method` from 0 to `t_end` [s] at rtol 1e-6, atol 1e-9, with `outputs`
 /// evenly spaced output times, the default channels and no monitors.
 pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize) -> clearsim::simulate::RunSettings {
-    use clearsim::simulate::RunSettings;
-    RunSettings {
-        method: Some(method),
-        ode: clearsim::integrate::Settings { rtol: 1e-6, atol: 1e-9, ..Default::default() },
-        t0: 0.0,
-        t_end,
-        t_out: RunSettings::grid(0.0, t_end, t_end / outputs as f64).unwrap(),
-        channels: clearsim::record::Channels::default(),
-        max_wall_time: None,
-        monitors: Vec::new(),
-        reference: None,
-        wear_mark: None,
-        bearings: false,
-        bearings_from: None,
-        sections: None,
-        lyapunov: None,
-    }
+    let ode = clearsim::integrate::Settings { rtol: 1e-6, atol: 1e-9, ..Default::default() };
+    let t_out = clearsim::simulate::RunSettings::grid(0.0, t_end, t_end / outputs as f64).unwrap();
+    clearsim::simulate::RunSettings::plain(Some(method), ode, 0.0, t_end, t_out)
 }
 
 /// Exact monitors of the film thickness and power loss of every lubricated clearance joint over
@@ -153,7 +139,7 @@ pub fn chain_with(n: usize, clearance: impl Fn(usize) -> Option<clearsim::descri
                 initial_eccentricity: [0.0, 0.0],
             });
         } else {
-            joints.push(JointDesc::Revolute { name: format!("j{i}"), body_a, point_a, body_b: body_b, point_b });
+            joints.push(JointDesc::Revolute { name: format!("j{i}"), body_a, point_a, body_b, point_b });
         }
     }
     MechanismDesc { bodies, joints, clearance_joints, ..MechanismDesc::default() }

@@ -13,47 +13,12 @@ from pathlib import Path
 import pytest
 
 from clearsim import cli
+from heat_reference import C, L, OMEGA, R, T_AMB, rotor_scene
 from walks import WIPER, read_csv as _csv
 
-R, C, L, OMEGA, MU, SIGMA = 0.02, 4e-5, 0.01, 100.0, 0.03, 1e-6
-T_AMB, CAP, HA, T_END = 313.15, 0.05, 0.2, 0.05
-
-SCENE = f"""
-[mechanism]
-name = "centred rotor"
-gravity = [0.0, 0.0]
-[simulation]
-t_end = {T_END}
-dt_out = 0.01
-[outputs]
-joint_quantities = ["film_thickness"]
-[[body]]
-name = "rotor"
-mass = 1.0
-inertia = 1e-3
-[[driver]]
-body = "rotor"
-omega = {OMEGA}
-angle0 = 0.0
-[[clearance_joint]]
-name = "pin"
-bearing_body = "ground"
-bearing_point = [0.0, 0.0]
-journal_body = "rotor"
-journal_point = [0.0, 0.0]
-journal_radius = {R}
-clearance = {C}
-model = "lubricated"
-[clearance_joint.lubricated]
-viscosity = {MU}
-length = {L}
-film = "short"
-roughness = {SIGMA}
-[clearance_joint.lubricated.thermal]
-ambient = {T_AMB}
-heat_capacity = {CAP}
-heat_transfer = {HA}
-"""
+MU, SIGMA = 0.03, 1e-6
+CAP, HA, T_END = 0.05, 0.2, 0.05
+SCENE = rotor_scene(f"{MU}", CAP, HA, T_END, simulation='dt_out = 0.01\n[outputs]\njoint_quantities = ["film_thickness"]', film=f"roughness = {SIGMA}")
 
 
 def test_the_summaries_and_csv_carry_lambda_and_the_oil_temperature(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -8,6 +8,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, List
 
+import numpy as np
 import pytest
 
 from clearsim import Mechanism, _core, models, running
@@ -98,6 +99,24 @@ def test_a_spring_without_free_length_assembles_once(crossings: List[str]) -> No
     res = m.simulate(0.002, dt_out=1e-4, progress=False)
     assert res.completed and _core.assembly_count() - before == 1
     assert crossings.count("_core.compile") == 1 and crossings.count("CompiledModel.simulate") == 1
+
+
+def test_simulate_with_ideal_assembles_each_mechanism_once(crossings: List[str]) -> None:
+    """The run and its ideal twin: the compiled mechanism runs as compiled (its pose assembled
+    once, at the compile) beside the twin, compiled in the core: two assemblies, one a mechanism,
+    and the numbers of the two descriptions run by the core's batch (the path before, which
+    compiled and assembled the mechanism a second time: three assemblies)."""
+    m = models.slider_crank("dry", clearance=0.5e-3)
+    before = _core.assembly_count()
+    res, ideal = m.simulate_with_ideal(0.002, dt_out=1e-4, progress=False)
+    assert _core.assembly_count() - before == 2
+    assert crossings.count("_core.compile") == 1 and crossings.count("CompiledModel.simulate_with_ideal") == 1
+    twin = m.idealized()
+    raws = _core.run_batch([m.description(), twin.description()], [m.run_settings(0.002, dt_out=1e-4), twin.run_settings(0.002, dt_out=1e-4)], 1)
+    for got, raw in zip((res, ideal), raws):
+        for key in ("t", "q", "qd", "qdd", "joints"):
+            assert np.array_equal(got._raw[key], raw[key]), key
+        assert got._raw["stats"]["steps"] == raw["stats"]["steps"]
 
 
 def test_a_batch_run_assembles_once() -> None:

@@ -10,37 +10,9 @@ import math
 
 import numpy as np
 import pytest
+from heat_reference import C, L, OIL, OMEGA, R, T_AMB, fixed_point, petroff_loss, rotor, rotor_scene
 
 import clearsim
-
-R, C, L, OMEGA = 0.02, 4e-5, 0.01, 100.0
-#: An oil of ISO VG 32 grade: μ(40 °C) = 0.0267 Pa s, μ(100 °C) = 0.0047 Pa s.
-OIL = clearsim.Vogel(6.4e-5, 900.0, 164.0)
-T_AMB = 313.15
-
-
-def rotor(model: clearsim.Lubricated) -> clearsim.Mechanism:
-    """A 1 kg rotor driven at OMEGA, centred in a ground bearing, unloaded (no gravity)."""
-    m = clearsim.Mechanism(gravity=(0.0, 0.0))
-    m.add_body("rotor", mass=1.0, inertia=1e-3)
-    m.driver("rotor", omega=OMEGA, angle0=0.0)
-    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=model)
-    return m
-
-
-def petroff_loss(mu: float) -> float:
-    """Petroff's power loss of a centred journal, 2πμR³Lω²/c [W]."""
-    return 2 * math.pi * mu * R**3 * L * OMEGA**2 / C
-
-
-def fixed_point(h_a: float) -> float:
-    """The steady temperature [K]: the root of T − T_amb − P(μ(T))/hA by bisection."""
-    lo, hi = T_AMB, T_AMB + petroff_loss(OIL.viscosity(T_AMB)) / h_a
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if mid - T_AMB - petroff_loss(OIL.viscosity(mid)) / h_a < 0 else (lo, mid)
-    return lo
-
 
 def in_a_joint(model: object) -> None:
     """Compile ``model`` in a pinned body: its values are checked by the core (issue 29, validation once)."""
@@ -187,38 +159,7 @@ def test_the_scene_keys(tmp_path: "object") -> None:
     from pathlib import Path
 
     scene = Path(str(tmp_path)) / "heat.toml"
-    scene.write_text(
-        """
-[mechanism]
-gravity = [0.0, 0.0]
-[simulation]
-t_end = 0.01
-[[body]]
-name = "rotor"
-mass = 1.0
-inertia = 1e-3
-[[driver]]
-body = "rotor"
-omega = 100.0
-[[clearance_joint]]
-name = "pin"
-bearing_body = "ground"
-bearing_point = [0.0, 0.0]
-journal_body = "rotor"
-journal_point = [0.0, 0.0]
-journal_radius = 0.02
-clearance = 4e-5
-model = "lubricated"
-[clearance_joint.lubricated]
-viscosity = {vogel = [6.4e-5, 900.0, 164.0]}
-length = 0.01
-film = "short"
-[clearance_joint.lubricated.thermal]
-ambient = 313.15
-heat_capacity = 0.01
-heat_transfer = 0.1
-"""
-    )
+    scene.write_text(rotor_scene("{vogel = [6.4e-5, 900.0, 164.0]}", 0.01, 0.1, 0.01))
     m = clearsim.load_scene(scene)
     lub = m.description()["clearance_joints"][0]["model"]
     assert lub["viscosity"] == {"vogel": [6.4e-5, 900.0, 164.0]}
