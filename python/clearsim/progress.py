@@ -29,7 +29,10 @@ NON_TTY_INTERVAL = 15.0
 
 
 def _is_terminal() -> bool:
-    """Whether stderr (where the text bars go) is a terminal."""
+    """Whether stderr (where the text bars go) is shown live: a terminal, or a Jupyter kernel's
+    stream (which renders each redraw in place although it is no tty)."""
+    if type(sys.stderr).__module__.startswith("ipykernel"):
+        return True
     try:
         return bool(sys.stderr.isatty())
     except (AttributeError, ValueError):  # closed or replaced stream
