@@ -247,7 +247,9 @@ class Running:
         # One window for every reading tracked at each step: the extremes and the bearing summary.
         start = t0 if extremes_from is None else max(check_finite("extremes_from", extremes_from), t0)
         if extremes is not False:
-            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end)
+            desc = self.description()
+            held = [(j["name"], j["kind"]) for j in desc["joints"]] + [(d["name"], "driver") for d in desc["drivers"]]
+            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end, held)
         elif extremes_from is not None and not t_end > start:
             raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
         if bearings:
@@ -297,9 +299,11 @@ class Running:
             :class:`clearsim.SimulationError` ("wall-time budget ... used up at t = ...") and
             keeps its partial result.
         extremes, extremes_from:
-            Bodies, clearance joints and points ``(body, (x, y))`` (body frame [m]) whose peaks
-            to track at every step (``True``: every body and joint), for
-            :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on (the window of
+            Bodies, clearance joints, ideal joints, drivers and points ``(body, (x, y))`` (body
+            frame [m]) whose peaks to track at every step (``True``: every body, joint and
+            driver), for :meth:`Result.extremes` and :meth:`Result.reaction_summary` (an ideal
+            joint's force or a driver's torque costs a KKT solve at each of the step's four
+            points), over the run or from ``extremes_from`` [s] on (the window of
             :meth:`Result.bearing_summary` too, which says it): independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").
