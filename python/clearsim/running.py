@@ -100,6 +100,13 @@ class Running:
         self._assembly_tolerance = None if value is None else check_finite("assembly_tolerance", value)
         self._compiled = None  # the pose check is part of the compiled model
 
+    def held_reactions(self) -> List[Tuple[str, str]]:
+        """(name, kind) of every ideal joint (``revolute``, ``prismatic``) and driver
+        (``driver``) in the core's order (joints, then drivers): what ``simulate(extremes=)``
+        can track the reaction of (``Result.reaction_summary``)."""
+        desc = self.description()
+        return [(j["name"], j["kind"]) for j in desc["joints"]] + [(d["name"], "driver") for d in desc["drivers"]]
+
     def compile(self) -> "_core.CompiledModel":
         """The compiled Rust model (cached until the mechanism changes). The core resolves the
         names, validates, compiles, assembles the pose given once and checks it (against
@@ -247,9 +254,7 @@ class Running:
         # One window for every reading tracked at each step: the extremes and the bearing summary.
         start = t0 if extremes_from is None else max(check_finite("extremes_from", extremes_from), t0)
         if extremes is not False:
-            desc = self.description()
-            held = [(j["name"], j["kind"]) for j in desc["joints"]] + [(d["name"], "driver") for d in desc["drivers"]]
-            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end, held)
+            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end, self.held_reactions())
         elif extremes_from is not None and not t_end > start:
             raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
         if bearings:

@@ -117,7 +117,8 @@ class Scene:
     def run(self, ideal: Optional[bool] = None, progress: bool = False) -> SceneRun:
         """Run the scene: the ideal mechanism first (if ``ideal``, default from ``[outputs]``,
         or if ``[reliability]`` names a body), then the mechanism (with its bearing summary,
-        ``bearings=True``, which the run's summary prints); errors; the FOSM reliability
+        ``bearings=True``, and with ``[outputs] reactions`` its joints' and drivers' peak
+        reactions tracked at every step, ``extremes``, which the run's summary prints); errors; the FOSM reliability
         of ``[reliability]`` from the monitored nominal run (:func:`~clearsim.scene.alias.scene_fosm`).
 
         A :class:`SimulationError` of the clearance run is kept in ``SceneRun.failure`` with
@@ -133,8 +134,11 @@ class Scene:
         desc = self.path.stem if self.path is not None else "clearsim"
         for label, mech in _progress(jobs, progress, desc=desc):
             try:
-                # The run's summary prints the bearing summary (clearsim run): ask for it.
-                results[label] = mech.simulate(self.simulation.t_end, progress=progress, bearings=label != "ideal", **self.simulation.kwargs())
+                # The run's summary prints the bearing summary and, with [outputs] reactions, the
+                # peak joint forces and driver torques (clearsim run): ask for them, tracked.
+                tracked = label != "ideal"
+                peaks = mech.clearance_joint_names + [n for n, _ in mech.held_reactions()] if tracked and self.outputs.reactions else []
+                results[label] = mech.simulate(self.simulation.t_end, progress=progress, bearings=tracked, extremes=peaks or False, **self.simulation.kwargs())
             except SimulationError as err:
                 if label == "ideal" or err.result is None:
                     raise
