@@ -66,6 +66,39 @@ pub fn film_monitors(model: &Model, t0: f64, t_end: f64) -> Vec<clearsim::monito
     lubricated.flat_map(|j| [spec(j, Quantity::FilmThickness), spec(j, Quantity::PowerLoss)]).collect()
 }
 
+/// Exact monitors of every ideal joint's and driver's reaction, as `simulate(extremes=[...])`
+/// makes them for its ideal joints and drivers (python/clearsim/joint_reactions.py): a revolute
+/// joint's force x, y and magnitude, a prismatic joint's also its couple, a driver's torque.
+#[allow(dead_code)]
+pub fn reaction_monitors(model: &Model, t0: f64, t_end: f64) -> Vec<clearsim::monitor::MonitorSpec> {
+    use clearsim::constraints::Constraint;
+    use clearsim::monitor::{MonitorSpec, PointComponent, Quantity, Target};
+    let spec = |constraint, quantity, component| MonitorSpec {
+        target: Target::Reaction { constraint, component },
+        quantity,
+        reference: None,
+        t_start: t0,
+        bin_width: t_end - t0,
+        bins: 1,
+        limit: None,
+        samples_per_step: 4,
+        exact: true,
+    };
+    let force = |k| [PointComponent::X, PointComponent::Y, PointComponent::Magnitude].map(|c| spec(k, Quantity::Force, c));
+    let mut out = Vec::new();
+    for (k, c) in model.constraints.iter().enumerate() {
+        match c {
+            Constraint::Driver { .. } => out.push(spec(k, Quantity::Torque, PointComponent::Magnitude)),
+            Constraint::Revolute { .. } => out.extend(force(k)),
+            Constraint::Prismatic { .. } => {
+                out.extend(force(k));
+                out.push(spec(k, Quantity::Torque, PointComponent::Magnitude));
+            }
+        }
+    }
+    out
+}
+
 /// The description in `tests/data/<name>.json`, read the way the Python layer hands it over.
 pub fn description(name: &str) -> MechanismDesc {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(format!("{name}.json"));
