@@ -8,7 +8,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core, display
+from . import _core, display, plausibility
 from .errors import InputError, check_choice
 from .dynamics.readings import DynamicsReadings
 from .joint_reactions import JointReactions, Tracked, reaction_monitors
@@ -334,11 +334,23 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         ``"states"`` output, and ``"accelerations"`` for the acceleration (both stored by default)."""
         check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
         k = self._body(body)
+        self._check_output_point(body, point)
         cols = slice(3 * k, 3 * k + 3)
         pose = self._channel("q", "states")[:, cols]
         rate = self._channel("qd", "states")[:, cols] if quantity != "displacement" else None
         accel = self._channel("qdd", "accelerations")[:, cols] if quantity == "acceleration" else None
         return point_motion(pose, rate, accel, point, quantity)  # type: ignore[arg-type]
+
+    def _check_output_point(self, body: str, point: Sequence[float]) -> None:
+        """A :class:`~clearsim.PlausibilityWarning` (once per result and point) if ``point``
+        looks given in mm or in the global frame (:func:`clearsim.plausibility.output_point_findings`)."""
+        if self.description is None:
+            return
+        xy = check_point(point, "point")
+        warned: set = self.__dict__.setdefault("_warned_points", set())
+        if (body, xy) not in warned:
+            warned.add((body, xy))
+            plausibility.warn_new(plausibility.output_point_findings(self.description, body, xy, "point"), set())
 
     def errors_table(self, ideal: "Result", bodies: Optional[Sequence[str]] = None, points: Optional[PointsLike] = None, quantities: Optional[Sequence[str]] = None) -> Any:
         """The errors against the ideal run ``ideal`` (:meth:`error`) as a pandas DataFrame

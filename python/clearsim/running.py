@@ -11,7 +11,7 @@ throughout.
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, TypedDict, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 
@@ -99,6 +99,14 @@ class Running:
     def assembly_tolerance(self, value: Optional[float]) -> None:
         self._assembly_tolerance = None if value is None else check_finite("assembly_tolerance", value)
         self._compiled = None  # the pose check is part of the compiled model
+
+    def warn_output_point(self, body: str, point: Sequence[float], field: str, locate: Optional[Callable[[str], str]] = None) -> None:
+        """A :class:`~clearsim.PlausibilityWarning` (once per mechanism) if the output point
+        ``point`` [m] on ``body``, named ``field``, looks given in mm or in the global frame
+        (:func:`clearsim.plausibility.output_point_findings`); ``locate`` words the message
+        (a scene prefixes its file and line)."""
+        found = plausibility.output_point_findings(self._description(), body, point, field)
+        plausibility.warn_new([(f, locate(m) if locate else m) for f, m in found], self._warned)
 
     def held_reactions(self) -> List[Tuple[str, str]]:
         """(name, kind) of every ideal joint (``revolute``, ``prismatic``) and driver
@@ -255,6 +263,9 @@ class Running:
         start = t0 if extremes_from is None else max(check_finite("extremes_from", extremes_from), t0)
         if extremes is not False:
             settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end, self.held_reactions())
+            for spec in settings["monitors"]:
+                if "point" in spec and spec["component"] == "x" and spec["quantity"] == "displacement":  # once a point
+                    self.warn_output_point(self.body_names[spec["body"]], spec["point"], "extremes point")
         elif extremes_from is not None and not t_end > start:
             raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
         if bearings:

@@ -203,6 +203,8 @@ def bifurcation(
     mechs = _mechanisms(build, vals, parameter)
     first = mechs[0]
     read, out_name, unit, accel, joints = _reader(output, first.description(), first.body_names, first.clearance_joint_names, point)
+    if point is not None:  # in mm or in the global frame: a PlausibilityWarning
+        first.warn_output_point(output[0], point, "point")
     periods = np.array([float(period(float(v))) if callable(period) else (float(period) if period is not None else forcing_period(m)) for v, m in zip(vals, mechs)])
     if not np.all(periods > 0):
         raise InputError(f"invalid period: {periods.min()!r} s; periods must be positive", field="period", value=float(periods.min()))

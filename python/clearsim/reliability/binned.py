@@ -21,6 +21,7 @@ import numpy as np
 from .. import display
 from ..errors import InputError, SimulationError, check_choice, check_positive
 from ..mechanism import Mechanism
+from ..plausibility import output_point_findings, warn_new
 from ..points import check_point, raw_point_error
 from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, POINT_MONITOR_COMPONENTS, RTOL
 from .bridge import check_on_failure
@@ -303,6 +304,8 @@ def monte_carlo(
     outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
 
     # A point's body, by its index in the mechanism (for the kept error traces).
+    if point is not None:  # in mm or in the global frame: a PlausibilityWarning
+        warn_new(output_point_findings(study._nominal_run()[0], str(body), point, "point"), set())
     names = study._nominal_run()[1] if point is not None and keep else []
     on_body = names.index(body) if body in names else 0  # an unknown body: the study's InputError
 
