@@ -451,10 +451,8 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         if trace and not named:
             raise InputError("invalid trace = True: no points to trace (give points={name: (body, (x, y))})", field="trace", value=trace)
         q = draw.states_at(self, np.array([float(t)]))[0]
-        fig = draw.plot_pose(self.description, q, magnify=magnify, t=float(t), ax=ax)  # type: ignore[arg-type]
-        if named:
-            draw_points.add_to_pose(fig.axes[0] if ax is None else ax, self, q, named, trace)
-        return fig
+        marks = (lambda a: draw_points.add_to_pose(a, self, q, named, trace)) if named else None
+        return draw.plot_pose(self.description, q, magnify=magnify, t=float(t), ax=ax, marks=marks)  # type: ignore[arg-type]
 
     def _points(self, points: Optional[PointsLike]) -> List[TrackedPoint]:
         """The named points of ``points``, checked, or the :attr:`tracked_points` when ``None``."""

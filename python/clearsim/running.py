@@ -153,10 +153,8 @@ class Running:
 
         named = tracked_points(points, self.body_names) if points is not None else []
         q = self.initial_state(float(t))[: 3 * len(self._bodies)]
-        fig = draw.plot_pose(self._description(), q, magnify=magnify, t=float(t), ax=ax)
-        if named:
-            draw_points.mark_pose(fig.axes[0] if ax is None else ax, self.body_names, q, named)
-        return fig
+        marks = (lambda a: draw_points.mark_pose(a, self.body_names, q, named)) if named else None
+        return draw.plot_pose(self._description(), q, magnify=magnify, t=float(t), ax=ax, marks=marks)
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
         """Consistent state y0 = (q0, q̇0, T0…) at ``t0`` [s]: the pose given (the pose at t = 0,
