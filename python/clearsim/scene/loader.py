@@ -24,7 +24,8 @@ from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
 from .sweep import SWEEP_KEYS, SweepSettings, parse_sweep
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
-from .parameters import read_parameters
+from ..schema import INPUT_UNITS
+from .parameters import parameter_units, read_parameters
 from .toml_reader import Source, Table, read_toml
 
 PathLike = Union[str, Path]
@@ -73,6 +74,9 @@ class Scene:
     path: Optional[Path] = None
     #: The values of the ``[parameters]`` table (named numbers the scene's fields may use).
     parameters: Dict[str, float] = field(default_factory=dict)
+    #: The unit of each parameter, from the fields that use it (``"m"`` for a length;
+    #: :func:`clearsim.scene.parameters.parameter_units`; absent where none is clear).
+    parameter_units: Dict[str, str] = field(default_factory=dict)
     _ideal: Optional[Mechanism] = field(default=None, repr=False, compare=False)
     #: ``rebuild({parameter: value})``: the mechanism with those parameters changed (a
     #: ``[[study.input]]`` may randomise a parameter).
@@ -229,7 +233,8 @@ def load_scene_file(path: PathLike) -> Scene:
         assert table is not None
         sweep = parse_sweep(table, mech)
     return Scene(mech, sim, outputs, reliability, study=study, sweep=sweep, name=name, description=description, path=path,
-                 parameters=dict(src.parameters), _ideal=mech.idealized(), _rebuild=partial(_rebuilt, src, data))  # fmt: skip
+                 parameters=dict(src.parameters), parameter_units=parameter_units(data, INPUT_UNITS), _ideal=mech.idealized(),
+                 _rebuild=partial(_rebuilt, src, data))  # fmt: skip
 
 
 def _located_build(src: Source, data: Dict[str, Any], overrides: Optional[Mapping[str, float]] = None) -> Tuple[_Builder, Mechanism]:
