@@ -87,5 +87,6 @@ def write_rows(path: Union[str, Path], header: Sequence[str], rows: Iterable[Seq
 def write_columns(path: Union[str, Path], columns: Sequence[Tuple[str, Optional[str], Any]], *, blank_nonfinite: bool = False) -> Path:
     """Write equal-length columns ``(name, unit or None, values)`` to ``path``, one row per
     index, headed by :func:`column_name`. Returns the path."""
-    rows = zip(*(np.asarray(values, dtype=float).tolist() for _, _, values in columns))
+    # + 0.0 writes a negative zero (a dry joint's power loss −0.0) as 0.0.
+    rows = zip(*((np.asarray(values, dtype=float) + 0.0).tolist() for _, _, values in columns))
     return write_rows(path, [column_name(name, unit) for name, unit, _ in columns], rows, blank_nonfinite=blank_nonfinite)

@@ -15,14 +15,14 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from . import _core
+from . import _core, display
 from .errors import InputError, check_choice
 
 #: Column of each reading in the ``film`` channel (per joint and output time).
 _FILM_COL = {name: k for k, name in enumerate(_core.FILM_COLUMNS)}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class FilmPressure:
     """The film pressure of a lubricated joint at one output time (:meth:`FilmReadings.pressure`).
 
@@ -44,6 +44,16 @@ class FilmPressure:
     joint: str
     film: str
 
+    def __repr__(self) -> str:
+        return display.text(self, *_SHOWN)
+
+    def _repr_html_(self) -> str:
+        return display.html(self, *_SHOWN)
+
+
+#: What a :class:`FilmPressure` shows of itself (its field by shape only).
+_SHOWN = ("joint", "t", "film", "peak_pressure", "peak_angle", "side_leakage", "supply_flow", "p")
+
 
 class FilmReadings:
     """Methods of :class:`clearsim.Result` for a lubricated joint's oil flow and pressure."""
@@ -56,8 +66,20 @@ class FilmReadings:
     def _joint(self, joint: str) -> int:  # pragma: no cover - Result's
         raise NotImplementedError
 
+    def _film_model(self, joint: str) -> Dict[str, Any]:
+        """The model of lubricated joint ``joint``; an :class:`InputError` naming a joint that has
+        no film (a dry one: its channel holds zeros, which would read as a film that leaks nothing)."""
+        self._joint(joint)
+        models = {c["name"]: c["model"] for c in (self.description or {}).get("clearance_joints", [])}
+        model = models.get(joint)
+        if model is None or model.get("kind") != "lubricated":
+            raise InputError(f"invalid joint = {joint!r}: it has no film (a lubricated revolute clearance joint has)", field="joint", value=joint)
+        return model
+
     def _film_column(self, joint: str, column: str) -> np.ndarray:
         j = self._joint(joint)
+        if self.description is not None:
+            self._film_model(joint)
         data = self._raw.get("film")
         if data is None:
             raise InputError("invalid output = 'film': this run did not store it (pass outputs=[..., 'film'])", field="outputs", value="film")
@@ -99,10 +121,7 @@ class FilmReadings:
         solved from the state stored there: θ × z for the finite film, θ for the long and short
         films (:class:`FilmPressure`). Computed when asked: a run pays nothing for it."""
         j = self._joint(joint)
-        models = {c["name"]: c["model"] for c in (self.description or {}).get("clearance_joints", [])}
-        model = models.get(joint)
-        if model is None or model.get("kind") != "lubricated":
-            raise InputError(f"invalid joint = {joint!r}: it has no film (a lubricated revolute clearance joint has)", field="joint", value=joint)
+        model = self._film_model(joint)
         q, qd = self._raw.get("q"), self._raw.get("qd")
         if q is None or qd is None:
             raise InputError("invalid output = 'states': this run did not store it (pass outputs=[..., 'states'])", field="outputs", value="states")
@@ -169,23 +188,30 @@ def film_columns(res: FilmReadings, joint: str) -> List[Tuple[str, str, np.ndarr
             ("peak_pressure", "Pa", res.peak_pressure(joint)), ("peak_pressure_angle", "rad", res.peak_pressure_angle(joint))]  # fmt: skip
 
 
-def film_summary(res: FilmReadings, joint: str) -> Dict[str, Any]:
+def film_summary(res: FilmReadings, joint: str, window: Optional[Tuple[float, float]] = None) -> Dict[str, Any]:
     """The film readings' part of :meth:`clearsim.Result.bearing_summary` for ``joint`` when the
     run stored the ``film`` channel (else empty): ``peak_pressure`` [Pa] with ``t_peak_pressure``
     [s] and ``peak_pressure_angle_deg`` (from the widest gap), ``mean_side_leakage`` and
-    ``mean_supply_flow`` [m³/s] (trapezoidal means over the outputs)."""
+    ``mean_supply_flow`` [m³/s] (trapezoidal means over the outputs), over the outputs inside
+    ``window`` = (start, end) [s], the summary's (default: all)."""
     if res._raw.get("film") is None or len(res.t) == 0:
         return {}
-    p = res.peak_pressure(joint)
-    q = res.flow(joint)
+    inside = np.ones(len(res.t), dtype=bool)
+    if window is not None:
+        tol = 1e-9 * max(1.0, abs(float(res.t[-1])))
+        inside = (res.t >= window[0] - tol) & (res.t <= window[1] + tol)
+        if not inside.any():
+            return {}
+    p = res.peak_pressure(joint)[inside]
+    q = res.flow(joint)[inside]
     k = int(np.argmax(p))
-    t = res.t
+    t = res.t[inside]
     span = float(t[-1] - t[0])
 
     def mean(v: np.ndarray) -> float:
         return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(t)) / span) if span > 0 else float(v[0])
 
-    angle = float(res.peak_pressure_angle(joint)[k])
+    angle = float(res.peak_pressure_angle(joint)[inside][k])
     return {
         "peak_pressure": float(p[k]),
         "t_peak_pressure": float(t[k]),

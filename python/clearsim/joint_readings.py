@@ -92,16 +92,25 @@ class JointReadings(FilmReadings):
                 return bool(cj.get("model", {}).get("thermal"))
         return False
 
-    def driver_angle(self, t: float) -> Optional[float]:
-        """The first driver's body angle [deg] at ``t`` [s], interpolated between the stored
-        outputs, carried on at the stored speed past them (``None`` without a driver or stored
-        states)."""
-        drivers = (self.description or {}).get("drivers") or []
-        q = self._raw.get("q")
-        if not drivers or q is None or not len(self.t) or not math.isfinite(t):
+    def _crank_body(self) -> Optional[int]:
+        """The body whose angle is the crank angle: the first driver's, else (a crank turned by
+        torque) the first motor's; ``None`` without either."""
+        d = self.description or {}
+        drivers = d.get("drivers") or []
+        motors = [f for f in d.get("forces") or [] if f.get("kind") == "motor"]
+        if not drivers and not motors:
             return None
-        body = drivers[0]["body"]  # by name (a Mechanism's description) or index (the core's)
-        b = self.body_names.index(body) if isinstance(body, str) else int(body)
+        body = (drivers or motors)[0]["body"]  # by name (a Mechanism's description) or index (the core's)
+        return self.body_names.index(body) if isinstance(body, str) else int(body)
+
+    def driver_angle(self, t: float) -> Optional[float]:
+        """The first driver's body angle [deg] at ``t`` [s] (without a driver, the first motor's),
+        interpolated between the stored outputs, carried on at the stored speed past them
+        (``None`` without a driver or motor, or without stored states)."""
+        q = self._raw.get("q")
+        b = self._crank_body()
+        if b is None or q is None or not len(self.t) or not math.isfinite(t):
+            return None
         qd = self._raw.get("qd")
         if qd is not None and (t > self.t[-1] or t < self.t[0]):
             # Past the outputs (a run's end between two grid points): on with the stored speed.
@@ -110,14 +119,14 @@ class JointReadings(FilmReadings):
         return float(np.degrees(np.interp(t, self.t, q[:, 3 * b + 2])))
 
     def crank_cycle(self) -> Tuple[float, float]:
-        """The cycle over which the first driver's angle is reported, ``(start, period)`` [deg]:
-        the longest period of the loads given as tables over that driver's angle (a four-stroke
-        gas force repeats every two turns: (0, 720)), from the table's first angle; else one turn
-        (0, 360)."""
-        drivers = (self.description or {}).get("drivers") or []
-        if not drivers:
+        """The cycle over which the first driver's angle (without a driver, the first motor's) is
+        reported, ``(start, period)`` [deg]: the longest period of the loads given as tables over
+        that body's angle (a four-stroke gas force repeats every two turns: (0, 720)), from the
+        table's first angle; else one turn (0, 360)."""
+        b = self._crank_body()
+        if b is None:
             return 0.0, 360.0
-        found = load_periods(self.description, int(drivers[0]["body"]))
+        found = load_periods(self.description, b)
         if not found:
             return 0.0, 360.0
         start, period = max(found, key=lambda sp: sp[1])
@@ -135,7 +144,7 @@ class JointReadings(FilmReadings):
     def bearing_summary(self) -> Dict[str, Dict[str, Any]]:
         """Per lubricated joint (a dry one has no film: it is left out even when ``extremes``
         tracks its gap, whose negative minimum is its penetration): ``min_film_thickness`` [m] with ``t_min_film`` [s] and
-        ``min_film_crank_angle_deg`` (the first driver's angle then, if any, over the loads'
+        ``min_film_crank_angle_deg`` (the first driver's angle then, or a motor's without one, over the loads'
         cycle :meth:`crank_cycle`: 0–720° under a four-stroke load table), located between the
         integration steps on the run's dense output; ``peak_power_loss`` [W] (with
         ``t_peak_power_loss`` [s]) and ``mean_power_loss`` [W] from the power loss at every
@@ -147,7 +156,7 @@ class JointReadings(FilmReadings):
         run, or from ``simulate(extremes_from=)`` on (the window of :meth:`Result.extremes` too).
         With the ``film`` output as well (``outputs=[..., "film"]``) also ``peak_pressure`` [Pa]
         (its time and angle from the widest gap), ``mean_side_leakage`` and ``mean_supply_flow``
-        [m³/s] over the outputs (:func:`clearsim.film_readings.film_summary`); without it none.
+        [m³/s] over the outputs in the window (:func:`clearsim.film_readings.film_summary`); without it none.
 
         Tracked only when the run asks for it, ``simulate(..., bearings=True)`` (``clearsim run``
         does): a mechanism with a lubricated joint run without it raises an :class:`InputError`
@@ -187,7 +196,7 @@ class JointReadings(FilmReadings):
             temps = self._raw.get("temperature")
             if models.get(name, {}).get("thermal") and temps is not None and len(temps):
                 entry["temperature_start"], entry["temperature_end"] = float(temps[0, j]), float(temps[-1, j])
-            entry.update(film_summary(self, name))
+            entry.update(film_summary(self, name, (entry["window_start"], entry["window_end"])))
             out[name] = entry
         return out
 

@@ -24,6 +24,18 @@ _enabled: Optional[bool] = None  # None: follow CLEARSIM_PROGRESS
 DELAY = 1.0
 
 
+#: Seconds between redraws of a text bar written into a file or a pipe.
+NON_TTY_INTERVAL = 15.0
+
+
+def _is_terminal() -> bool:
+    """Whether stderr (where the text bars go) is a terminal."""
+    try:
+        return bool(sys.stderr.isatty())
+    except (AttributeError, ValueError):  # closed or replaced stream
+        return False
+
+
 def set_progress(enabled: bool) -> None:
     """Show (``True``) or hide (``False``) every clearsim progress bar from now on, overriding
     the ``CLEARSIM_PROGRESS`` environment variable."""
@@ -89,7 +101,10 @@ class Bar:
         cls = bar_class()
         # A delay > 0 draws nothing before the first update (no empty bar first); counted from
         # the bar's creation, as the rate and the time left are, it has passed already.
-        shown = cls(total=self.total, desc=self.desc, unit=self.unit, unit_scale=self.unit_scale, leave=self.leave, delay=max(self.delay, 1e-9))
+        # Into a log or a pipe (stderr not a terminal) a text bar redraws every NON_TTY_INTERVAL
+        # seconds, not ten times a second: a 15 s run leaves a line or two, not 150 redraws.
+        every = {} if _is_terminal() or cls.__module__ != "tqdm.std" else {"mininterval": NON_TTY_INTERVAL}
+        shown = cls(total=self.total, desc=self.desc, unit=self.unit, unit_scale=self.unit_scale, leave=self.leave, delay=max(self.delay, 1e-9), **every)
         shown.start_t = shown.last_print_t = self._born
         if self._postfix is not None:
             shown.set_postfix_str(self._postfix, refresh=False)

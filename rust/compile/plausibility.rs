@@ -24,6 +24,9 @@ pub const BAR_INERTIA_RATIO: f64 = 1e-3;
 /// attachment points' largest distance from the centroid) is more likely given in global
 /// coordinates or in mm.
 pub const LOAD_REACH_RATIO: f64 = 3.0;
+/// A load table over a crank angle with a period (or span) of one of these is in degrees: a
+/// half turn, a turn, a four-stroke cycle.
+const DEGREE_CYCLES: [f64; 3] = [180.0, 360.0, 720.0];
 
 /// An output point (a point on a body watched as an output, [`output_point`]) further from its
 /// body's centroid than this multiple of the mechanism's span is more likely given in mm.
@@ -182,6 +185,15 @@ pub fn findings(desc: &MechanismDesc) -> Vec<Warning> {
             });
         }
     }
+    for f in &desc.forces {
+        let profiles: Vec<(&str, &Profile)> = match f {
+            ForceDesc::Force { fx, fy, .. } => vec![("fx", fx), ("fy", fy)],
+            ForceDesc::Torque { magnitude, .. } => vec![("magnitude", magnitude)],
+            _ => continue,
+        };
+        // Once a force: its two components share their table's angles.
+        out.extend(profiles.into_iter().find_map(|(part, p)| angle_table_in_degrees(&format!("force '{}'.{part}", f.name()), p)));
+    }
     let size = scale(desc);
     if !(size > 0.0) {
         return out;
@@ -208,4 +220,28 @@ pub fn findings(desc: &MechanismDesc) -> Vec<Warning> {
         }
     }
     out
+}
+
+/// A load table over a body's angle whose period (or, without one, whose span) is 180, 360 or
+/// 720: angles in degrees where clearsim takes radians (a 360 rad period is 57 turns).
+fn angle_table_in_degrees(field: &str, p: &Profile) -> Option<Warning> {
+    let Profile::Table { argument: TableArgument::Angle { .. }, table } = p else { return None };
+    let (key, value) = match table.period {
+        Some(period) => ("period", period),
+        None => ("angle", table.x.last().copied().unwrap_or(0.0) - table.x.first().copied().unwrap_or(0.0)),
+    };
+    if !DEGREE_CYCLES.iter().any(|&d| (value - d).abs() <= 1e-9 * d) {
+        return None;
+    }
+    let field = format!("{field}.{key}");
+    let what = if key == "period" { format!("{field} = {} rad", g(value, 6)) } else { format!("{field} spans {} rad", g(value, 6)) };
+    Some(Warning {
+        message: format!(
+            "{what} ({} turns of the crank): are the angles in degrees? clearsim takes a load table's angles in radians ({}° = {} rad)",
+            g(value / std::f64::consts::TAU, 3),
+            g(value, 6),
+            g(value.to_radians(), 6)
+        ),
+        field,
+    })
 }

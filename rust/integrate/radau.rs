@@ -307,7 +307,9 @@ impl Radau5Stepper {
             }
             let dyno = (dyno / (3 * n).max(1) as f64).sqrt();
             if !dyno.is_finite() {
-                return Ok(Err((non_finite(t), 0.25)));
+                // f was finite at the iterate: the Newton systems' solve overflowed (a matrix
+                // σI − hJ close to singular), a failure of the iteration, not of the state.
+                return Ok(Err((Error::NewtonFailure { t, h: hs }, 0.25)));
             }
             if newt >= 1 {
                 let thq = dyno / dyno_old;

@@ -338,3 +338,23 @@ def test_the_summary_comes_with_a_point_among_the_extremes() -> None:
     # the point's own extremes: a point 10 mm from the centroid of a rotor turning at OMEGA
     speed = with_point.extremes("rotor", "velocity", "magnitude", point=(0.01, 0.0))
     assert speed.max == pytest.approx(OMEGA * 0.01, rel=1e-3)
+
+
+def test_a_motor_driven_crank_reports_the_minimum_film_crank_angle() -> None:
+    """A crank turned by a motor (no prescribed driver: a pump on its induction motor, walk 6),
+    its load table over the motor's angle: the minimum film's crank angle is the motor body's
+    angle then, over the table's 720° cycle. Before, the summary left it out (it looked for a
+    driver only) and crank_cycle() said (0, 360)."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("rotor", mass=1.0, inertia=1e-3, velocity=(0.0, 0.0, OMEGA))
+    m.motor("rotor", stall_torque=1e4, no_load_speed=OMEGA, angle0=0.0, name="motor")  # stiff: ω stays within 0.1 % of ω₀
+    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=R, clearance=C, model=clearsim.Lubricated(viscosity=MU, length=0.01, film="short"))
+    pulse = {"driver": "motor", "angle": np.radians([0, 540, 560, 600, 720]).tolist(), "fy": [-500.0, -500.0, -3000.0, -500.0, -500.0], "period": 4 * np.pi}
+    m.force("rotor", (0, 0), pulse)
+    res = m.simulate(2 * 4 * np.pi / OMEGA, dt_out=1e-4, bearings=True, progress=False)
+    b = res.bearing_summary()["pin"]
+    theta = np.degrees(np.interp(b["t_min_film"], res.t, res.position("rotor")[:, 2]))
+    assert b["min_film_crank_angle_deg"] == pytest.approx(theta % 720.0, abs=1e-6)
+    assert b["min_film_crank_angle_deg"] == pytest.approx(math.degrees(OMEGA * b["t_min_film"]) % 720.0, abs=1.0)
+    assert 540.0 < b["min_film_crank_angle_deg"] < 720.0
+    assert res.crank_cycle() == (0.0, 720.0)

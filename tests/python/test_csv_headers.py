@@ -141,3 +141,13 @@ def test_one_spelling_of_a_dimensionless_unit():
         "bin_start [deg]", "samples", "mu_s [m/s^2]", "wall_time [s]", "max_depth [m]", "beta"
     ]  # fmt: skip
     assert input_column("B.clearance") == "B.clearance [m]" and input_column("B.viscosity") == "B.viscosity [Pa s]" and input_column("B.eps0") == "B.eps0 [1]"
+
+
+def test_no_negative_zero_is_written(tmp_path: Path) -> None:
+    """A dry joint's power loss is −0.0 in floating point; a CSV says 0.0 (the walk's pump read
+    ``-0.0`` in joints.csv)."""
+    from clearsim.csvfile import write_columns
+
+    path = write_columns(tmp_path / "z.csv", [("t", "s", [0.0, 1.0]), ("power_loss", "W", [-0.0, -2.5])])
+    text = path.read_text()
+    assert "-0.0" not in text and "-2.5" in text

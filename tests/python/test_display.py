@@ -128,3 +128,19 @@ def test_figures_display_as_pictures_without_pyplot():
     for fig in (m.plot(), r.plot_mechanism(0.002), plots.plot_journal_orbits({"rod-slider": (e[:, 0], e[:, 1])}, clearance=5e-4)):
         data, _ = formatter.format(fig)
         assert data.get("image/png", b"")[:8] == b"\x89PNG\r\n\x1a\n", list(data)
+
+
+def test_a_film_pressure_prints_its_numbers_not_its_field():
+    """``res.pressure(joint, t)`` (walk 6: a pump's big end) printed its θ × z field, 120 × 41
+    numbers over hundreds of lines; now one line with the time, the peak and the flows, arrays by
+    their shape, and a small table in a notebook."""
+    import clearsim
+
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("rotor", mass=1.0, inertia=1e-3)
+    m.driver("rotor", omega=100.0)
+    m.clearance_joint("pin", "ground", (0, 0), "rotor", (0, 0), journal_radius=0.02, clearance=4e-5, model=clearsim.Lubricated(viscosity=0.05, length=0.02, film="short"))
+    m.force("rotor", (0, 0), (0.0, -400.0))
+    field = m.simulate(0.01, dt_out=1e-3, progress=False).pressure("pin", 0.01)
+    text = _check(field, "pin", f"{field.peak_pressure:.4g}", "array(")
+    assert text.startswith("FilmPressure(")

@@ -188,3 +188,34 @@ def test_pressure_at_an_output_time_and_its_picture(tmp_path: Path) -> None:
 
     path = plots.save(plots.plot_film_pressure(field), tmp_path / "p.png")
     assert path.stat().st_size > 10_000
+
+
+def test_a_dry_joint_has_no_flow_or_pressure_to_read() -> None:
+    """A dry joint beside a lubricated one (a dry wrist pin, a lubricated big end) has no film:
+    its flow and peak pressure are an InputError naming it, as its pressure field is, not a
+    column of zeros that reads as a bearing that leaks nothing."""
+    m = rotor("short", 0.01, load=100.0)
+    m.add_body("arm", mass=0.1, inertia=1e-5, position=(0.05, 0.0))
+    m.clearance_joint("dry-pin", "rotor", (0.05, 0.0), "arm", (0.0, 0.0), journal_radius=5e-3, clearance=2e-5, model=clearsim.Dry())
+    res = m.simulate(0.002, dt_out=1e-3, outputs=["states", "joints", "film"], progress=False)
+    assert res.flow("pin")[-1, 0] > 0  # the lubricated one reads
+    for read in (lambda: res.flow("dry-pin"), lambda: res.peak_pressure("dry-pin"), lambda: res.peak_pressure_angle("dry-pin"), lambda: res.pressure("dry-pin", 0.002)):
+        with pytest.raises(clearsim.InputError, match="'dry-pin': it has no film"):
+            read()
+
+
+def test_the_film_summary_keeps_to_the_summary_window() -> None:
+    """``bearing_summary`` names its window (``extremes_from`` on): its peak pressure and mean
+    flows come from the outputs inside it, like its minimum film. A rotor loaded by 2 kN for the
+    first 10 ms, then by 200 N: from 0.02 s on the peak pressure is the light load's and the mean
+    leakage the trapezoids' over the outputs from 0.02 s. Before, both were taken over the whole
+    run: the peak sat at t < window_start, in the heavy start."""
+    m = rotor("finite", 0.02)
+    m.force("rotor", (0, 0), {"t": [0.0, 0.01, 0.0101, 0.04], "fy": [-2000.0, -2000.0, -200.0, -200.0]})
+    res = m.simulate(0.04, dt_out=5e-4, outputs=["states", "joints", "film"], bearings=True, extremes_from=0.02, progress=False)
+    b = res.bearing_summary()["pin"]
+    inside = res.t >= 0.02 - 1e-12
+    t, p, q = res.t[inside], res.peak_pressure("pin")[inside], res.flow("pin")[inside]
+    assert b["window_start"] <= b["t_peak_pressure"] <= b["window_end"]
+    assert b["peak_pressure"] == p.max() < 0.5 * res.peak_pressure("pin").max()
+    assert b["mean_side_leakage"] == pytest.approx(np.sum(0.5 * (q[1:, 0] + q[:-1, 0]) * np.diff(t)) / (t[-1] - t[0]), rel=1e-12)

@@ -228,3 +228,39 @@ def test_an_output_point_of_the_python_api_is_checked():
     assert len(found) == 1 and "read as a global point it lies on the body (0.06 m from its centroid" in found[0]
     _, found = _caught(lambda: m.simulate(1e-4, extremes=[("rod", (0.17, 0.0))], progress=False))
     assert len(found) == 1 and found[0].startswith("extremes point = (0.17, 0) m")
+
+
+def _pumped(angle, period=None, torque: bool = False) -> clearsim.Mechanism:
+    """A plunger pump's crank (walk 6) with a load table over its driver's angle."""
+    m = clearsim.Mechanism(gravity=(0.0, 0.0))
+    m.add_body("crank", mass=1.0, inertia=1e-3, ends=((0.0, 0.0), (0.04, 0.0)))
+    m.revolute("ground", (0.0, 0.0), "crank", (-0.02, 0.0))
+    m.driver("crank", omega=157.0, name="motor")
+    table = {"driver": "motor", "angle": list(angle), ("torque" if torque else "fx"): [0.0, 0.0, -7000.0, -7000.0, 0.0][: len(angle)]}
+    if period is not None:
+        table["period"] = period
+    if torque:
+        m.torque("crank", table, name="fluid")
+    else:
+        m.force("crank", (0.02, 0.0), table, name="fluid")
+    return m
+
+
+def test_a_load_table_over_a_crank_angle_in_degrees_is_named():
+    """A load table over a driver's angle written in degrees (0 … 360, period 360) runs its load
+    over 57 turns instead of one: a PlausibilityWarning names the table and the unit. Before, it
+    ran silently (the pump's discharge stroke took the first 6 % of a turn of a 57-turn cycle).
+    The same table in radians, a table over several turns in radians (a start-up of 10 turns) and
+    one in time are silent."""
+    degrees = [0.0, 180.0, 190.0, 350.0, 360.0]
+    for m, field in ((_pumped(degrees, 360.0), "force 'fluid'.fx.period = 360 rad"), (_pumped(degrees), "force 'fluid'.fx.angle"),
+                     (_pumped([0.0, 360.0, 720.0], 720.0, torque=True), "force 'fluid'.magnitude.period = 720 rad")):  # fmt: skip
+        _, found = _caught(m.compile)
+        assert len(found) == 1 and found[0].startswith(field), found
+        assert "degrees" in found[0] and "radians" in found[0], found
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        import math
+
+        _pumped([0.0, math.pi, math.pi + 0.17, 2 * math.pi - 0.17, 2 * math.pi], 2 * math.pi).compile()
+        _pumped([0.0, 10 * math.pi, 20 * math.pi]).compile()  # a run-up over ten turns, in radians

@@ -16,6 +16,7 @@ from clearsim import models, progress
 def bars_at_once(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(progress, "DELAY", 0.0)
     monkeypatch.setattr(progress, "_enabled", None)  # follow the environment, restored after
+    monkeypatch.setattr(progress, "_is_terminal", lambda: True)  # pytest's capture is no terminal
 
 
 def test_progress_shows_the_time_left_and_one_switch_hides_every_bar(capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch, bars_at_once: None) -> None:
@@ -33,6 +34,19 @@ def test_progress_shows_the_time_left_and_one_switch_hides_every_bar(capfd: pyte
     monkeypatch.delenv("CLEARSIM_PROGRESS")
     m.simulate(0.2, dt_out=0.01)  # and shown again: the switches were what hid it
     assert "simulating" in capfd.readouterr().err
+
+
+def test_a_bar_into_a_log_redraws_rarely(capfd: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    """Piped into a log (stderr no terminal), a text bar redraws every NON_TTY_INTERVAL seconds,
+    not ten times a second (a user's 14 s pump run wrote ~140 carriage returns into the log)."""
+    monkeypatch.setattr(progress, "DELAY", 0.0)
+    monkeypatch.setattr(progress, "_enabled", True)
+    monkeypatch.setattr(progress, "_is_terminal", lambda: False)
+    models.nine_bar("dry").simulate(3.0, dt_out=0.01)  # ~0.4 s: 4+ redraws in a terminal
+    assert capfd.readouterr().err.count("\r") <= 3
+    monkeypatch.setattr(progress, "_is_terminal", lambda: True)
+    models.nine_bar("dry").simulate(3.0, dt_out=0.01)
+    assert capfd.readouterr().err.count("\r") >= 4
 
 
 def test_the_delay_is_one_second_by_default(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -253,6 +253,19 @@ def test_random_slider_crank_finite_or_diagnosed(kind, clearance, rpm, dry, lub,
     _finite_or_diagnosed(m, t_end, dt_out=t_end / 50, max_steps=20_000)
 
 
+def test_overflowing_newton_solve_is_diagnosed_as_newton() -> None:
+    # Found by the property test above: the paper's long-film forms with a thick oil (1 Pa s),
+    # started 0.41 c inside the bearing wall; at t = 2.72 ms RADAU5's Newton solves overflow with
+    # f finite. That is the iteration failing (a step-size underflow with Newton named), not a
+    # non-finite state.
+    c = 6.103515625e-05
+    lub = Lubricated(viscosity=1.0, length=0.0625, film="long_paper", dry=Dry(normal_law="lankarani_nikravesh", restitution=0.5, friction=0.0, v1=0.0625))
+    m = models.slider_crank("lubricated", clearance=c, rpm=100.0, dry=Dry(restitution=1.0, friction=0.0, v1=0.0625), lubricated=lub)
+    m._clearance[0]["initial_eccentricity"] = [c, c]
+    t_end = 60.0 / 100.0 / 8
+    _finite_or_diagnosed(m, t_end, dt_out=t_end / 50, max_steps=20_000)
+
+
 @examples(10)
 @given(
     omega=st.floats(-20 * math.pi, -math.pi),

@@ -62,3 +62,41 @@ def test_every_sample_failed_is_reported_and_drawn_with_its_reasons(tmp_path: Pa
     assert "Monte Carlo: 3 of 3 runs failed (counted as exceedances): 3 × maximum number of steps (20) reached" in report
     (row,) = csv.DictReader((out / "reliability.csv").open(encoding="utf-8"))
     assert float(row["pf"]) == 1.0 and float(row["beta"]) == float("-inf") and int(row["runs"]) == 3
+
+
+def _overlapping_tick_labels(fig) -> list:  # type: ignore[no-untyped-def]
+    """Pairs of visible tick labels on one axis of ``fig`` whose drawn boxes overlap."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    found = []
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            labels = [t for t in axis.get_ticklabels(which="both") if t.get_visible() and t.get_text()]
+            boxes = [(t.get_text(), t.get_window_extent(renderer)) for t in labels]
+            found += [(a, b) for i, (a, ba) in enumerate(boxes) for b, bb in boxes[i + 1 :] if ba.overlaps(bb)]
+    return found
+
+
+def test_the_study_figure_has_no_overlapping_tick_labels(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The plunger pump's study (walk 6): four inputs named by path (``big-end.clearance``, ...)
+    under the FORM and Sobol bars, and p_f estimates within one decade on a log axis. Before, the
+    input names ran into each other and matplotlib labelled the minor ticks of the log axis
+    (2×10⁻², 3×10⁻², ...) on top of each other."""
+    from clearsim import plots
+    from clearsim.reliability.report import plot_study
+
+    names = ["big-end.clearance", "wrist-pin.clearance", "big-end.viscosity", "rod"]
+    study = SimpleNamespace(output=SimpleNamespace(unit="m"), limit=75e-6, outputs=["plunger.x"])
+    est = {"form": SimpleNamespace(pf=0.12, beta=1.18, n_runs=69, importance=dict(zip(names, [0.02, 0.01, 0.0, 0.97]))),
+           "importance_sampling": SimpleNamespace(pf=0.114, interval=(0.075, 0.153), n_runs=64),
+           "subset": SimpleNamespace(pf=0.135, interval=(0.114, 0.156), n_runs=1000),
+           "ak_mcs": SimpleNamespace(pf=0.143, interval=(0.133, 0.154), n_runs=49),
+           "ak_is": SimpleNamespace(pf=0.0897, interval=(0.0228, 0.649), n_runs=80),
+           "sobol": SimpleNamespace(first=dict(zip(names, [0.05, 0.04, 0.01, 1.0])), total=dict(zip(names, [0.07, 0.03, 0.0, 1.0])), n_runs=600)}  # fmt: skip
+    drawn = []
+    monkeypatch.setattr(plots, "save", lambda fig, path: drawn.append(fig) or path)
+    plot_study(study, est, tmp_path / "reliability.png")
+    (fig,) = drawn
+    assert _overlapping_tick_labels(fig) == []

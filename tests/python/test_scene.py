@@ -281,3 +281,19 @@ def test_a_bad_lubricated_field_in_a_scene_names_its_joint(tmp_path):
         with pytest.raises(clearsim.InputError) as info:
             clearsim.load_scene(path)
         assert said in str(info.value) and str(info.value).startswith(f"{path}:")
+
+
+def test_a_lubricated_joint_needs_its_viscosity_and_length(tmp_path):
+    """A bearing's length and its oil's viscosity define its film: left out of a scene, they are a
+    missing key named with the file and the line, not Lubricated()'s defaults (0.4 Pa s, 50 mm:
+    the paper's bearing), which ran a 20 mm big end as a 50 mm one without a word."""
+    for old, new, key in (("length = 25e-3                        # m (L/D = 0.83)\n", "", "length"),
+                          ("viscosity = 0.2                       # Pa s (SAE 40 near 30 °C)\n", "", "viscosity")):  # fmt: skip
+        path, line = _edit(tmp_path, old, new, source=PUMP)
+        err = _error(path)
+        assert f"missing key '{key}'" in str(err) and "[[clearance_joint]] #1 [lubricated]" in str(err), str(err)
+        assert str(err).startswith(f"{path}:")
+    path, line = _edit(tmp_path, '[clearance_joint.lubricated]\nviscosity = 0.2                       # Pa s (SAE 40 near 30 °C)\n'
+                       'length = 25e-3                        # m (L/D = 0.83)\nfilm = "short"\n', "", source=PUMP)  # fmt: skip
+    err = _error(path)
+    assert "[clearance_joint.lubricated]" in str(err) and "viscosity" in str(err) and "length" in str(err), str(err)

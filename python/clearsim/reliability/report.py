@@ -309,7 +309,8 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
         if "form" in found:
             ax = axes.pop(0)
             imp = found["form"].importance
-            ax.bar(list(imp), list(imp.values()), color="C0")
+            ax.bar(range(len(imp)), list(imp.values()), color="C0")
+            ax.set_xticks(range(len(imp)), [_input_label(k) for k in imp])
             ax.set_ylim(0, 1)
             ax.set_title(f"FORM importance factors (β = {found['form'].beta:.2f})")
         if "sobol" in found:
@@ -318,7 +319,7 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
             x = np.arange(len(s.first))
             ax.bar(x - 0.2, list(s.first.values()), 0.4, label="first order")
             ax.bar(x + 0.2, list(s.total.values()), 0.4, label="total")
-            ax.set_xticks(x, list(s.first))
+            ax.set_xticks(x, [_input_label(k) for k in s.first])
             ax.set_ylim(0, 1.05)
             ax.set_title(f"Sobol indices of the peak ({s.n_runs} runs)")
             ax.legend(fontsize=7)
@@ -327,6 +328,8 @@ def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:
 
 def _pf_panel(ax: Any, estimates: Sequence[Tuple[str, Any]], study: Any, unit: str) -> None:
     """p_f by method with its 95 % interval (FORM: a point, no interval)."""
+    from matplotlib.ticker import NullFormatter
+
     for y, (k, r) in enumerate(estimates):
         lo, hi = getattr(r, "interval", (r.pf, r.pf))
         if r.pf > 0:
@@ -334,10 +337,21 @@ def _pf_panel(ax: Any, estimates: Sequence[Tuple[str, Any]], study: Any, unit: s
         ax.annotate(f"{r.pf:.3g}  ({r.n_runs} runs)", (r.pf if r.pf > 0 else 1e-300, y), textcoords="offset points", xytext=(0, 7), ha="center", fontsize=7)
     ax.set_yticks(range(len(estimates)), [k.replace("_", " ") for k, _ in estimates])
     ax.set_ylim(-0.6, len(estimates) - 0.3)
-    if any(r.pf > 0 for _, r in estimates):  # else a log axis has nothing to show
+    shown = [v for _, r in estimates for v in (r.pf, *getattr(r, "interval", ())) if v > 0]
+    if shown:  # else a log axis has nothing to show
         ax.set_xscale("log")
+        # Whole decades, labelled at the decades only: within one decade matplotlib labels the
+        # minor ticks (2×10⁻², 3×10⁻², ...), which run into each other.
+        ax.set_xlim(10 ** math.floor(math.log10(min(shown))), 10 ** math.ceil(math.log10(max(shown)) + 1e-12))
+        ax.xaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("probability of exceedance p_f")
     ax.set_title(f"p_f: peak > {study.limit:.3g} {unit}" if len(study.outputs) == 1 else f"p_f of the system ({len(study.outputs)} modes)")
+
+
+def _input_label(path: str) -> str:
+    """A random input's name under a bar, one line per part of its path (``big-end`` over
+    ``clearance``): four inputs' paths side by side run into each other."""
+    return path.replace(".", "\n")
 
 
 def _no_sample(ax: Any, mc: Any) -> None:

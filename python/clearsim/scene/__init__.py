@@ -79,7 +79,8 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     # wear = { coefficient = 1e-4, hardness = 2e9, length = 0.02, feedback = true }
     #                                # Archard wear (docs/physics.md §12), needed by [study.life]
     # [clearance_joint.lubricated]   # with model = "lubricated": fields of clearsim.Lubricated,
-    # viscosity = 0.4                #   its dry law in [clearance_joint.lubricated.dry]
+    # viscosity = 0.4                #   Pa s, required; its dry law in [clearance_joint.lubricated.dry]
+    # length = 0.05                  # m, the bearing's length, required
     # roughness = 0.5e-6             # m, composite RMS σ: Greenwood–Tripp asperities where
     # boundary_friction = 0.12       #   h < 4σ with friction μ_b, in place of the band e0
     # boundary_slip = 1e-4           # m/s, slip over which μ_b ramps up from standstill

@@ -41,6 +41,10 @@ _FIELD_KEYS = {"body_a": "bodies", "body_b": "bodies", "point_a": "points", "poi
 _ELEMENT_KINDS = {"clearance joint": "clearance_joint", "revolute": "joint", "prismatic": "joint", "spring": "force", "rotational spring": "force", "torque": "force", "motor": "force"}
 
 
+#: What a lubricated joint's table must give (Lubricated's defaults of them are the paper's bearing).
+_FILM_REQUIRED = ("viscosity", "length")
+
+
 def _model_fields(cls: type) -> Tuple[str, ...]:
     return tuple(f.name for f in dataclasses.fields(cls))
 
@@ -295,6 +299,13 @@ class _Builder:
         if other in t:
             raise t.error(other, f"[clearance_joint.{other}] given but model = {kind!r} (set model = {other!r} or remove the table)")
         sub = t.table(kind, _model_fields(Dry if kind == "dry" else Lubricated))
+        if kind == "lubricated":
+            # A film is defined by its bearing's length and its oil: no default stands in for them.
+            if sub is None:
+                raise t.error("model", f"missing table [clearance_joint.lubricated] of clearance joint '{name}': its viscosity [Pa s] and length [m] define the film", kind)
+            for key in _FILM_REQUIRED:
+                if key not in sub:
+                    sub.number(key)  # raises the missing key, named with the table's file and line
         model = (Dry() if kind == "dry" else Lubricated()) if sub is None else _read_model(sub, Dry if kind == "dry" else Lubricated, f"clearance joint '{name}'")
         self.call(
             t, m.clearance_joint, name, t.string("bearing_body"), t.point("bearing_point"),
