@@ -7,7 +7,8 @@
 //! ```
 //!
 //! Arguments: a model of `tests/data/*.json` (default `nine_bar_dry`), a method, `rk45`
-//! (default), `dop853`, `radau` or `rodas4`, and optionally a mode: `bearings` or `film_monitors` (below),
+//! (default), `dop853`, `radau` or `rodas4`, and optionally a mode: `bearings`, `film_monitors` or
+//! `reactions` (below),
 //! or `monitored`, what a Study sample carries: a monitor of the last body's x displacement
 //! measured against the model's own ideal twin, made by the batch (rust/batch.rs), 8 points a
 //! step (the reference run is then in the count: run `monitored-bare` for it alone, i.e. the
@@ -50,6 +51,9 @@ fn main() {
         "" => {}
         "bearings" => rs.bearings = true,
         "film_monitors" => rs.monitors = common::film_monitors(&model, rs.t0, rs.t_end),
+        // The peaks of every ideal joint's force and driver's torque, as `simulate(extremes=[...])`
+        // tracks them (and `clearsim run` with `[outputs] reactions`).
+        "reactions" => rs.monitors = common::reaction_monitors(&model, rs.t0, rs.t_end),
         "monitored" | "monitored-bare" => {
             let t_end = common::cycle(name);
             rs.reference = Some(ReferenceGrid { t_start: 0.0, t_end, intervals: 7200, record: false });
@@ -66,7 +70,7 @@ fn main() {
             });
         }
         other => {
-            eprintln!("unknown mode {other:?}: bearings, film_monitors, monitored or monitored-bare");
+            eprintln!("unknown mode {other:?}: bearings, film_monitors, reactions, monitored or monitored-bare");
             std::process::exit(2);
         }
     }

@@ -311,6 +311,10 @@ impl RunSettings {
                 Target::Point { body, .. } if body >= nb => {
                     return Err(Error::invalid(format!("monitors[{i}].body"), body, format!("must be a body index below {nb}")));
                 }
+                Target::Reaction { constraint, .. } if constraint >= model.constraints.len() => {
+                    let n = model.constraints.len();
+                    return Err(Error::invalid(format!("monitors[{i}].constraint"), constraint, format!("must be an ideal joint or driver index below {n}")));
+                }
                 _ => {}
             }
         }

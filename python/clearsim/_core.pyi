@@ -188,6 +188,12 @@ def findings(description: Union[str, Mapping[str, Any]]) -> List[Tuple[str, str]
     """What looks like a unit slip against the mechanism's size, as (field, message), of a
     description not yet valid as a whole (what explains an element refused as it is added)."""
 
+def output_point_finding(description: Union[str, Mapping[str, Any]], body: str, point: Tuple[float, float], field: str) -> Optional[Tuple[str, str]]:
+    """What looks wrong in an output point ``point`` (body frame [m]) on body ``body``, as
+    (field, message) naming ``field``: further from the centroid than 10 × the mechanism's span
+    (mm?), or further than 1.5 × the body's reach (its joints' farthest) while within that of the
+    centroid when read as a global point at the pose given (the global frame?); ``None`` when nothing does or there is no such body."""
+
 def assembly_count() -> int:
     """Poses given assembled by this process (one per compiled model; for tests)."""
 

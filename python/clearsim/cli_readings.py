@@ -53,18 +53,24 @@ def _num(v: Any, fmt: str = ".4g") -> str:
 
 
 def reaction_markdown(reactions: Optional[Dict[str, Dict[str, Any]]]) -> List[str]:
-    """Lines of the table of peak joint forces and driver torques (``Result.reaction_summary``)."""
+    """Lines of the table of peak joint forces and driver torques (``Result.reaction_summary``):
+    tracked at every integration step, or (a row marked so) over the stored outputs."""
     if not reactions:
         return []
+    starts = sorted({r["window_start"] for r in reactions.values() if r.get("tracked") and "window_start" in r})
+    over = "tracked at every integration step" + (f" from t = {starts[0]:.6g} s" if starts and starts[0] else "")
+    if not all(r.get("tracked") for r in reactions.values()):
+        over += "; rows marked *stored outputs* over the stored outputs only"
     lines = [
         "",
-        "Peak joint forces (on each joint's second body) and driver torques, over the stored outputs:",
+        f"Peak joint forces (on each joint's second body) and driver torques, {over}:",
         "",
         "| joint or driver | peak force [N] | at t [s] | peak torque [N m] | at t [s] |",
         "|---|---|---|---|---|",
     ]
     for name, r in reactions.items():
-        lines.append(f"| {name} ({r.get('kind', '?')}) | {_num(r.get('peak_force'))} | {_num(r.get('t_peak_force'), '.6g')} | {_num(r.get('peak_torque'))} | {_num(r.get('t_peak_torque'), '.6g')} |")
+        mark = "" if r.get("tracked") else " *stored outputs*"
+        lines.append(f"| {name} ({r.get('kind', '?')}){mark} | {_num(r.get('peak_force'))} | {_num(r.get('t_peak_force'), '.6g')} | {_num(r.get('peak_torque'))} | {_num(r.get('t_peak_torque'), '.6g')} |")
     return lines
 
 

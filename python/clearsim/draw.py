@@ -225,7 +225,7 @@ class Drawing:
         self.artists: List[Any] = []
         #: The labels and the offset [points] each is written at before :meth:`layout` moves it.
         self.labels: List[Tuple[Any, Tuple[float, float]]] = []
-        #: Artists labels are moved off (the magnified bearings).
+        #: Artists labels are moved off (the magnified bearings, point markers).
         self.obstacles: List[Any] = []
         self._updates: List[Callable[[np.ndarray], None]] = []
         self._labels = labels
@@ -244,6 +244,12 @@ class Drawing:
             label.xyann = offset
         for up in self._updates:
             up(q)
+
+    def adopt(self, marks: Any) -> None:
+        """Lay out the labels of point ``marks`` (:class:`clearsim.draw_points.PointMarks`) with
+        the drawing's, every label kept off their markers (a clearance's label off a tool point)."""
+        self.labels += [(label, label.xyann) for label in marks.labels]
+        self.obstacles += marks.markers
 
     def layout(self, settle: bool = True) -> None:
         """Move the labels apart where they overlap (:func:`clearsim.label_layout.separate`), in
@@ -502,8 +508,13 @@ def _limits(desc: Dict[str, Any], qs: np.ndarray) -> Tuple[Tuple[float, float], 
     return (mid[0] - half[0], mid[0] + half[0]), (mid[1] - half[1], mid[1] + half[1])
 
 
-def plot_pose(desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] = None, title: Optional[str] = None, t: Optional[float] = None, ax: Any = None) -> Any:
-    """A figure of the mechanism at coordinates ``q`` (see :func:`draw`)."""
+def plot_pose(
+    desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] = None, title: Optional[str] = None, t: Optional[float] = None, ax: Any = None,
+    marks: Optional[Callable[[Any], Any]] = None,
+) -> Any:  # fmt: skip
+    """A figure of the mechanism at coordinates ``q`` (see :func:`draw`); ``marks(ax)`` adds
+    point marks (:class:`clearsim.draw_points.PointMarks`) once the limits are set, whose labels
+    and markers the labels' layout then keeps clear of."""
     from . import plots
 
     desc = _indexed(desc)
@@ -517,6 +528,8 @@ def plot_pose(desc: Dict[str, Any], q: np.ndarray, *, magnify: Optional[float] =
         (x0, x1), (y0, y1) = _limits(desc, np.asarray(q)[None, :])
         ax.set_xlim(x0, x1)
         ax.set_ylim(y0, y1)
+        if marks is not None:
+            drawing.adopt(marks(ax))
         drawing.layout()  # at the limits the picture is drawn with
         if title:
             ax.set_title(title if t is None else f"{title}, t = {t:.4f} s", fontsize=9)
@@ -602,6 +615,7 @@ def animate(
         if marks is not None:
             marks.update(qs[0])
             widen(ax, marks.extent(qs[0]))
+            drawing.adopt(marks)
         moving: List[Any] = drawing.artists + (marks.artists if marks is not None else []) + [clock]
         traces = []
         for k, (axi, c) in enumerate(zip(insets, joints)):

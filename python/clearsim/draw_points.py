@@ -46,6 +46,16 @@ class PointMarks:
                 self._labels.append(ax.annotate(p.name, (0.0, 0.0), xytext=(5, -9), textcoords="offset points", fontsize=7, color="black", zorder=7))
         self.artists = self._traces + self._marks + self._labels
 
+    @property
+    def markers(self) -> List[Any]:
+        """The points' markers (what labels are kept off)."""
+        return list(self._marks)
+
+    @property
+    def labels(self) -> List[Any]:
+        """The points' name labels (annotations, laid out with a drawing's)."""
+        return list(self._labels)
+
     def update(self, q: np.ndarray, upto: Optional[int] = None) -> None:
         """Marks at the pose ``q``; each path over its first ``upto`` samples (all: ``None``)."""
         for k, (p, b) in enumerate(zip(self.points, self.bodies)):

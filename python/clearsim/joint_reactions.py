@@ -4,6 +4,11 @@ rust/constraints/mod.rs, from the Lagrange multipliers λ; docs/physics.md §1, 
 
 :class:`JointReactions` holds the methods of :class:`clearsim.Result` for them; a clearance
 joint's force is its own reading (:meth:`clearsim.Result.joint_force`, the ``joints`` channel).
+Their peaks are tracked at every integration step when the run asks (``simulate(extremes=[...,
+"O2", "motor"])``: core monitors ``Target::Reaction``, located between steps on the dense output
+like every extreme, rust/monitor/), so :meth:`JointReactions.reaction_summary` then does not
+depend on ``dt_out``; without that it reads the stored outputs and says so (``tracked``: False).
+
 Sign: the force and torque *on the second body* — ``body_b`` of a revolute or prismatic joint
 (the journal of an ideal joint made from a clearance joint, the slider of a prismatic joint),
 the driven body of a driver — in the global frame, counter-clockwise torques positive; the first
@@ -17,7 +22,26 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .errors import InputError
+from .errors import InputError, check_choice
+from .schema import POINT_MONITOR_COMPONENTS, REACTION_MONITOR_UNITS
+
+#: A tracked extreme as :meth:`JointReactions._tracked` gives it: (max, t_max, min, t_min) [SI, s].
+Tracked = Tuple[float, float, float, float]
+
+
+def reaction_quantities(kind: str) -> List[Tuple[str, Optional[str]]]:
+    """The (quantity, component) pairs tracked for an ideal joint or driver of ``kind``: a
+    revolute joint's force (x, y and magnitude), a prismatic joint's also its couple, a driver's
+    torque."""
+    force = [("force", c) for c in POINT_MONITOR_COMPONENTS]
+    return [("torque", None)] if kind == "driver" else force + ([("torque", None)] if kind == "prismatic" else [])
+
+
+def reaction_monitors(k: int, kind: str, span: Dict[str, Any]) -> List[Dict[str, Any]]:
+    """The core monitors (``constraint``: index ``k`` in the core's order, joints then drivers)
+    that track the reaction of an ideal joint or driver of ``kind`` over ``span`` (the monitors'
+    window and sampling)."""
+    return [{"constraint": k, "quantity": q, **({"component": c} if c else {}), **span} for q, c in reaction_quantities(kind)]
 
 
 class JointReactions:
@@ -31,6 +55,25 @@ class JointReactions:
 
     def _channel(self, key: str, what: str) -> np.ndarray:  # pragma: no cover - Result's
         raise NotImplementedError
+
+    def _tracked(self, match: Dict[str, Any], quantity: str) -> Optional[Tracked]:  # pragma: no cover - Result's
+        raise NotImplementedError
+
+    def _reaction_match(self, name: str, quantity: str, component: Optional[str]) -> Tuple[Dict[str, Any], str, str]:
+        """The monitor fields, unit and words of the reaction ``quantity`` (``"force"`` of
+        ``component`` x, y or magnitude (default), or ``"torque"``) of ideal joint or driver
+        ``name`` (:meth:`clearsim.Result.extremes`)."""
+        entries = self._constraints()
+        k = [n for n, _ in entries].index(name)
+        kind = entries[k][1]
+        check_choice("quantity", quantity, [q for q, _ in reaction_quantities(kind)], f"(a {kind}'s reaction)")
+        if quantity == "torque":
+            if component is not None:
+                raise InputError(f"invalid component = {component!r}: a {kind}'s torque has none (give component=None)", field="component", value=component)
+            return {"constraint": k}, REACTION_MONITOR_UNITS["torque"], f"{name} torque"
+        component = "magnitude" if component is None else component
+        check_choice("component", component, list(POINT_MONITOR_COMPONENTS), "(a reaction force's)")
+        return {"constraint": k, "component": component}, REACTION_MONITOR_UNITS["force"], f"{name} force.{component}"
 
     def _constraints(self) -> List[Tuple[str, str]]:
         """(name, kind) of every ideal joint (``revolute``, ``prismatic``) and driver
@@ -85,31 +128,71 @@ class JointReactions:
         return values[:, 2]
 
     def reaction_summary(self) -> Dict[str, Dict[str, Any]]:
-        """The largest force of every joint and torque of every driver over the stored outputs
-        (not tracked between them: a finer ``dt_out`` can only raise a peak), each with its
-        ``kind`` (``clearance``, ``revolute``, ``prismatic``, ``driver``): per joint
-        ``peak_force`` [N] (of |F|) and ``t_peak_force`` [s] — clearance joints from the ``joints``
-        channel, ideal joints with ``"reactions"`` stored (a prismatic joint also ``peak_torque``
-        [N m], of |T|, and its time) — and per driver ``peak_torque`` [N m] (signed: the value of
-        largest magnitude) and ``t_peak_torque`` [s]. Empty when nothing is stored or no output."""
+        """The largest force of every joint and torque of every driver, each with its ``kind``
+        (``clearance``, ``revolute``, ``prismatic``, ``driver``) and whether it was ``tracked``.
+
+        Tracked (the run asked for it, ``simulate(extremes=[..., "A", "O2", "motor"])`` or
+        ``extremes=True``; ``clearsim run`` does): at every integration step and between steps on
+        the dense output, over the extremes' window from ``window_start`` [s] — independent of
+        ``dt_out``. Per joint ``peak_force`` [N] (of |F|) and ``t_peak_force`` [s]; an ideal
+        joint also ``max_fx``, ``min_fx``, ``max_fy``, ``min_fy`` [N] with their times
+        (``t_max_fx``, ...); a driver ``peak_torque`` [N m] (signed: the value of largest
+        magnitude) and ``t_peak_torque`` [s], with ``max_torque``, ``min_torque`` and their
+        times; a prismatic joint also its couple's (``peak_torque`` of |T|, ``max_torque``, ...).
+
+        Not tracked: the same peaks over the stored outputs (clearance joints from the ``joints``
+        channel, ideal joints and drivers with ``"reactions"`` stored) — a finer ``dt_out`` can
+        only raise them. Empty when nothing is tracked or stored."""
         out: Dict[str, Dict[str, Any]] = {}
-        if not len(self.t):
-            return out
+        stored = len(self.t) > 0
         joints = self._raw.get("joints")
         for j, name in enumerate(self.joint_names):
-            if joints is not None:  # a prismatic clearance joint: each slider end ("G front", "G rear")
-                out[name] = {"kind": "clearance", **_peak(np.hypot(joints[:, j, 4], joints[:, j, 5]), self.t, "force")}
-        if "reactions" not in self._raw or self.description is None:
+            found = self._tracked({"coordinate": j}, "force")
+            if found is not None:
+                out[name] = {"kind": "clearance", "tracked": True, "peak_force": found[0], "t_peak_force": found[1], **self._window()}
+            elif joints is not None and stored:  # a prismatic clearance joint: each slider end ("G front", "G rear")
+                out[name] = {"kind": "clearance", "tracked": False, **_peak(np.hypot(joints[:, j, 4], joints[:, j, 5]), self.t, "force")}
+        if self.description is None:
             return out
+        reactions = self._raw.get("reactions") if stored else None
         for k, (name, kind) in enumerate(self._constraints()):
-            r = self._raw["reactions"][:, k, :]
-            if kind == "driver":
-                out[name] = {"kind": kind, **_peak(r[:, 2], self.t, "torque", signed=True)}
-            else:
-                out[name] = {"kind": kind, **_peak(np.hypot(r[:, 0], r[:, 1]), self.t, "force")}
-                if kind == "prismatic":
-                    out[name].update(_peak(np.abs(r[:, 2]), self.t, "torque"))
+            entry = self._tracked_reaction(k, kind)
+            if entry is not None:
+                out[name] = {"kind": kind, "tracked": True, **entry, **self._window()}
+            elif reactions is not None:
+                r = reactions[:, k, :]
+                if kind == "driver":
+                    out[name] = {"kind": kind, "tracked": False, **_peak(r[:, 2], self.t, "torque", signed=True)}
+                else:
+                    out[name] = {"kind": kind, "tracked": False, **_peak(np.hypot(r[:, 0], r[:, 1]), self.t, "force")}
+                    if kind == "prismatic":
+                        out[name].update(_peak(np.abs(r[:, 2]), self.t, "torque"))
         return out
+
+    def _window(self) -> Dict[str, Any]:
+        """``window_start`` [s] of the tracked extremes (their monitors' start)."""
+        specs: List[Dict[str, Any]] = getattr(self, "monitor_specs", [])
+        starts = [float(s["t_start"]) for s in specs if s.get("exact")]
+        return {"window_start": min(starts)} if starts else {}
+
+    def _tracked_reaction(self, k: int, kind: str) -> Optional[Dict[str, Any]]:
+        """The tracked peaks of constraint ``k`` (:meth:`reaction_summary`), or None if untracked."""
+        entry: Dict[str, Any] = {}
+        for quantity, component in reaction_quantities(kind):
+            found = self._tracked({"constraint": k, **({"component": component} if component else {})}, quantity)
+            if found is None:
+                return None
+            hi, t_hi, lo, t_lo = found
+            if component == "magnitude":
+                entry.update(peak_force=hi, t_peak_force=t_hi)
+            elif quantity == "force":
+                col = f"f{component}"
+                entry.update({f"max_{col}": hi, f"t_max_{col}": t_hi, f"min_{col}": lo, f"t_min_{col}": t_lo})
+            else:
+                larger = abs(hi) >= abs(lo)
+                peak = (hi if larger else lo) if kind == "driver" else max(abs(hi), abs(lo))
+                entry.update(peak_torque=peak, t_peak_torque=t_hi if larger else t_lo, max_torque=hi, t_max_torque=t_hi, min_torque=lo, t_min_torque=t_lo)
+        return entry
 
 
 def _peak(values: np.ndarray, t: np.ndarray, what: str, signed: bool = False) -> Dict[str, Any]:
@@ -121,4 +204,4 @@ def _peak(values: np.ndarray, t: np.ndarray, what: str, signed: bool = False) ->
     return {f"peak_{what}": float(values[k]) if signed else float(mag[k]), f"t_peak_{what}": float(t[k])}
 
 
-__all__ = ["JointReactions"]
+__all__ = ["JointReactions", "reaction_monitors", "reaction_quantities"]

@@ -17,6 +17,7 @@ import sys
 import warnings
 from typing import Any, Dict, List, Optional, Sequence, Set, Tuple
 
+from . import _core
 from .errors import PlausibilityWarning
 from .joints import MICROMETRE_FILM_RATIO
 
@@ -65,6 +66,14 @@ def joint_findings(name: str, r_j: float, c: float, model: Dict[str, Any]) -> Li
     return out
 
 
+def output_point_findings(description: Dict[str, Any], body: str, point: Sequence[float], field: str) -> List[Finding]:
+    """What looks wrong in an output point (``point`` [m] on ``body`` of ``description``, named
+    ``field``): in mm or in the global frame, by the core's rule against the mechanism's size
+    (``rust/compile/plausibility.rs``, ``output_point``: as a load point is checked)."""
+    found = _core.output_point_finding(description, body, (float(point[0]), float(point[1])), field)
+    return [found] if found is not None else []
+
+
 def micrometre_film_note(name: str, r_j: float, c: float, film: str) -> Optional[str]:
     """A note (a plain UserWarning, not a plausibility one: the value is meant) on a long-bearing
     film in a µm clearance, where a whirl near the centre can make the run crawl."""
@@ -100,4 +109,4 @@ def warn_new(findings: Sequence[Tuple[str, str]], warned: Set[str]) -> None:
         warnings.warn(w, stacklevel=level)
 
 
-__all__ = ["FILM_RATIO_RANGE", "VISCOSITY_RANGE", "joint_findings", "micrometre_film_note", "warn_new"]
+__all__ = ["FILM_RATIO_RANGE", "VISCOSITY_RANGE", "joint_findings", "micrometre_film_note", "output_point_findings", "warn_new"]

@@ -15,7 +15,7 @@ from typing import Any, Dict, List, Mapping, NamedTuple, Sequence, Tuple, Union
 import numpy as np
 
 from .errors import InputError, check_choice
-from .schema import BODY_QUANTITIES
+from .schema import BODY_QUANTITIES, POINT_MONITOR_COMPONENTS
 
 #: The components of a point's motion and the suffix of each quantity in exported column names
 #: (``tool.x``, ``tool.x_dot``, ``tool.x_ddot``: as :meth:`clearsim.Result.to_pandas` names a body's).
@@ -65,6 +65,44 @@ def point_motion(pose: np.ndarray, rate: np.ndarray, accel: np.ndarray, point: S
     return accel[:, :2] + accel[:, 2:3] * bp - w * w * ap
 
 
+def check_point_output(body: Any, point: Any, component: Any, body_names: Sequence[str], field: str = "output") -> Tuple[float, float]:
+    """A point output's ``point`` (body frame [m]) checked with its ``body`` (one of
+    ``body_names``) and ``component`` (``"x"``, ``"y"`` or ``"magnitude"``), as every output that
+    takes ``point=`` names it (``Output(body=, point=, component=)``, ``Result.error(point=)``);
+    :class:`InputError` names ``field`` and the value."""
+    if body not in body_names:
+        raise InputError(f"invalid {field}.body = {body!r}: a point lies on a body (known: {', '.join(body_names)})", field=f"{field}.body", value=body)
+    check_choice(f"{field}.component", component, POINT_MONITOR_COMPONENTS, "(a point's)")
+    return check_point(point, f"{field}.point")
+
+
+def point_name(body: str, point: Sequence[float]) -> str:
+    """A point's name in tables and CSV headers: ``coupler(0.1,0.02)`` (body frame [m])."""
+    return f"{body}({point[0]:g},{point[1]:g})"
+
+
+def point_component(values: np.ndarray, component: str) -> np.ndarray:
+    """(N,) ``component`` ``"x"``, ``"y"`` or ``"magnitude"`` (the vector's length) of (N, 2)
+    point values (a motion or its error against a reference)."""
+    if component == "magnitude":
+        return np.hypot(values[:, 0], values[:, 1])
+    return values[:, POINT_COMPONENTS.index(component)]
+
+
+def raw_point_error(sample: Mapping[str, np.ndarray], reference: Mapping[str, np.ndarray], body: int, point: Sequence[float], quantity: str, component: str) -> np.ndarray:
+    """(N,) ``component`` of the error of a point's ``quantity`` against a reference run, from
+    two raw runs' (N, 3 × bodies) arrays ``q``, ``qd`` and (for accelerations) ``qdd`` on the
+    same times, the point on body number ``body``."""
+    cols = slice(3 * body, 3 * body + 3)
+
+    def motion(raw: Mapping[str, np.ndarray]) -> np.ndarray:
+        rate = raw["qd"][:, cols] if quantity != "displacement" else None
+        accel = raw["qdd"][:, cols] if quantity == "acceleration" else None
+        return point_motion(raw["q"][:, cols], rate, accel, point, quantity)  # type: ignore[arg-type]
+
+    return point_component(motion(sample) - motion(reference), component)
+
+
 def tracked_points(points: PointsLike, body_names: Sequence[str], field: str = "points") -> List[TrackedPoint]:
     """The named points of ``points`` (see :data:`PointsLike`), checked: each body known, each
     point two finite numbers, names unique. :class:`InputError` names the entry and value."""
@@ -96,4 +134,7 @@ def as_mapping(points: Sequence[TrackedPoint]) -> Dict[str, Tuple[str, Tuple[flo
     return {p.name: (p.body, p.point) for p in points}
 
 
-__all__ = ["POINT_COMPONENTS", "PointsLike", "TrackedPoint", "as_mapping", "check_point", "point_motion", "tracked_points"]
+__all__ = [
+    "POINT_COMPONENTS", "PointsLike", "TrackedPoint", "as_mapping", "check_point", "check_point_output", "point_component", "point_motion", "point_name", "raw_point_error",
+    "tracked_points",
+]  # fmt: skip

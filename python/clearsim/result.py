@@ -8,10 +8,10 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core, display
+from . import _core, display, plausibility
 from .errors import InputError, check_choice
 from .dynamics.readings import DynamicsReadings
-from .joint_reactions import JointReactions
+from .joint_reactions import JointReactions, Tracked, reaction_monitors
 from .joint_readings import JointReadings
 from .points import PointsLike, TrackedPoint, check_point, point_motion, tracked_points
 from .schema import BODY_QUANTITY_UNITS, COMPONENTS as _COMPONENTS, JOINT_COLUMNS, JOINT_MONITOR_UNITS, POINT_MONITOR_COMPONENTS, READING_MONITOR_UNITS
@@ -44,22 +44,29 @@ class Extremes:
 
 
 def extreme_monitors(
-    which: Union[bool, Sequence[Any]], body_names: Sequence[str], joint_names: Sequence[str], t0: float, t_end: float
+    which: Union[bool, Sequence[Any]],
+    body_names: Sequence[str],
+    joint_names: Sequence[str],
+    t0: float,
+    t_end: float,
+    constraints: Sequence[Tuple[str, str]] = (),
 ) -> List[Dict[str, Any]]:
     """The core monitors (rust/monitor/, ``exact``) that track :meth:`Result.extremes` of the
-    bodies and clearance joints named in ``which`` (``True``: all of them), and of the points
-    given there as ``(body, (x, y))`` (body frame [m]), over [t0, t_end] [s]."""
+    bodies, clearance joints and ideal joints or drivers (``constraints``: (name, kind) in the
+    core's order) named in ``which`` (``True``: all of them), and of the points given there as
+    ``(body, (x, y))`` (body frame [m]), over [t0, t_end] [s]."""
     if not t_end > t0:
         raise InputError(f"invalid extremes_from = {t0!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=t0)
-    names = list(body_names) + list(joint_names) if which is True else ([] if which is False else list(which))
-    known = ", ".join(list(body_names) + list(joint_names))
+    held = [n for n, _ in constraints]
+    names = list(body_names) + list(joint_names) + held if which is True else ([] if which is False else list(which))
+    known = ", ".join(list(body_names) + list(joint_names) + held)
     for name in names:
         if isinstance(name, (tuple, list)):
             if len(name) != 2 or name[0] not in body_names:
                 raise InputError(f"invalid extremes = {name!r}: a point is (body, (x, y)) on one of the bodies ({', '.join(body_names)})", field="extremes", value=name)
             check_point(name[1], "extremes")
-        elif not isinstance(name, str) or (name not in body_names and name not in joint_names):
-            raise InputError(f"invalid extremes = {name!r}: no such body or clearance joint (known: {known}); a point is (body, (x, y))", field="extremes", value=name)
+        elif not isinstance(name, str) or (name not in body_names and name not in joint_names and name not in held):
+            raise InputError(f"invalid extremes = {name!r}: no such body, joint or driver (known: {known}); a point is (body, (x, y))", field="extremes", value=name)
     # Four samples a step screen it for extremes (the step's ends are exact, the searches find
     # what lies between): the same extremes as eight to round-off, at a third less cost.
     span = {"t_start": t0, "bin_width": t_end - t0, "exact": True, "samples_per_step": 4}
@@ -76,6 +83,9 @@ def extreme_monitors(
         elif key in body_names:
             b = list(body_names).index(key)
             out += [{"coordinate": 3 * b + c, "quantity": q, **span} for c in range(3) for q in BODY_QUANTITY_UNITS]
+        elif key in held:
+            k = held.index(key)
+            out += reaction_monitors(k, constraints[k][1], span)
         else:
             j = list(joint_names).index(key)
             out += [{"coordinate": j, "quantity": q, **span} for q in (*JOINT_MONITOR_UNITS, *READING_MONITOR_UNITS)]
@@ -324,11 +334,23 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         ``"states"`` output, and ``"accelerations"`` for the acceleration (both stored by default)."""
         check_choice("quantity", quantity, list(BODY_QUANTITY_UNITS))
         k = self._body(body)
+        self._check_output_point(body, point)
         cols = slice(3 * k, 3 * k + 3)
         pose = self._channel("q", "states")[:, cols]
         rate = self._channel("qd", "states")[:, cols] if quantity != "displacement" else None
         accel = self._channel("qdd", "accelerations")[:, cols] if quantity == "acceleration" else None
         return point_motion(pose, rate, accel, point, quantity)  # type: ignore[arg-type]
+
+    def _check_output_point(self, body: str, point: Sequence[float]) -> None:
+        """A :class:`~clearsim.PlausibilityWarning` (once per result and point) if ``point``
+        looks given in mm or in the global frame (:func:`clearsim.plausibility.output_point_findings`)."""
+        if self.description is None:
+            return
+        xy = check_point(point, "point")
+        warned: set = self.__dict__.setdefault("_warned_points", set())
+        if (body, xy) not in warned:
+            warned.add((body, xy))
+            plausibility.warn_new(plausibility.output_point_findings(self.description, body, xy, "point"), set())
 
     def errors_table(self, ideal: "Result", bodies: Optional[Sequence[str]] = None, points: Optional[PointsLike] = None, quantities: Optional[Sequence[str]] = None) -> Any:
         """The errors against the ideal run ``ideal`` (:meth:`error`) as a pandas DataFrame
@@ -349,6 +371,9 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         ``"velocity"`` or ``"acceleration"`` of ``component`` ``"x"``, ``"y"`` or ``"theta"``),
         of a point's on a body (``point=(x, y)``, body frame [m]: its global ``"x"``, ``"y"`` or
         the ``"magnitude"`` of its displacement, velocity or acceleration vector, m, m/s, m/s²)
+        of an ideal joint's or driver's reaction on its second body (``"force"``, ``component``
+        ``"x"``, ``"y"`` or ``"magnitude"`` (default) [N], global frame; ``"torque"`` of a driver
+        or prismatic joint [N m]; :meth:`reaction_summary`)
         or of a clearance joint's (``"eccentricity"`` ratio e/c, ``"force"`` on the journal,
         ``"contact_force"`` F_N, ``"film_force"``, magnitudes [N]; ``"film_thickness"`` [m], the
         reading h = c − |e| (not a study's window minimum c (1 − ε_max), :data:`clearsim.schema.JOINT_QUANTITY_UNITS`),
@@ -357,8 +382,8 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         Tracked at every accepted integration step and located between steps on the exact
         quantity (accelerations from the KKT solve, as stored; docs/performance.md, "Peaks"), so
         they are independent of ``dt_out`` and at least every stored output. The run must ask for
-        them: ``simulate(..., extremes=["slider", "pin", ("crank", (0.05, 0.0))])`` (or
-        ``extremes=True`` for every body and joint), over the whole run or from ``extremes_from``
+        them: ``simulate(..., extremes=["slider", "pin", "O2", "motor", ("crank", (0.05, 0.0))])`` (or
+        ``extremes=True`` for every body, joint and driver), over the whole run or from ``extremes_from``
         [s] on (e.g. the last revolution).
         """
         match: Dict[str, Any]
@@ -386,18 +411,30 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
             match = {"coordinate": self.joint_names.index(name)}
             unit = {**JOINT_MONITOR_UNITS, **READING_MONITOR_UNITS}[quantity]
             what, asked = f"{name} {quantity}", repr(name)
+        elif self.description is not None and name in [n for n, _ in self._constraints()]:
+            match, unit, what = self._reaction_match(name, quantity, component)
+            asked = repr(name)
         else:
-            known = ", ".join(self.body_names + self.joint_names)
-            raise InputError(f"invalid name = {name!r}: no such body or clearance joint (known: {known})", field="name", value=name)
-        results = self._raw.get("monitors") or []
-        for spec, found in zip(self.monitor_specs, results):
-            if spec.get("exact") and spec["quantity"] == quantity and not spec.get("reference") and all(spec.get(k) == v for k, v in match.items()):
-                if point is None and "point" in spec:
-                    continue
-                return Extremes(float(found["max"]), float(found["t_max"]), float(found["min"]), float(found["t_min"]), what, unit)
+            held = [n for n, _ in self._constraints()] if self.description is not None else []
+            known = ", ".join(self.body_names + self.joint_names + held)
+            raise InputError(f"invalid name = {name!r}: no such body, joint or driver (known: {known})", field="name", value=name)
+        found = self._tracked(match, quantity)
+        if found is not None:
+            return Extremes(*found, what, unit)
         raise InputError(
             f"invalid name = {name!r}: this run did not track its extremes (pass extremes=[{asked}] or extremes=True to simulate)", field="name", value=name
         )
+
+    def _tracked(self, match: Dict[str, Any], quantity: str) -> Optional[Tracked]:
+        """(max, t_max, min, t_min) of the exact monitor of ``quantity`` whose spec has the fields
+        of ``match`` (a point's only when ``match`` names one), or None if the run did not track it."""
+        results = self._raw.get("monitors") or []
+        for spec, found in zip(self.monitor_specs, results):
+            if spec.get("exact") and spec["quantity"] == quantity and not spec.get("reference") and all(spec.get(k) == v for k, v in match.items()):
+                if "point" in spec and "point" not in match or "constraint" in spec and "constraint" not in match:
+                    continue
+                return float(found["max"]), float(found["t_max"]), float(found["min"]), float(found["t_min"])
+        return None
 
     # ------------------------------------------------------------------ data out
     def plot_mechanism(self, t: float, *, magnify: Optional[float] = None, ax: Any = None, points: Optional[PointsLike] = None, trace: bool = False) -> Any:
@@ -414,10 +451,8 @@ class Result(JointReadings, JointReactions, DynamicsReadings):
         if trace and not named:
             raise InputError("invalid trace = True: no points to trace (give points={name: (body, (x, y))})", field="trace", value=trace)
         q = draw.states_at(self, np.array([float(t)]))[0]
-        fig = draw.plot_pose(self.description, q, magnify=magnify, t=float(t), ax=ax)  # type: ignore[arg-type]
-        if named:
-            draw_points.add_to_pose(fig.axes[0] if ax is None else ax, self, q, named, trace)
-        return fig
+        marks = (lambda a: draw_points.add_to_pose(a, self, q, named, trace)) if named else None
+        return draw.plot_pose(self.description, q, magnify=magnify, t=float(t), ax=ax, marks=marks)  # type: ignore[arg-type]
 
     def _points(self, points: Optional[PointsLike]) -> List[TrackedPoint]:
         """The named points of ``points``, checked, or the :attr:`tracked_points` when ``None``."""

@@ -11,7 +11,7 @@ throughout.
 from __future__ import annotations
 
 import warnings
-from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, TypedDict, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 
@@ -99,6 +99,21 @@ class Running:
         self._assembly_tolerance = None if value is None else check_finite("assembly_tolerance", value)
         self._compiled = None  # the pose check is part of the compiled model
 
+    def warn_output_point(self, body: str, point: Sequence[float], field: str, locate: Optional[Callable[[str], str]] = None) -> None:
+        """A :class:`~clearsim.PlausibilityWarning` (once per mechanism) if the output point
+        ``point`` [m] on ``body``, named ``field``, looks given in mm or in the global frame
+        (:func:`clearsim.plausibility.output_point_findings`); ``locate`` words the message
+        (a scene prefixes its file and line)."""
+        found = plausibility.output_point_findings(self._description(), body, point, field)
+        plausibility.warn_new([(f, locate(m) if locate else m) for f, m in found], self._warned)
+
+    def held_reactions(self) -> List[Tuple[str, str]]:
+        """(name, kind) of every ideal joint (``revolute``, ``prismatic``) and driver
+        (``driver``) in the core's order (joints, then drivers): what ``simulate(extremes=)``
+        can track the reaction of (``Result.reaction_summary``)."""
+        desc = self.description()
+        return [(j["name"], j["kind"]) for j in desc["joints"]] + [(d["name"], "driver") for d in desc["drivers"]]
+
     def compile(self) -> "_core.CompiledModel":
         """The compiled Rust model (cached until the mechanism changes). The core resolves the
         names, validates, compiles, assembles the pose given once and checks it (against
@@ -137,10 +152,8 @@ class Running:
 
         named = tracked_points(points, self.body_names) if points is not None else []
         q = self.initial_state(float(t))[: 3 * len(self._bodies)]
-        fig = draw.plot_pose(self._description(), q, magnify=magnify, t=float(t), ax=ax)
-        if named:
-            draw_points.mark_pose(fig.axes[0] if ax is None else ax, self.body_names, q, named)
-        return fig
+        marks = (lambda a: draw_points.mark_pose(a, self.body_names, q, named)) if named else None
+        return draw.plot_pose(self._description(), q, magnify=magnify, t=float(t), ax=ax, marks=marks)
 
     def initial_state(self, t0: float = 0.0) -> np.ndarray:
         """Consistent state y0 = (q0, q̇0, T0…) at ``t0`` [s]: the pose given (the pose at t = 0,
@@ -246,7 +259,10 @@ class Running:
         # One window for every reading tracked at each step: the extremes and the bearing summary.
         start = t0 if extremes_from is None else max(check_finite("extremes_from", extremes_from), t0)
         if extremes is not False:
-            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end)
+            settings["monitors"] = extreme_monitors(extremes, self.body_names, self.clearance_joint_names, start, t_end, self.held_reactions())
+            for spec in settings["monitors"]:
+                if "point" in spec and spec["component"] == "x" and spec["quantity"] == "displacement":  # once a point
+                    self.warn_output_point(self.body_names[spec["body"]], spec["point"], "extremes point")
         elif extremes_from is not None and not t_end > start:
             raise InputError(f"invalid extremes_from = {extremes_from!r}: must be before t_end = {t_end!r} [s]", field="extremes_from", value=extremes_from)
         if bearings:
@@ -296,9 +312,11 @@ class Running:
             :class:`clearsim.SimulationError` ("wall-time budget ... used up at t = ...") and
             keeps its partial result.
         extremes, extremes_from:
-            Bodies, clearance joints and points ``(body, (x, y))`` (body frame [m]) whose peaks
-            to track at every step (``True``: every body and joint), for
-            :meth:`Result.extremes`, over the run or from ``extremes_from`` [s] on (the window of
+            Bodies, clearance joints, ideal joints, drivers and points ``(body, (x, y))`` (body
+            frame [m]) whose peaks to track at every step (``True``: every body, joint and
+            driver), for :meth:`Result.extremes` and :meth:`Result.reaction_summary` (an ideal
+            joint's force or a driver's torque costs a KKT solve at each of the step's four
+            points), over the run or from ``extremes_from`` [s] on (the window of
             :meth:`Result.bearing_summary` too, which says it): independent of
             ``dt_out``, unlike the maximum of the stored outputs (a body costs 10–70 % more run
             time; docs/performance.md, "Peaks").

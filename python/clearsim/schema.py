@@ -84,6 +84,10 @@ JOINT_MONITOR_UNITS: Dict[str, str] = {"eccentricity": "1", "force": "N", "conta
 #: ``film_thickness`` is the reading h = c − |e| [m] itself, tracked at every step (its minimum:
 #: ``Result.bearing_summary``'s ``min_film_thickness``), not a study's h_min from ε_max.
 READING_MONITOR_UNITS: Dict[str, str] = {"film_thickness": "m", "friction_torque": "N m", "power_loss": "W"}
+#: What the core's monitors track of an ideal joint's or driver's reaction on its second body
+#: (``Target::Reaction``, rust/monitor/target.rs): its force (component x, y or magnitude) and
+#: its couple, and their units.
+REACTION_MONITOR_UNITS: Dict[str, str] = {"force": "N", "torque": "N m"}
 
 
 #: The SI unit of a description field a study can make random (``B.clearance`` → m), by the
@@ -131,6 +135,7 @@ __all__ = [
     "JOINT_QUANTITIES",
     "JOINT_QUANTITY_UNITS",
     "JOINT_MONITOR_UNITS",
+    "REACTION_MONITOR_UNITS",
     "OUTPUTS",
     "POINT_MONITOR_COMPONENTS",
     "READING_MONITOR_UNITS",

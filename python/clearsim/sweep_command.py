@@ -9,11 +9,12 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 
 from .cli_support import EXIT_ERROR, _positive_int, _summary_on_failure
+from .points import point_component, point_name
 from .scene import load_scene_file
 from .scene.loader import Scene
 
@@ -24,9 +25,10 @@ def _run_options(scene: Scene) -> Dict[str, Any]:
     return {k: kw[k] for k in ("integrator", "rtol", "atol", "h_max", "h_min", "max_steps", "step") if k in kw}
 
 
-def _poincare_figure(b: Any, out_dir: Path) -> Optional[Path]:
+def _poincare_figure(b: Any, out_dir: Path, output: Sequence[str]) -> Optional[Path]:
     """The sections of one periodic and one chaotic value (the first of each), in the plane of
-    the output and its body's velocity (or a joint's e_x, e_y)."""
+    the output and its body's velocity (a point's: its own; a joint's: e_x, e_y); ``output`` is
+    the sweep's ``(body, quantity, component)`` or ``(joint, quantity)``."""
     from .plots import save
     from .plots.dynamics import plot_poincare_panels
 
@@ -37,7 +39,7 @@ def _poincare_figure(b: Any, out_dir: Path) -> Optional[Path]:
             picks.append(i)
     if not picks:
         return None
-    name = b.output.split(".")[0]
+    name = output[0]
     panels = []
     for i in picks:
         sec = b.sections[i]
@@ -45,8 +47,12 @@ def _poincare_figure(b: Any, out_dir: Path) -> Optional[Path]:
             c = next(float(j["clearance"]) for j in sec.description["clearance_joints"] if j["name"] == name)
             e = sec.eccentricity(name) / c
             x, y, xl, yl = e[:, 0], e[:, 1], f"{name} e_x / c", f"{name} e_y / c"
+        elif b.point is not None:
+            comp, label = output[2], point_name(name, b.point)
+            x, y = (point_component(sec.point(name, b.point, q), comp) for q in ("displacement", "velocity"))
+            xl, yl = f"{label} displacement.{comp} [m]", f"{label} velocity.{comp} [m/s]"
         else:
-            comp = b.output.split(".")[1]
+            comp = output[2]
             k = ("x", "y", "theta").index(comp)
             x, y = sec.position(name)[:, k], sec.velocity(name)[:, k]
             xl, yl = f"{name}.{comp} [{'rad' if comp == 'theta' else 'm'}]", f"{name}.{comp} rate [{'rad/s' if comp == 'theta' else 'm/s'}]"
@@ -100,7 +106,7 @@ def run_sweep(scene: Scene, out_dir: Path, *, count: Optional[int] = None, cycle
     t = time.perf_counter()
     b = bifurcation(
         scene.mechanism, values, sw.parameter, transient_cycles=sw.transient_cycles if transient_cycles is None else transient_cycles,
-        cycles=sw.cycles if cycles is None else cycles, output=sw.output, period=sw.period, phase=sw.phase, lyapunov=sw.lyapunov,
+        cycles=sw.cycles if cycles is None else cycles, output=sw.output, point=sw.point, period=sw.period, phase=sw.phase, lyapunov=sw.lyapunov,
         tol=sw.tol, progress=progress, **_run_options(scene),
     )  # fmt: skip
     seconds = time.perf_counter() - t
@@ -109,7 +115,7 @@ def run_sweep(scene: Scene, out_dir: Path, *, count: Optional[int] = None, cycle
         from .plots import save
 
         files.append(save(b.plot(parameter_label=f"{sw.label or sw.parameter} [{sw.unit}]" if sw.unit else (sw.label or sw.parameter), title=scene.name), out_dir / "bifurcation.png"))
-        poincare = _poincare_figure(b, out_dir)
+        poincare = _poincare_figure(b, out_dir, sw.output)
         if poincare is not None:
             files.append(poincare)
     report = out_dir / "report.md"

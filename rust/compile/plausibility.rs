@@ -1,6 +1,7 @@
 //! Plausibility of a whole mechanism's numbers: what is valid but looks like a unit slip against
 //! the mechanism's own size — lengths in millimetres where clearsim takes metres, a load point
-//! far outside its body. Each finding names the element, the field, the value and the unit
+//! far outside its body, an output point (a tool tip watched by a study, a scene's `[outputs]
+//! points`) in mm or in the global frame ([`output_point`]). Each finding names the element, the field, the value and the unit
 //! clearsim expected ([`Warning`]); the Python layer shows them as `PlausibilityWarning`s when
 //! the mechanism compiles. (One joint's numbers on their own — a viscosity in cP, a clearance in
 //! mm — are checked as the joint is added: `python/clearsim/plausibility.py`.)
@@ -26,6 +27,14 @@ pub const LOAD_REACH_RATIO: f64 = 3.0;
 /// A load table over a crank angle with a period (or span) of one of these is in degrees: a
 /// half turn, a turn, a four-stroke cycle.
 const DEGREE_CYCLES: [f64; 3] = [180.0, 360.0, 720.0];
+
+/// An output point (a point on a body watched as an output, [`output_point`]) further from its
+/// body's centroid than this multiple of the mechanism's span is more likely given in mm.
+pub const OUTPUT_SPAN_RATIO: f64 = 10.0;
+/// An output point further from its body's centroid than this multiple of the body's reach that,
+/// read as a global point at the pose given, lies within this multiple of the reach of the
+/// centroid is more likely given in the global frame.
+pub const OUTPUT_REACH_RATIO: f64 = 1.5;
 
 /// A body-frame point of body `body` (or the ground) in the global frame at the pose given.
 pub(crate) fn global(desc: &MechanismDesc, body: BodyRef, p: [f64; 2]) -> (f64, f64) {
@@ -95,6 +104,37 @@ fn attachments(desc: &MechanismDesc) -> Vec<Vec<[f64; 2]>> {
         }
     }
     points
+}
+
+/// What looks wrong in an output point `point` (body frame \[m\]) on body `body` of a resolved
+/// description, named `field` in the message: a point further from the centroid than
+/// [`OUTPUT_SPAN_RATIO`] × the mechanism's span (mm?), or one further than [`OUTPUT_REACH_RATIO`]
+/// × the body's reach that lies within that of the centroid when read as a global point (the
+/// global frame?).
+pub fn output_point(desc: &MechanismDesc, body: usize, point: [f64; 2], field: &str) -> Option<Warning> {
+    let b = desc.bodies.get(body)?;
+    let d = point[0].hypot(point[1]);
+    let at = format!("{field} = ({}, {}) m lies {} m from the centroid of body '{}'", g(point[0], 4), g(point[1], 4), g(d, 3), b.name);
+    let span = scale(desc);
+    if span > 0.0 && d > OUTPUT_SPAN_RATIO * span {
+        let message = format!("{at}, {} × the mechanism's span {} m: is it given in mm? clearsim takes the point in metres in the body's frame", g(d / span, 3), g(span, 3));
+        return Some(Warning { field: field.to_string(), message });
+    }
+    let reach = attachments(desc)[body].iter().map(|p| p[0].hypot(p[1])).fold(0.0, f64::max);
+    // The point read as a global one, in the body's frame at the pose given.
+    let (s, c) = b.angle.sin_cos();
+    let (gx, gy) = (point[0] - b.position[0], point[1] - b.position[1]);
+    let read = (c * gx + s * gy).hypot(-s * gx + c * gy);
+    if reach > 0.0 && d > OUTPUT_REACH_RATIO * reach && read <= OUTPUT_REACH_RATIO * reach {
+        let message = format!(
+            "{at}, {} × as far as its joints ({} m), but read as a global point it lies on the body ({} m from its centroid at the pose given): is it given in global coordinates? clearsim takes the point in metres in the body's frame",
+            g(d / reach, 3),
+            g(reach, 3),
+            g(read, 3)
+        );
+        return Some(Warning { field: field.to_string(), message });
+    }
+    None
 }
 
 /// What looks wrong against the mechanism's size (a resolved description): a body far lighter in

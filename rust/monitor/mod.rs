@@ -47,14 +47,25 @@ pub enum Quantity {
     FrictionTorque,
     /// Power dissipated in the joint \[W\] ([`crate::clearance::Readings`]).
     PowerLoss,
+    /// The couple \[N m\] an ideal joint or driver exerts on its second body ([`Target::Reaction`]:
+    /// a driver's torque, a prismatic joint's constraint couple).
+    Torque,
 }
 
 impl Quantity {
-    /// Whether the quantity belongs to a clearance joint rather than a body coordinate.
+    /// Whether the quantity is read from the whole state (a clearance joint's, or a reaction's)
+    /// rather than from a body's coordinates.
     pub fn of_joint(self) -> bool {
         matches!(
             self,
-            Quantity::Eccentricity | Quantity::Force | Quantity::ContactForce | Quantity::FilmForce | Quantity::FilmThickness | Quantity::FrictionTorque | Quantity::PowerLoss
+            Quantity::Eccentricity
+                | Quantity::Force
+                | Quantity::ContactForce
+                | Quantity::FilmForce
+                | Quantity::FilmThickness
+                | Quantity::FrictionTorque
+                | Quantity::PowerLoss
+                | Quantity::Torque
         )
     }
 }
@@ -81,8 +92,9 @@ pub struct MonitorSpec {
 }
 
 /// A monitor as the settings give it: `coordinate` (a body coordinate, 3 per body: x, y, θ; or
-/// a clearance joint's index for a joint quantity), or `body` with `point` (body frame \[m\])
-/// and `component` (x, y or magnitude).
+/// a clearance joint's index for a joint quantity), `body` with `point` (body frame \[m\])
+/// and `component` (x, y or magnitude), or `constraint` (an ideal joint's or driver's index,
+/// model order) with quantity `force` and its `component` or quantity `torque`.
 #[cfg(feature = "serde")]
 #[derive(serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -95,6 +107,8 @@ struct MonitorSpecDesc {
     point: Option<[f64; 2]>,
     #[serde(default)]
     component: Option<PointComponent>,
+    #[serde(default)]
+    constraint: Option<usize>,
     quantity: Quantity,
     #[serde(default)]
     reference: Option<ReferenceOf>,
@@ -115,8 +129,22 @@ impl TryFrom<MonitorSpecDesc> for MonitorSpec {
     type Error = String;
 
     fn try_from(d: MonitorSpecDesc) -> Result<Self, String> {
+        if let Some(constraint) = d.constraint {
+            if d.coordinate.is_some() || d.body.is_some() || d.point.is_some() {
+                return Err("a reaction names its constraint alone (no coordinate, body or point)".into());
+            }
+            let component = match (d.quantity, d.component) {
+                (Quantity::Force, Some(c)) => c,
+                (Quantity::Force, None) => return Err("a reaction's force needs its component: x, y or magnitude".into()),
+                (Quantity::Torque, None) => PointComponent::Magnitude,
+                (Quantity::Torque, Some(_)) => return Err("a reaction's torque has no component".into()),
+                (q, _) => return Err(format!("a reaction's quantity is its force or torque, not {q:?}")),
+            };
+            let target = Target::Reaction { constraint, component };
+            return Ok(MonitorSpec { target, ..MonitorSpec::of(d) });
+        }
         let target = match (d.coordinate, d.body, d.point) {
-            (Some(c), None, None) if d.component.is_none() => {
+            (Some(c), None, None) if d.component.is_none() && d.quantity != Quantity::Torque => {
                 if d.quantity.of_joint() {
                     Target::Joint(c)
                 } else {
@@ -130,10 +158,18 @@ impl TryFrom<MonitorSpecDesc> for MonitorSpec {
                 }
                 Target::Point { body, at, component }
             }
-            _ => return Err("give coordinate, or body with point and component".into()),
+            _ => return Err("give coordinate, body with point and component, or constraint".into()),
         };
-        Ok(MonitorSpec {
-            target,
+        Ok(MonitorSpec { target, ..MonitorSpec::of(d) })
+    }
+}
+
+#[cfg(feature = "serde")]
+impl MonitorSpec {
+    /// The spec of `d`'s window and sampling, its target still to be set.
+    fn of(d: MonitorSpecDesc) -> Self {
+        MonitorSpec {
+            target: Target::Coordinate(0),
             quantity: d.quantity,
             reference: d.reference,
             t_start: d.t_start,
@@ -142,7 +178,7 @@ impl TryFrom<MonitorSpecDesc> for MonitorSpec {
             limit: d.limit,
             samples_per_step: d.samples_per_step,
             exact: d.exact,
-        })
+        }
     }
 }
 
@@ -169,6 +205,9 @@ impl MonitorSpec {
         }
         if let (Target::Joint(_), Some(of)) = (self.target, self.reference) {
             return Err(Error::invalid(field("reference"), of.name(), "a clearance joint's quantity is measured against no reference"));
+        }
+        if let (Target::Reaction { .. }, Some(of)) = (self.target, self.reference) {
+            return Err(Error::invalid(field("reference"), of.name(), "a reaction is measured against no reference"));
         }
         if !self.t_start.is_finite() {
             return Err(Error::invalid(field("t_start"), self.t_start, "must be finite"));
@@ -418,6 +457,12 @@ impl Monitor {
         if e < r.min {
             (r.min, r.t_min) = (e, t);
         }
+    }
+
+    /// Whether the monitor's value at a state needs a KKT solve there beyond the accelerations:
+    /// a reaction's (from λ).
+    pub fn solves(&self) -> bool {
+        matches!(self.spec.target, Target::Reaction { .. })
     }
 
     /// Forget the step's samples but its end (the next step's first sample).

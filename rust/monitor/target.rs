@@ -1,5 +1,6 @@
-//! What a monitor watches ([`Target`]): a body coordinate, a point fixed on a body, or a clearance
-//! joint, and how its error against a reference state is formed. The same function is evaluated
+//! What a monitor watches ([`Target`]): a body coordinate, a point fixed on a body, a clearance
+//! joint, or an ideal joint's or driver's reaction, and how its error against a reference state
+//! is formed. The same function is evaluated
 //! on the sample's state and on the reference's ([`Kinematics`]: a state read by coordinate), so
 //! any body target — a centroid coordinate or a tool point — is measured the same way.
 //!
@@ -62,6 +63,11 @@ pub enum Target {
     Point { body: usize, at: [f64; 2], component: PointComponent },
     /// Clearance joint `j` (a joint quantity: [`Quantity::of_joint`]).
     Joint(usize),
+    /// What ideal joint or driver `constraint` (model order: joints, then drivers) exerts on its
+    /// second body ([`crate::constraints::Constraint::reaction`], from the KKT solve's λ): its
+    /// force's `component` ([`Quantity::Force`] \[N\], global frame) or its couple
+    /// ([`Quantity::Torque`] \[N m\]; `component` is then not read).
+    Reaction { constraint: usize, component: PointComponent },
 }
 
 impl Target {
@@ -70,7 +76,7 @@ impl Target {
         match *self {
             Target::Coordinate(c) => Some(c / 3),
             Target::Point { body, .. } => Some(body),
-            Target::Joint(_) => None,
+            Target::Joint(_) | Target::Reaction { .. } => None,
         }
     }
 
@@ -101,7 +107,8 @@ impl Target {
                     PointComponent::Magnitude => e[0].hypot(e[1]),
                 }
             }
-            Target::Joint(_) => f64::NAN, // joint quantities are read by the run (observe.rs)
+            // joint quantities and reactions are read by the run (observe.rs)
+            Target::Joint(_) | Target::Reaction { .. } => f64::NAN,
         }
     }
 }

@@ -469,6 +469,16 @@ fn findings(description: &Bound<'_, PyAny>) -> PyResult<Vec<(String, String)>> {
     Ok(crate::compile::plausibility::findings(&desc).into_iter().map(|w| (w.field, w.message)).collect())
 }
 
+/// What looks wrong in an output point (`crate::compile::plausibility::output_point`): the point
+/// `point` (body frame [m]) on the body named `body` of `description`, `field` naming it in the
+/// message; `None` when nothing does (or no such body: the caller's InputError says so).
+#[pyfunction]
+fn output_point_finding(description: &Bound<'_, PyAny>, body: &str, point: [f64; 2], field: &str) -> PyResult<Option<(String, String)>> {
+    let desc = read_description(description)?;
+    let Some(b) = desc.bodies.iter().position(|x| x.name == body) else { return Ok(None) };
+    Ok(crate::compile::plausibility::output_point(&desc, b, point, field).map(|w| (w.field, w.message)))
+}
+
 /// Poses given assembled by this process (one per compiled model; for tests).
 #[pyfunction]
 fn assembly_count() -> usize {
@@ -619,6 +629,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(resolve, m)?)?;
     m.add_function(wrap_pyfunction!(assembly_count, m)?)?;
     m.add_function(wrap_pyfunction!(findings, m)?)?;
+    m.add_function(wrap_pyfunction!(output_point_finding, m)?)?;
     m.add("MICROMETRE_FILM_RATIO", crate::simulate::MICROMETRE_FILM_RATIO)?;
     m.add_function(wrap_pyfunction!(check_settings, m)?)?;
     m.add("DEFAULTS", defaults(m.py())?)?;

@@ -1,5 +1,6 @@
 //! What a run observes along its accepted steps besides the recorded samples: the monitors'
-//! extremes between the output times (rust/monitor/), the work integrals of the energy balance
+//! extremes between the output times (rust/monitor/; an ideal joint's or driver's reaction from
+//! a KKT solve at each of its points, only when a monitor watches one), the work integrals of the energy balance
 //! (rust/energy.rs, docs/physics.md §10.5) and the wear books (rust/clearance/wear.rs, §12).
 //! A joint's forces are evaluated at the state's oil temperature ([`ClearanceJoint::memory_at`]).
 
@@ -9,7 +10,8 @@ use crate::energy::Powers;
 use crate::error::Result;
 use crate::integrate::DenseOutput;
 use crate::monitor::target::State;
-use crate::monitor::{golden_section, Kinematics, Quantity, Target};
+use crate::monitor::Monitor;
+use crate::monitor::{golden_section, Kinematics, PointComponent, Quantity, Target};
 
 /// The run's state inside an accepted step, read off its dense output at time `t`: positions
 /// and velocities directly, accelerations as the time derivative of the dense velocity (central
@@ -34,10 +36,10 @@ impl Kinematics for DenseState<'_> {
 }
 
 impl MechanismSystem<'_> {
-    /// Feed every monitor its error at (t, y): from q, q̇, or q̈ of the KKT solve (one solve for
-    /// all monitors that need it).
+    /// Feed every monitor its error at (t, y): from q, q̇, or q̈ and λ of the KKT solve (one
+    /// solve for all monitors that need it).
     pub(super) fn observe(&mut self, t: f64, y: &[f64]) -> Result<()> {
-        if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration) {
+        if self.monitors.iter().any(|m| m.spec.quantity == Quantity::Acceleration || m.solves()) {
             self.ws.evaluate(self.model, &self.memory, t, y)?;
         }
         for j in 0..self.monitors.len() {
@@ -49,12 +51,29 @@ impl MechanismSystem<'_> {
 
     /// Monitor `j`'s error at time `t` and state `y` with accelerations `qdd` (read only by
     /// acceleration monitors): a body target's against its reference (rust/monitor/target.rs), a
-    /// joint's quantity itself.
+    /// joint's quantity itself, a reaction from the workspace (which must hold the KKT solve at
+    /// (t, y)).
     pub(super) fn monitored_error(&self, j: usize, t: f64, y: &[f64], qdd: &[f64]) -> f64 {
         let m = &self.monitors[j];
         match m.spec.target {
             Target::Joint(c) => self.joint_value(c, m.spec.quantity, y),
+            Target::Reaction { constraint, component } => self.reaction_value(constraint, component, m.spec.quantity),
             _ => m.error(t, &State { y, qdd, nq: 3 * self.model.n_bodies() }),
+        }
+    }
+
+    /// What ideal joint or driver `k` exerts on its second body, from the workspace's last KKT
+    /// solve: its force's `component` \[N\] or (`quantity` torque) its couple \[N m\]
+    /// ([`crate::constraints::Constraint::reaction`]; the `reactions` output channel's values).
+    fn reaction_value(&self, k: usize, component: PointComponent, quantity: Quantity) -> f64 {
+        let cons = &self.model.constraints;
+        let row: usize = cons[..k].iter().map(|c| c.rows()).sum();
+        let [fx, fy, torque] = cons[k].reaction(&self.ws.kin, &self.ws.lambda[row..row + cons[k].rows()]);
+        match (quantity, component) {
+            (Quantity::Torque, _) => torque,
+            (_, PointComponent::X) => fx,
+            (_, PointComponent::Y) => fy,
+            (_, PointComponent::Magnitude) => fx.hypot(fy),
         }
     }
 
@@ -172,19 +191,29 @@ impl MechanismSystem<'_> {
         times.clear();
         times.extend((0..k).map(|i| if i + 1 == k { t1 } else { t0 + h * (i + 1) as f64 / k as f64 }));
         let at = |i: usize| times[i];
-        // A joint quantity needs the whole state; body targets only their own components.
+        // A joint quantity needs the whole state; body targets only their own components; a
+        // reaction a KKT solve at each point (one for all of them).
         let whole_state = self.monitors.iter().any(|m| m.spec.quantity.of_joint());
+        let solves = self.monitors.iter().any(Monitor::solves);
         let d = 0.25 * h / k as f64;
+        let mut result = Ok(());
         for i in 0..k - 1 {
             let t = at(i);
             if whole_state {
                 dense.eval(t, &mut s);
+            }
+            if solves {
+                if let Err(e) = self.ws.evaluate(self.model, &self.memory, t, &s) {
+                    result = Err(e);
+                    break;
+                }
             }
             let state = DenseState { dense, t, d, nq };
             for j in 0..nm {
                 let m = &self.monitors[j];
                 errors[i * nm + j] = match m.spec.target {
                     Target::Joint(c) => self.joint_value(c, m.spec.quantity, &s),
+                    Target::Reaction { constraint, component } => self.reaction_value(constraint, component, m.spec.quantity),
                     _ => m.error(t, &state),
                 };
             }
@@ -192,10 +221,9 @@ impl MechanismSystem<'_> {
         // Refine the largest interior acceleration error of each monitor with a KKT solve. Each
         // monitor keeps only its own refined value, so what one output reports does not depend
         // on which other outputs are watched; monitors that pick the same point share one solve.
-        let mut result = Ok(());
         let mut solved = usize::MAX;
         for j in 0..nm {
-            if self.monitors[j].spec.quantity != Quantity::Acceleration || self.monitors[j].spec.exact || k < 2 {
+            if result.is_err() || self.monitors[j].spec.quantity != Quantity::Acceleration || self.monitors[j].spec.exact || k < 2 {
                 continue;
             }
             let (imax, _) = (0..k - 1).fold((usize::MAX, -1.0f64), |best, i| {
@@ -219,7 +247,7 @@ impl MechanismSystem<'_> {
         // memory), otherwise one KKT solve — done last, so that the workspace still holds it
         // when the implicit methods ask for f(t1, y1) next (`Workspace::evaluate_and_keep`).
         let end_rate = if any_acc { dense.end_rate() } else { None };
-        if any_acc && end_rate.is_none() {
+        if (any_acc && end_rate.is_none()) || solves {
             result = result.and_then(|()| self.ws.evaluate_and_keep(self.model, &self.memory, t1, y1));
         }
         if result.is_ok() {
@@ -260,7 +288,7 @@ impl MechanismSystem<'_> {
                 let Some((a, b)) = self.monitors[j].search_bracket(sign) else { continue };
                 let found = golden_section(a, b, |t| {
                     dense.eval(t, &mut s);
-                    if self.monitors[j].spec.quantity == Quantity::Acceleration {
+                    if self.monitors[j].spec.quantity == Quantity::Acceleration || self.monitors[j].solves() {
                         self.ws.evaluate(self.model, &self.memory, t, &s)?;
                     }
                     Ok(sign * self.monitored_error(j, t, &s, &self.ws.qdd))

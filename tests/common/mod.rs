@@ -36,20 +36,39 @@ pub fn bench_run(method: clearsim::integrate::Method, t_end: f64, outputs: usize
 /// [t0, t_end] (4 samples a step): what `clearsim` ran on every lubricated run before the bearing
 /// summary was asked for (issue 37), kept to measure what exact monitors cost.
 pub fn film_monitors(model: &Model, t0: f64, t_end: f64) -> Vec<clearsim::monitor::MonitorSpec> {
-    use clearsim::monitor::{MonitorSpec, Quantity, Target};
-    let spec = |j, quantity| MonitorSpec {
-        target: Target::Joint(j),
-        quantity,
-        reference: None,
-        t_start: t0,
-        bin_width: t_end - t0,
-        bins: 1,
-        limit: None,
-        samples_per_step: 4,
-        exact: true,
-    };
+    use clearsim::monitor::{Quantity, Target};
     let lubricated = model.clearance.iter().enumerate().filter(|(_, c)| c.film.is_some()).map(|(j, _)| j);
-    lubricated.flat_map(|j| [spec(j, Quantity::FilmThickness), spec(j, Quantity::PowerLoss)]).collect()
+    lubricated.flat_map(|j| [exact_monitor(Target::Joint(j), Quantity::FilmThickness, t0, t_end), exact_monitor(Target::Joint(j), Quantity::PowerLoss, t0, t_end)]).collect()
+}
+
+/// An exact monitor of `quantity` of `target` over [t0, t_end] in one bin, four points a step
+/// (what `simulate(extremes=[...])` asks for).
+#[allow(dead_code)]
+pub fn exact_monitor(target: clearsim::monitor::Target, quantity: clearsim::monitor::Quantity, t0: f64, t_end: f64) -> clearsim::monitor::MonitorSpec {
+    clearsim::monitor::MonitorSpec { target, quantity, reference: None, t_start: t0, bin_width: t_end - t0, bins: 1, limit: None, samples_per_step: 4, exact: true }
+}
+
+/// Exact monitors of every ideal joint's and driver's reaction, as `simulate(extremes=[...])`
+/// makes them for its ideal joints and drivers (python/clearsim/joint_reactions.py): a revolute
+/// joint's force x, y and magnitude, a prismatic joint's also its couple, a driver's torque.
+#[allow(dead_code)]
+pub fn reaction_monitors(model: &Model, t0: f64, t_end: f64) -> Vec<clearsim::monitor::MonitorSpec> {
+    use clearsim::constraints::Constraint;
+    use clearsim::monitor::{PointComponent, Quantity, Target};
+    let spec = |constraint, quantity, component| exact_monitor(Target::Reaction { constraint, component }, quantity, t0, t_end);
+    let force = |k| [PointComponent::X, PointComponent::Y, PointComponent::Magnitude].map(|c| spec(k, Quantity::Force, c));
+    let mut out = Vec::new();
+    for (k, c) in model.constraints.iter().enumerate() {
+        match c {
+            Constraint::Driver { .. } => out.push(spec(k, Quantity::Torque, PointComponent::Magnitude)),
+            Constraint::Revolute { .. } => out.extend(force(k)),
+            Constraint::Prismatic { .. } => {
+                out.extend(force(k));
+                out.push(spec(k, Quantity::Torque, PointComponent::Magnitude));
+            }
+        }
+    }
+    out
 }
 
 /// The description in `tests/data/<name>.json`, read the way the Python layer hands it over.

@@ -128,3 +128,25 @@ def test_a_zero_load_draws_no_arrow():
     assert np.allclose(d / np.hypot(*d), np.array([-100.0, 50.0]) / np.hypot(100.0, 50.0), atol=1e-9)
     arrows, names = loads(0.02)
     assert not arrows and "press" not in names
+
+
+def test_labels_keep_off_the_point_markers():
+    """A tracked point on a clearance joint (the feeder's finger pin D and its arm's O6 bore): no
+    label — the clearance's own, a body's, the point's name — covers a point's marker, in the
+    pose drawn by Mechanism.plot and Result.plot_mechanism (before: 'D (c = 50 µm, ×…)' lay on the
+    marker of a point at D)."""
+    from clearsim.label_layout import renderer_of
+
+    path = __import__("pathlib").Path(__file__).resolve().parents[1] / "data" / "scenes" / "feeder_six_bar.toml"
+    m = load_scene(path)
+    points = {"pin": ("arm", (0.025, 0.0)), "bore": ("arm", (-0.075, 0.0)), "tip": ("arm", (0.075, -0.015))}
+    res = m.simulate(0.01, dt_out=1e-3, progress=False)
+    for fig in (m.plot(points=points), res.plot_mechanism(0.005, points=points)):
+        fig.savefig(__import__("io").BytesIO(), format="png")
+        renderer = renderer_of(fig)
+        ax = fig.axes[0]
+        markers = [ln for ln in ax.lines if ln.get_marker() == "o" and ln.get_markerfacecolor() != "none" and len(ln.get_xdata()) == 1]
+        assert len(markers) >= 3
+        texts = [t for t in ax.texts if t.get_visible() and t.get_text()]
+        covered = [(t.get_text(), k) for t in texts for k, mk in enumerate(markers) if t.get_window_extent(renderer).overlaps(mk.get_window_extent(renderer))]
+        assert not covered, covered

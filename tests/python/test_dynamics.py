@@ -277,3 +277,47 @@ def test_clearsim_sweep_writes_its_tables_figures_and_report(tmp_path):
     assert [row.split(",")[1] for row in kinds[1:]] == ["period-1", "period-2"]
     assert "0.9: period-1" in (out / "report.md").read_text()
     assert main(["sweep", str(Path(__file__).resolve().parents[2] / "scenes" / "nine_bar.toml"), "-o", str(tmp_path / "x"), "-q"]) == 2
+
+
+# ---------------------------------------------------------------------------- points as outputs
+def test_a_bifurcation_of_a_point_is_its_rigid_body_motion():
+    """The bob's point (0, −0.5), twice as far from the fixed pivot as its centroid, moves at twice
+    the centroid's velocity (v = θ̇ × r), and the pivot's own point (0, 0.5) stays at the origin."""
+    m = models.driven_pendulum(0.9)
+    kw = dict(transient_cycles=2, cycles=4, lyapunov=False, progress=False, **TIGHT)
+    body = dynamics.bifurcation(m, [0.9, 1.07], "drive.amplitude", output=("bob", "velocity", "x"), **kw)
+    tip = dynamics.bifurcation(m, [0.9, 1.07], "drive.amplitude", output=("bob", "velocity", "x"), point=(0.0, -0.5), **kw)
+    pivot = dynamics.bifurcation(m, [0.9, 1.07], "drive.amplitude", output=("bob", "displacement", "magnitude"), point=(0.0, 0.5), **kw)
+    assert tip.output == "bob(0,-0.5).x.velocity" and tip.unit == "m/s" and tip.point == (0.0, -0.5)
+    for i in range(2):
+        assert len(tip.points[i]) == 5 and np.max(np.abs(body.points[i])) > 0.1
+        np.testing.assert_allclose(tip.points[i], 2 * body.points[i], rtol=1e-9, atol=1e-12)
+        assert np.max(np.abs(pivot.points[i])) < 1e-7
+    with pytest.raises(clearsim.InputError, match=r"output.component.*magnitude"):
+        dynamics.bifurcation(m, [0.9], "drive.amplitude", output=("bob", "velocity", "theta"), point=(0.0, 0.1), **kw)
+    with pytest.raises(clearsim.InputError, match="a point lies on a body"):
+        dynamics.bifurcation(m, [0.9], "drive.amplitude", output=("pivot", "force"), point=(0.0, 0.1), **kw)
+
+
+def test_a_scene_sweep_takes_a_point_output(tmp_path):
+    """[sweep] output = { body, point, quantity, component }: clearsim sweep writes the point's
+    sections, twice the centroid's velocity (as the bifurcation above); a point off a body is an
+    error at its line."""
+    text = SCENE.read_text().replace(
+        'output = { body = "bob", quantity = "velocity", component = "theta" }', 'output = { body = "bob", point = [0.0, -0.5], quantity = "velocity", component = "x" }'
+    )
+    path = tmp_path / "pendulum.toml"
+    path.write_text(text)
+    scene = clearsim.scene.load_scene_file(path)
+    assert scene.sweep is not None and scene.sweep.point == (0.0, -0.5)
+    out = tmp_path / "sweep"
+    assert main(["sweep", str(path), "-o", str(out), "--cycles", "4", "--transient-cycles", "2", "-q"]) == 0
+    rows = np.loadtxt(out / "bifurcation_points.csv", delimiter=",", skiprows=1)
+    assert "bob(0,-0.5).x.velocity [m/s]" in (out / "bifurcation_points.csv").read_text().splitlines()[0]
+    kw = dict(transient_cycles=2, cycles=4, lyapunov=False, progress=False, **TIGHT)
+    body = dynamics.bifurcation(models.driven_pendulum(0.9), [0.9, 1.07], "drive.amplitude", output=("bob", "velocity", "x"), **kw)
+    np.testing.assert_allclose(np.sort(rows[:, -1]), np.sort(2 * np.concatenate(body.points)), rtol=1e-7, atol=1e-10)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace('body = "bob", point', 'body = "bobb", point'))
+    with pytest.raises(clearsim.InputError, match=r"bad.toml:\d+: invalid sweep.output.body = 'bobb'"):
+        clearsim.scene.load_scene_file(bad)

@@ -82,7 +82,7 @@ def test_extremes_must_be_asked_for_and_named():
     res = m.simulate(0.002, progress=False)
     with pytest.raises(clearsim.InputError, match="did not track its extremes"):
         res.extremes("slider", "acceleration", "x")
-    with pytest.raises(clearsim.InputError, match="no such body or clearance joint"):
+    with pytest.raises(clearsim.InputError, match="no such body, joint or driver"):
         m.simulate(0.002, progress=False, extremes=["slidr"])
     res = m.simulate(0.002, progress=False, extremes=True)
     with pytest.raises(clearsim.InputError, match="component"):

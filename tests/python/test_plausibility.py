@@ -181,6 +181,55 @@ def test_a_rotor_in_one_bearing_is_no_mechanism_scale():
         m.compile()
 
 
+FEEDER = Path(__file__).resolve().parents[1] / "data" / "scenes" / "feeder_six_bar.toml"
+
+
+@pytest.mark.parametrize(
+    "table, old, new, field, says",
+    [
+        ("[outputs]", 'point = [0.075, -0.015] }]', 'point = [75.0, -15.0] }]', "outputs.points[0].point = (75, -15) m", "is it given in mm?"),
+        ("[study]", "point = [0.075, -0.015]               # the finger tip", "point = [75.0, -15.0]", "[study].point = (75, -15) m", "is it given in mm?"),
+        # the finger tip's global position at the pose given, not its body-frame one
+        ("[study]", "point = [0.075, -0.015]               # the finger tip", "point = [0.0608, 0.1640]", "[study].point = (0.0608, 0.164) m",
+         "is it given in global coordinates?"),
+    ],
+    ids=["outputs-mm", "study-mm", "study-global"],
+)  # fmt: skip
+def test_an_output_point_in_mm_or_in_the_global_frame_is_named(tmp_path, table, old, new, field, says):
+    """The feeder's finger tip (0.075, −0.015) m on the arm, written in mm or as its global position:
+    a PlausibilityWarning at the point's line names the table, field and value (as a load point's)."""
+    text = FEEDER.read_text()
+    start = text.index(table)
+    text = text[:start] + text[start:].replace(old, new, 1)
+    path = tmp_path / "feeder.toml"
+    path.write_text(text)
+    line = 1 + text[: text.index(new, start)].count("\n")
+    _, found = _caught(lambda: clearsim.scene.load_scene_file(path))
+    assert len(found) == 1 and found[0].startswith(f"{path}:{line}: {field} lies") and says in found[0], found
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        clearsim.scene.load_scene_file(FEEDER)
+
+
+def test_an_output_point_of_the_python_api_is_checked():
+    """``res.point``, ``res.error(point=)``, ``simulate(extremes=[(body, point)])``,
+    ``bifurcation(point=)``: the slider-crank rod (centroid 0.11 m from the crank's pivot, its
+    joints 0.06 m away) with its slider end written in mm or as the global (0.17, 0) m warns; the
+    body-frame end (0.06, 0) m does not."""
+    m = models.slider_crank("ideal")
+    res = m.simulate(1e-3, progress=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        res.point("rod", (0.06, 0.0))
+        m.simulate(1e-4, extremes=[("rod", (0.06, 0.0))], progress=False)
+    _, found = _caught(lambda: res.point("rod", (60.0, 0.0)))
+    assert len(found) == 1 and found[0].startswith("point = (60, 0) m lies 60 m from the centroid of body 'rod'") and "in mm?" in found[0]
+    _, found = _caught(lambda: res.point("rod", (0.17, 0.0), "velocity"))
+    assert len(found) == 1 and "read as a global point it lies on the body (0.06 m from its centroid" in found[0]
+    _, found = _caught(lambda: m.simulate(1e-4, extremes=[("rod", (0.17, 0.0))], progress=False))
+    assert len(found) == 1 and found[0].startswith("extremes point = (0.17, 0) m")
+
+
 def _pumped(angle, period=None, torque: bool = False) -> clearsim.Mechanism:
     """A plunger pump's crank (walk 6) with a load table over its driver's angle."""
     m = clearsim.Mechanism(gravity=(0.0, 0.0))

@@ -192,3 +192,22 @@ def test_every_mistake_is_named_at_its_line(tmp_path, old, new, words):
     err = _error(tmp_path, old, new)
     for w in words:
         assert w in str(err), str(err)
+
+
+def test_a_parameter_takes_the_unit_of_the_fields_it_is_written_in():
+    """samples.csv heads a random [parameters] input with its unit: the feeder's link lengths and
+    pivot coordinates, written in points (``"-l5 / 2"``, ``"l6 - arm_half"``), are lengths [m]; a
+    parameter in a product of parameters or in fields of different units gets none."""
+    from clearsim.reliability.report import input_column
+    from clearsim.scene.parameters import parameter_units
+
+    path = Path(__file__).resolve().parents[1] / "data" / "scenes" / "feeder_six_bar.toml"
+    scene = clearsim.scene.load_scene_file(path)
+    assert {k: scene.parameter_units.get(k) for k in ("l5", "l6", "o6x", "r2", "arm_half")} == dict.fromkeys(("l5", "l6", "o6x", "r2", "arm_half"), "m")
+    assert input_column("l5", scene.parameter_units) == "l5 [m]" and input_column("D.clearance") == "D.clearance [m]" and input_column("k") == "k"
+    data = {"parameters": {"a": 1.0, "b": 2.0, "w": 3.0, "m": 1.0},
+            "body": [{"position": ["a * b", "2 * a"], "mass": "m", "inertia": "m / 12"}], "driver": [{"omega": "w", "angle0": "-w"}]}  # fmt: skip
+    assert parameter_units(data, {"mass": "kg", "inertia": "kg m^2", "omega": "rad/s", "angle0": "rad"}) == {}
+    data["body"][0]["position"] = ["-a / 2", "2 * b + a"]
+    data["driver"][0] = {"omega": "w"}
+    assert parameter_units(data, {"mass": "kg", "omega": "rad/s"}) == {"a": "m", "b": "m", "w": "rad/s", "m": "kg"}

@@ -18,6 +18,7 @@ import numpy as np
 from .. import batch
 from ..csvfile import write_columns, write_rows
 from ..errors import InputError, check_choice
+from ..points import check_point_output, point_component, point_name
 from ..schema import ATOL, BODY_QUANTITIES, RTOL, COMPONENTS, body_unit
 from .classify import TOL, Classification, classify, features
 from .lyapunov import estimate, shadow_spec
@@ -58,6 +59,8 @@ class Bifurcation:
     cycles: int
     wall_time: float
     sections: List[Any] = field(default_factory=list, repr=False)
+    #: The output's point on its body (body frame [m]), or None.
+    point: Optional[Tuple[float, float]] = None
 
     def counts(self) -> Dict[str, int]:
         """How many values of each kind."""
@@ -95,12 +98,23 @@ class Bifurcation:
         return [a, b]
 
 
-def _reader(output: OutputSpec, desc: Dict[str, Any], body_names: Sequence[str], joint_names: Sequence[str]) -> Tuple[Callable[[Any], np.ndarray], str, str, bool, bool]:
+def _reader(
+    output: OutputSpec, desc: Dict[str, Any], body_names: Sequence[str], joint_names: Sequence[str], point: Optional[Sequence[float]] = None
+) -> Tuple[Callable[[Any], np.ndarray], str, str, bool, bool]:
     """A function of a section result giving the output, its name and unit, and whether it needs
-    the accelerations and the joints channels."""
+    the accelerations and the joints channels; with ``point`` (body frame [m]) the output is that
+    point's on the body (component ``"x"``, ``"y"`` or ``"magnitude"``, :meth:`clearsim.Result.point`)."""
     if not isinstance(output, (tuple, list)) or len(output) not in (2, 3):
         raise InputError(f"invalid output = {output!r}: give (body, quantity, component) or (clearance joint, quantity)", field="output", value=output)
     name = output[0]
+    if point is not None:
+        if len(output) != 3:
+            raise InputError(f"invalid point = {point!r}: a point lies on a body: give output=(body, quantity, component)", field="point", value=point)
+        _, quantity, component = output
+        check_choice("output quantity", quantity, BODY_QUANTITIES)
+        xy = check_point_output(name, point, component, body_names, "output")
+        read_point = lambda sec: point_component(sec.point(name, xy, quantity), component)  # noqa: E731
+        return read_point, f"{point_name(name, xy)}.{component}.{quantity}", body_unit(quantity, "x"), quantity == "acceleration", False
     if len(output) == 3:
         _, quantity, component = output
         if name not in body_names:
@@ -144,6 +158,7 @@ def bifurcation(
     transient_cycles: int = 50,
     cycles: int = 100,
     output: OutputSpec,
+    point: Optional[Sequence[float]] = None,
     period: Union[None, float, Callable[[float], float]] = None,
     phase: float = 0.0,
     lyapunov: Union[bool, str] = "auto",
@@ -162,7 +177,10 @@ def bifurcation(
     its sections at t_n = (n + ``phase``/2π) T (phase [rad]) after the transient give the points
     of ``output``: ``(body, quantity, component)`` (``("slider", "acceleration", "x")``) or
     ``(clearance joint, quantity)`` with quantity ``"eccentricity"`` (ratio e/c),
-    ``"eccentricity_x"``/``"_y"`` [m], ``"force"`` or ``"contact_force"`` [N].
+    ``"eccentricity_x"``/``"_y"`` [m], ``"force"`` or ``"contact_force"`` [N]; with ``point=(x, y)``
+    (body frame [m], as ``Output(body=, point=, component=)`` names one) the body output is that
+    point's, component ``"x"``, ``"y"`` or ``"magnitude"`` (``("coupler", "velocity", "x"),
+    point=(0.1, 0.02)``: m, m/s, m/s²).
 
     ``lyapunov``: ``"auto"`` (default) runs a shadow (:func:`clearsim.dynamics.lyapunov`) over the
     same cycles for the values that are not periodic, to tell chaos from a torus (unless the
@@ -184,7 +202,9 @@ def bifurcation(
     start = time.perf_counter()
     mechs = _mechanisms(build, vals, parameter)
     first = mechs[0]
-    read, out_name, unit, accel, joints = _reader(output, first.description(), first.body_names, first.clearance_joint_names)
+    read, out_name, unit, accel, joints = _reader(output, first.description(), first.body_names, first.clearance_joint_names, point)
+    if point is not None:  # in mm or in the global frame: a PlausibilityWarning
+        first.warn_output_point(output[0], point, "point")
     periods = np.array([float(period(float(v))) if callable(period) else (float(period) if period is not None else forcing_period(m)) for v, m in zip(vals, mechs)])
     if not np.all(periods > 0):
         raise InputError(f"invalid period: {periods.min()!r} s; periods must be positive", field="period", value=float(periods.min()))
@@ -273,7 +293,7 @@ def bifurcation(
                 kinds[i], period_k[i], how[i] = c.kind, c.period, c.how
     return Bifurcation(
         parameter, vals, points, kinds, period_k, lam, lam_iv, how, failures, out_name, unit, periods,
-        int(transient_cycles), int(cycles), time.perf_counter() - start, sections,
+        int(transient_cycles), int(cycles), time.perf_counter() - start, sections, None if point is None else (float(point[0]), float(point[1])),
     )  # fmt: skip
 
 

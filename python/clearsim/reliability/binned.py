@@ -21,7 +21,9 @@ import numpy as np
 from .. import display
 from ..errors import InputError, SimulationError, check_choice, check_positive
 from ..mechanism import Mechanism
-from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, RTOL
+from ..plausibility import output_point_findings, warn_new
+from ..points import check_point, raw_point_error
+from ..schema import ATOL, BODY_QUANTITY_UNITS, COMPONENTS, POINT_MONITOR_COMPONENTS, RTOL
 from .bridge import check_on_failure
 from .distributions import Distribution, sample_inputs
 from .estimates import Estimate, MonteCarloBins, compare_fosm_mc, failure_reasons, wilson_interval
@@ -155,6 +157,7 @@ def monte_carlo(
     skip_cycles: float = 0.0,
     body: Optional[str] = None,
     component: Optional[str] = None,
+    point: Optional[Sequence[float]] = None,
     allowable: Optional[Mapping[str, Tuple[float, float]]] = None,
     quantities: Optional[Sequence[str]] = None,
     on_failure: str = "fail",
@@ -194,9 +197,11 @@ def monte_carlo(
         (start-up transient) are not analysed; the window opens at the first bin edge of the
         crank angle |ω| t at or after them, and bins are crank angles |ω| t modulo 360° with t
         from t = 0, as :meth:`Study.fosm <clearsim.reliability.Study.fosm>`'s.
-    body, component:
+    body, component, point:
         The output analysed (required, no default): a body's ``x``, ``y`` or ``theta``
-        error against the reference.
+        error against the reference; with ``point=(x, y)`` (body frame [m], as
+        ``Output(body=, point=, component=)``) that point's on the body, component ``x``, ``y``
+        or ``magnitude`` (|P − P_ref|).
     reference:
         What the errors are measured against: ``"own_ideal"`` (default: each sample's own
         mechanism with ideal joints, what the clearances add) or ``"nominal"`` (the nominal
@@ -244,7 +249,11 @@ def monte_carlo(
         raise InputError(f"invalid n = {n!r}: must be a positive integer", field="n", value=n)
     if body is None:
         raise InputError("missing body: name the body whose error is analysed (there is no default)", field="body", value=None)
-    check_choice("component", component, COMPONENTS, "(there is no default)")
+    if point is None:
+        check_choice("component", component, COMPONENTS, "(there is no default)")
+    else:
+        check_choice("component", component, POINT_MONITOR_COMPONENTS, "(a point's: there is no default)")
+        point = check_point(point, "point")
     check_on_failure(on_failure)
     if not allowable:
         raise InputError(
@@ -283,7 +292,7 @@ def monte_carlo(
     if max_seconds is not None:
         budget["max_seconds"] = max_seconds
     study = Study(
-        build, distributions, [Output(body=body, component=component, quantity=q) for q in quantities], [Limit.above(limits[q][1]) for q in quantities],
+        build, distributions, [Output(body=body, component=component, quantity=q, point=point) for q in quantities], [Limit.above(limits[q][1]) for q in quantities],
         omega=omega, cycles=cycles, skip_cycles=skip_cycles, bin_width=bin_width, integrator=integrator, rtol=rtol, atol=atol,
         reference=reference, executor=executor, threads=threads, chunk_size=chunk_size, progress=progress, **budget,
     )  # fmt: skip
@@ -294,10 +303,18 @@ def monte_carlo(
     keep = _kept(keep_errors, n)
     outputs = ["states", "accelerations"] if "acceleration" in quantities else ["states"]
 
+    # A point's body, by its index in the mechanism (for the kept error traces).
+    if point is not None:  # in mm or in the global frame: a PlausibilityWarning
+        warn_new(output_point_findings(study._nominal_run()[0], str(body), point, "point"), set())
+    names = study._nominal_run()[1] if point is not None and keep else []
+    on_body = names.index(body) if body in names else 0  # an unknown body: the study's InputError
+
     def errors_of(k: int, trace: Dict[str, Any]) -> Tuple[int, np.ndarray, List[np.ndarray]]:
         """A kept sample's error rows and crank angles (its full run is not kept)."""
         actual, ideal = trace["sample"], trace["ideal"]
         col = trace["columns"][0]
+        if point is not None:
+            return k, crank_angle_at(actual["t"], omegas[k]), [raw_point_error(actual, ideal, on_body, point, q, str(component)) for q in quantities]
         return k, crank_angle_at(actual["t"], omegas[k]), [actual[QUANTITIES[q]][:, col] - ideal[QUANTITIES[q]][:, col] for q in quantities]
 
     ev, traces = study.run_samples(

@@ -14,7 +14,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from ..errors import InputError, check_choice, check_finite, check_positive
-from ..points import check_point
+from ..points import check_point, point_name
 from ..schema import BODY_QUANTITIES, COMPONENTS, JOINT_QUANTITIES, JOINT_QUANTITY_UNITS, POINT_MONITOR_COMPONENTS, body_unit
 
 __all__ = ["BODY_QUANTITIES", "JOINT_QUANTITIES", "Output", "Limit", "Modes", "as_limit"]
@@ -108,7 +108,7 @@ class Output:
         if self.joint is not None:
             return f"{self.joint}.{self.quantity}"
         if self.point is not None:
-            return f"{self.body}({self.point[0]:g},{self.point[1]:g}).{self.component}.{self.quantity}"
+            return f"{point_name(str(self.body), self.point)}.{self.component}.{self.quantity}"
         return f"{self.body}.{self.component}.{self.quantity}"
 
     @property

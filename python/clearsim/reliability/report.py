@@ -8,7 +8,7 @@ import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 from statistics import NormalDist
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -226,7 +226,7 @@ def run_study(
             head = [column_name("peak", study.output.unit), column_name("first_passage_time", "s")]
         else:
             head = [column_name(o.name, o.unit) for o in study.outputs] + [column_name(f"{o.name}.first_passage_time", "s") for o in study.outputs]
-        files.append(_write(out_dir / "samples.csv", [input_column(k) for k in names] + head, [[mc.inputs[k][i] for k in names] + list(peaks[i]) + list(first[i]) for i in range(peaks.shape[0])]))
+        files.append(_write(out_dir / "samples.csv", [input_column(k, getattr(scene, "parameter_units", {})) for k in names] + head, [[mc.inputs[k][i] for k in names] + list(peaks[i]) + list(first[i]) for i in range(peaks.shape[0])]))
     if "fosm" in found:
         # One output: its bins, mu_s [unit]; several (a system, or [reliability]'s quantities): a row
         # per output and bin, the unit in an error_unit column as in clearsim paper's tables.
@@ -255,10 +255,12 @@ def _write(path: Path, header: Sequence[str], rows: Sequence[Sequence[Any]]) -> 
 #: path alone. (Belongs with the other units in clearsim.schema.)
 
 
-def input_column(path: str) -> str:
+def input_column(path: str, parameter_units: Mapping[str, str] = {}) -> str:
     """samples.csv's header of a random input: ``B.clearance [m]`` (:data:`clearsim.schema.INPUT_UNITS`);
-    a ``[parameters]`` name by itself."""
-    return column_name(path, INPUT_UNITS.get(path.rpartition(".")[2]) if "." in path else None)  # a [parameters] name has no unit to look up
+    a ``[parameters]`` name with the unit of the fields it is written in (``l5 [m]``,
+    ``Scene.parameter_units``), or by itself where none is clear."""
+    unit = INPUT_UNITS.get(path.rpartition(".")[2]) if "." in path else parameter_units.get(path)
+    return column_name(path, unit)
 
 
 def plot_study(study: Any, found: Dict[str, Any], path: Path) -> Path:

@@ -24,7 +24,8 @@ from .builder import _Builder
 from .study import STUDY_KEYS, StudySettings, parse_study, study_of
 from .sweep import SWEEP_KEYS, SweepSettings, parse_sweep
 from .settings import _CHANNEL_OF, ERROR_QUANTITIES, OutputSettings, SimulationSettings, _drive_speed, _outputs, _simulation
-from .parameters import read_parameters
+from ..schema import INPUT_UNITS
+from .parameters import parameter_units, read_parameters
 from .toml_reader import Source, Table, read_toml
 
 PathLike = Union[str, Path]
@@ -73,6 +74,9 @@ class Scene:
     path: Optional[Path] = None
     #: The values of the ``[parameters]`` table (named numbers the scene's fields may use).
     parameters: Dict[str, float] = field(default_factory=dict)
+    #: The unit of each parameter, from the fields that use it (``"m"`` for a length;
+    #: :func:`clearsim.scene.parameters.parameter_units`; absent where none is clear).
+    parameter_units: Dict[str, str] = field(default_factory=dict)
     _ideal: Optional[Mechanism] = field(default=None, repr=False, compare=False)
     #: ``rebuild({parameter: value})``: the mechanism with those parameters changed (a
     #: ``[[study.input]]`` may randomise a parameter).
@@ -117,7 +121,8 @@ class Scene:
     def run(self, ideal: Optional[bool] = None, progress: bool = False) -> SceneRun:
         """Run the scene: the ideal mechanism first (if ``ideal``, default from ``[outputs]``,
         or if ``[reliability]`` names a body), then the mechanism (with its bearing summary,
-        ``bearings=True``, which the run's summary prints); errors; the FOSM reliability
+        ``bearings=True``, and with ``[outputs] reactions`` its joints' and drivers' peak
+        reactions tracked at every step, ``extremes``, which the run's summary prints); errors; the FOSM reliability
         of ``[reliability]`` from the monitored nominal run (:func:`~clearsim.scene.alias.scene_fosm`).
 
         A :class:`SimulationError` of the clearance run is kept in ``SceneRun.failure`` with
@@ -133,8 +138,11 @@ class Scene:
         desc = self.path.stem if self.path is not None else "clearsim"
         for label, mech in _progress(jobs, progress, desc=desc):
             try:
-                # The run's summary prints the bearing summary (clearsim run): ask for it.
-                results[label] = mech.simulate(self.simulation.t_end, progress=progress, bearings=label != "ideal", **self.simulation.kwargs())
+                # The run's summary prints the bearing summary and, with [outputs] reactions, the
+                # peak joint forces and driver torques (clearsim run): ask for them, tracked.
+                tracked = label != "ideal"
+                peaks = mech.clearance_joint_names + [n for n, _ in mech.held_reactions()] if tracked and self.outputs.reactions else []
+                results[label] = mech.simulate(self.simulation.t_end, progress=progress, bearings=tracked, extremes=peaks or False, **self.simulation.kwargs())
             except SimulationError as err:
                 if label == "ideal" or err.result is None:
                     raise
@@ -225,7 +233,8 @@ def load_scene_file(path: PathLike) -> Scene:
         assert table is not None
         sweep = parse_sweep(table, mech)
     return Scene(mech, sim, outputs, reliability, study=study, sweep=sweep, name=name, description=description, path=path,
-                 parameters=dict(src.parameters), _ideal=mech.idealized(), _rebuild=partial(_rebuilt, src, data))  # fmt: skip
+                 parameters=dict(src.parameters), parameter_units=parameter_units(data, INPUT_UNITS), _ideal=mech.idealized(),
+                 _rebuild=partial(_rebuilt, src, data))  # fmt: skip
 
 
 def _located_build(src: Source, data: Dict[str, Any], overrides: Optional[Mapping[str, float]] = None) -> Tuple[_Builder, Mechanism]:

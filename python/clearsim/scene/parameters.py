@@ -27,7 +27,11 @@ import math
 import re
 from typing import Any, Callable, Dict, List, Mapping, Optional
 
-__all__ = ["ExpressionError", "FUNCTIONS", "CONSTANTS", "NAME", "evaluate", "resolve", "read_parameters"]
+__all__ = ["ExpressionError", "FUNCTIONS", "CONSTANTS", "NAME", "evaluate", "resolve", "read_parameters", "parameter_units"]
+
+#: Fields of a scene that hold lengths or points [m] (their names in the scene's tables), besides
+#: :data:`clearsim.schema.INPUT_UNITS`: what a parameter written in them measures.
+LENGTH_FIELDS = ("points", "point", "position", "ends", "bearing_point", "journal_point", "point_a", "point_b", "offset", "origin")
 
 #: The functions an expression may call, by name.
 FUNCTIONS: Dict[str, Callable[..., float]] = {
@@ -164,6 +168,65 @@ class _Lazy(Mapping[str, float]):
 
     def __len__(self) -> int:
         return len(self.defs)
+
+
+def _scaled(node: ast.AST) -> List[str]:
+    """The parameter names of an expression that is a sum of parameters each times or over a
+    pure number (``-r2 / 2``, ``l6 - arm_half``: the parameters share the field's unit), or
+    ``["?"]`` if it is anything else (a product of parameters, a function)."""
+    if isinstance(node, ast.Expression):
+        return _scaled(node.body)
+    if isinstance(node, ast.Name):
+        return [node.id] if node.id not in CONSTANTS else []
+    if isinstance(node, ast.Constant):
+        return []
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.UAdd, ast.USub)):
+        return _scaled(node.operand)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Add, ast.Sub)):
+        return _scaled(node.left) + _scaled(node.right)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, (ast.Mult, ast.Div)):
+        def pure(n: ast.AST) -> bool:
+            return not any(isinstance(x, ast.Name) and x.id not in CONSTANTS for x in ast.walk(n))
+
+        if pure(node.right):  # p * 2, p / 2
+            return _scaled(node.left)
+        if isinstance(node.op, ast.Mult) and pure(node.left):  # 2 * p
+            return _scaled(node.right)
+    return ["?"]
+
+
+def parameter_units(data: Mapping[str, Any], units: Mapping[str, str]) -> Dict[str, str]:
+    """The unit of each ``[parameters]`` name, from the fields that use it (a scene's raw tables
+    ``data``): the field's unit (``units`` by field name, or m for :data:`LENGTH_FIELDS`) where
+    every field of a known unit that uses it has that unit and uses it scaled by numbers only
+    (``"-l5 / 2"``, ``"l6 - arm_half"``); none where a field uses it otherwise (``"r * sin(a)"``)."""
+    names = set((data.get("parameters") or {}).keys())
+    found: Dict[str, set] = {}
+
+    def walk(v: Any, key: str) -> None:
+        if isinstance(v, dict):
+            for k, item in v.items():
+                if k != "parameters" or key:
+                    walk(item, str(k))
+        elif isinstance(v, list):
+            for item in v:
+                walk(item, key)
+        elif isinstance(v, str) and key:
+            try:
+                used = _scaled(ast.parse(v, mode="eval"))
+            except SyntaxError:
+                return
+            unit = "m" if key in LENGTH_FIELDS else units.get(key)
+            if "?" in used:  # anything else (a product of parameters, a function): no unit for its names
+                used, unit = [x.id for x in ast.walk(ast.parse(v, mode="eval")) if isinstance(x, ast.Name)], None
+            elif unit is None:  # a field of no known unit (a study input's mean, its parameter's name) says nothing
+                return
+            for n in used:
+                if n in names:
+                    found.setdefault(n, set()).add(unit)
+
+    walk({k: v for k, v in data.items() if k != "parameters"}, "")
+    return {n: next(iter(u)) for n, u in found.items() if len(u) == 1 and None not in u}
 
 
 def read_parameters(top: Any, overrides: Optional[Mapping[str, float]] = None) -> Dict[str, float]:

@@ -192,6 +192,8 @@ def _points(t: Table, m: Mechanism) -> List[TrackedPoint]:
                 raise entry.error("point", err.reason, xy) from None
         except InputError as err:
             raise _at_inline_entry(t, k, err) from None
+        # A point in mm or in the global frame: a warning located at its line.
+        m.warn_output_point(body, xy, dotted_key(entry.where, "point"), lambda msg: str(_at_inline_entry(t, k, entry.error("point", msg))))
         out.append(TrackedPoint(name, body, xy))
     return out
 

@@ -148,6 +148,8 @@ def _output(t: Any, mech: Any, where: str) -> Tuple[Output, Limit]:
         point = tuple(t.numbers("point", length=2)) if "point" in t else None
         component = t.string("component", choices=POINT_MONITOR_COMPONENTS if point is not None else COMPONENTS)
         output = Output(body=body, component=component, quantity=t.string("quantity", choices=BODY_QUANTITIES), point=point)
+        if point is not None:  # in mm or in the global frame: a warning located at its line
+            mech.warn_output_point(body, point, f"{where}.point", lambda msg: str(t.error("point", msg)))
     side = t.string("side", "below" if output.quantity == "film_thickness" else "above", choices=SIDES)
     if "limit" not in t:
         what = "largest acceptable" if side == "above" else "smallest acceptable"

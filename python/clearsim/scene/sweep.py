@@ -7,6 +7,8 @@ of the mechanism (``clearsim sweep``; :func:`clearsim.dynamics.bifurcation`).
     parameter = "crank-drive.omega"    # element.field of the mechanism, SI units
     values = { start = 100.0, stop = 600.0, count = 200 }   # or a list [v1, v2, ...]
     output = { body = "slider", quantity = "acceleration", component = "x" }
+    # output = { body = "coupler", point = [0.1, 0.02], quantity = "velocity", component = "x" }
+    #                                  # a point's on the body (body frame [m]): x | y | magnitude
     # output = { joint = "rod-slider", quantity = "eccentricity" }
     #                                  # eccentricity (e/c) | eccentricity_x | eccentricity_y [m]
     #                                  #   | force | contact_force [N]
@@ -30,12 +32,13 @@ import numpy as np
 
 from ..errors import InputError
 from ..mechanism import Mechanism
+from ..points import check_point_output
 from ..schema import INPUT_UNITS
 from .toml_reader import Table
 
 SWEEP_KEYS = ("parameter", "values", "output", "transient_cycles", "cycles", "period", "phase", "lyapunov", "tol", "label")
 _VALUE_KEYS = ("start", "stop", "count")
-_OUTPUT_KEYS = ("body", "joint", "quantity", "component")
+_OUTPUT_KEYS = ("body", "point", "joint", "quantity", "component")
 
 
 @dataclass(frozen=True)
@@ -46,6 +49,8 @@ class SweepSettings:
     values: List[float]
     output: Union[Tuple[str, str, str], Tuple[str, str]]
     transient_cycles: int = 20
+    #: The output's point on its body (body frame [m]; ``output.point``), or None.
+    point: Optional[Tuple[float, float]] = None
     cycles: int = 100
     period: Optional[float] = None
     phase: float = 0.0
@@ -85,9 +90,17 @@ def parse_sweep(t: Table, mechanism: Mechanism) -> SweepSettings:
     if ("body" in out) == ("joint" in out):
         raise out.error(None, "invalid sweep.output: give body (with quantity and component) or joint (with quantity)")
     output: Union[Tuple[str, str, str], Tuple[str, str]]
+    point: Optional[Tuple[float, float]] = None
     if "body" in out:
         output = (out.string("body"), out.string("quantity"), out.string("component"))
+        if "point" in out:
+            try:
+                point = check_point_output(output[0], out.numbers("point", length=2), output[2], mechanism.body_names, "sweep.output")
+            except InputError as err:
+                raise out.error(str(err.field).rsplit(".", 1)[-1], err.reason, err.value) from None
     else:
+        if "point" in out:
+            raise out.error("point", "invalid sweep.output.point: a point lies on a body (give body, point, quantity and component)")
         if "component" in out:
             raise out.error("component", "invalid sweep.output.component: a joint output has none (eccentricity_x, eccentricity_y for its parts)")
         output = (out.string("joint"), out.string("quantity"))
@@ -97,7 +110,7 @@ def parse_sweep(t: Table, mechanism: Mechanism) -> SweepSettings:
     return SweepSettings(
         parameter, values, output, transient_cycles=t.integer("transient_cycles", 20), cycles=t.integer("cycles", 100),
         period=t.number("period", None), phase=t.number("phase", 0.0), lyapunov=lyap, tol=t.number("tol", 1e-3),
-        label=t.string("label", ""),
+        label=t.string("label", ""), point=point,
     )  # fmt: skip
 
 
