@@ -264,3 +264,22 @@ def test_a_load_table_over_a_crank_angle_in_degrees_is_named():
 
         _pumped([0.0, math.pi, math.pi + 0.17, 2 * math.pi - 0.17, 2 * math.pi], 2 * math.pi).compile()
         _pumped([0.0, 10 * math.pi, 20 * math.pi]).compile()  # a run-up over ten turns, in radians
+
+
+def test_a_study_output_point_in_mm_warns() -> None:
+    """``rel.Output(point=)`` in a Python Study is checked like the scene's ``[study] point``: a
+    point 100 m from a 0.17 m slider-crank's rod is named, with its field, before the samples."""
+    import warnings
+
+    from clearsim import models
+    from clearsim import reliability as rel
+
+    def build(c: float) -> clearsim.Mechanism:
+        return models.slider_crank("dry", clearance=c)
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        study = rel.Study(build, {"c": rel.Normal(1e-4, 1e-5)}, rel.Output(body="rod", point=(100.0, 0.0), component="x"), limit=1e-3, cycles=0.25, progress=False)
+        study.monte_carlo(2, seed=1)
+    found = [str(w.message) for w in caught if "Output.point" in str(w.message)]
+    assert len(found) == 1 and "mm" in found[0] and "'rod'" in found[0], found

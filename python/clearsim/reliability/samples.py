@@ -132,6 +132,9 @@ class SampleLoop:
         an AssemblyError naming it), on the first mechanism the study builds."""
         if not self._assembly_checked:
             m.check_assembly(t0)
+            for o in self.outputs:  # an output point in mm or in the global frame warns, once
+                if getattr(o, "point", None) is not None and o.body is not None:
+                    m.warn_output_point(o.body, o.point, "Output.point")
             self._assembly_checked = True
 
     def _nominal_run(self) -> Tuple[Dict[str, Any], List[str]]:
