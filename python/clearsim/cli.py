@@ -576,7 +576,7 @@ def build_parser() -> argparse.ArgumentParser:
     rel.add_argument("scene", metavar="SCENE.toml", help="scene file with a [study] table, or [reliability] (its short form: FOSM) (format: python -m pydoc clearsim.scene)")
     rel.add_argument("-o", "--output", metavar="OUTDIR", help="output directory (default clearsim-<scene>-reliability)")
     rel.add_argument("--methods", metavar="LIST", help="comma-separated, instead of the scene's: monte_carlo,form,importance_sampling,subset,sobol,fosm,ak_mcs,ak_is")
-    rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / Sobol base size instead of the scene's")
+    rel.add_argument("--samples", type=_positive_int, metavar="N", help="Monte Carlo samples / subset runs per level / Sobol base size instead of the scene's")
     rel.add_argument(
         "--reference", choices=REFERENCES, help="what body and point errors are measured against, instead of the scene's [study] reference: "
         "own_ideal (each sample's ideal twin: what the clearances add) or nominal (the nominal design's ideal motion: every tolerance counts)",

@@ -100,3 +100,22 @@ def test_the_study_figure_has_no_overlapping_tick_labels(tmp_path: Path, monkeyp
     plot_study(study, est, tmp_path / "reliability.png")
     (fig,) = drawn
     assert _overlapping_tick_labels(fig) == []
+
+
+def test_a_scenes_samples_size_subset_levels() -> None:
+    """``samples`` in a scene's ``[study]`` is subset simulation's runs per level too (the walk's
+    pump ran 1 000 a level whatever ``samples`` said, with no key to change it)."""
+    from types import SimpleNamespace
+
+    from clearsim.reliability.report import METHOD_RUNNERS, Run
+
+    asked = {}
+
+    def subset(**kw: float) -> SimpleNamespace:
+        asked.update(kw)
+        return SimpleNamespace(pf=0.1, interval=(0.05, 0.15), cov=0.2, n_runs=3 * kw["n_per_level"], wall_time=1.0)
+
+    study = SimpleNamespace(subset=subset, outputs=["slider.x"], mode_names=["slider.x"])
+    run = Run(study=study, settings=SimpleNamespace(seed=0), n=200, echo=lambda *a: None)
+    METHOD_RUNNERS["subset"](run)
+    assert asked["n_per_level"] == 200 and run.rows[0]["runs"] == 600

@@ -91,7 +91,8 @@ def _importance_sampling(r: Run) -> None:
 
 
 def _subset(r: Run) -> None:
-    r.found["subset"] = res = r.study.subset(seed=r.settings.seed)
+    # The scene's `samples` is the runs per level here (it sizes Monte Carlo and Sobol alike).
+    r.found["subset"] = res = r.study.subset(seed=r.settings.seed, n_per_level=r.n)
     r.row("subset", res)
 
 

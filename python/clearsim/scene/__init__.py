@@ -182,7 +182,7 @@ centroid, at angle 0); points on ``"ground"`` (the fixed frame) are global::
     methods = ["form", "importance_sampling"]   # of monte_carlo, form, importance_sampling,
                                      #   subset, sobol, fosm, ak_mcs, ak_is (max_runs = 150:
                                      #   their budget); [study.life]: p_f against cycles
-    samples = 1000                   # Monte Carlo samples; Sobol base size
+    samples = 1000                   # Monte Carlo samples; subset runs per level; Sobol base size
     cov = 0.1                        # importance sampling's target coefficient of variation
     seed = 0
     # bin_width = 18.0               # deg: FOSM's crank-angle bins (methods = [..., "fosm"])

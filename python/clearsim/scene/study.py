@@ -24,7 +24,8 @@ system), and the methods to run.
                                        # of monte_carlo, form, importance_sampling, subset, sobol,
                                        #   fosm, ak_mcs, ak_is (active-learning Kriging)
     # max_runs = 150                   # ak_mcs / ak_is: most model runs (AK-IS: FORM's included)
-    samples = 1000                     # monte_carlo samples; Sobol base size (× (d + 2) runs)
+    samples = 1000                     # monte_carlo samples; subset runs per level; Sobol base
+                                       #   size (× (d + 2) runs)
     cov = 0.1                          # importance sampling target coefficient of variation
     seed = 0
     # sobol_method = "saltelli"        # saltelli (n × (d + 2) runs) | pce (polynomial chaos, n runs)
