@@ -6,6 +6,7 @@ mechanism with each point's path). :mod:`clearsim.cli` calls these."""
 from __future__ import annotations
 
 import math
+import textwrap
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
@@ -92,7 +93,11 @@ def points_figure(result: Result, path: Path, title: str, magnify: Optional[floa
     from . import plots
 
     fig = result.plot_mechanism(float(result.t[0]), magnify=magnify, trace=True)
-    fig.axes[0].set_title(f"{title}: paths of {', '.join(p.name for p in result.tracked_points)} over t ∈ [{result.t[0]:.4g}, {result.t[-1]:.4g}] s", fontsize=9)
+    text = f"{title}: paths of {', '.join(p.name for p in result.tracked_points)} over t ∈ [{result.t[0]:.4g}, {result.t[-1]:.4g}] s"
+    # On as many lines as fit above the axes (~0.6 em a character at 9 pt, the axes ~70 % of the
+    # figure): one line cut a long scene name off at both edges.
+    chars = max(16, int(0.7 * fig.get_figwidth() * 72.0 / (0.6 * 9)))
+    fig.axes[0].set_title(textwrap.fill(text, chars), fontsize=9)
     return plots.save(fig, path)
 
 

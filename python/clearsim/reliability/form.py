@@ -128,7 +128,10 @@ class FormResult:
     def alpha(self) -> np.ndarray:
         """The unit normal α = −∇g/|∇g| at the design point (u* = β α; the linearised margin is
         β − α·u)."""
-        return self.design_point_u / self.beta if self.beta != 0 else np.zeros_like(self.design_point_u)
+        # u*/|u*| with β's sign, not u*/β: β carries the off-surface correction g/|∇g| (a point
+        # accepted at the noise level), so u*/β was not a unit vector and ρ = α_i·α_j left [−1, 1].
+        norm = float(np.linalg.norm(self.design_point_u))
+        return self.design_point_u * (math.copysign(1.0, self.beta) / norm) if norm > 0 and self.beta != 0 else np.zeros_like(self.design_point_u)
 
 
 def limit_state_noise(model: ModelLike, u0: np.ndarray, on_failure: str = "fail", seed: int = 0) -> float:
@@ -249,7 +252,7 @@ def _mirrored(
     p_first = float(special.ndtr(-beta))
     if float(special.ndtr(-t)) < MIRROR_SHARE * p_first:
         return None
-    alpha = u1 / beta
+    alpha = first.alpha
     try:
         second, _ = _search(model, -t * alpha, step, max_iterations, on_failure, tolerance)  # its own noise: the other side may be rougher
     except ReliabilityError as err:
