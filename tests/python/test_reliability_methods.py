@@ -293,3 +293,19 @@ def test_form_of_a_series_system_with_a_mode_that_never_fails():
     assert res.modes[1].beta == 37.0 and res.modes[1].pf < 1e-299
     assert res.modes[0].beta == pytest.approx(-0.0986 / math.hypot(0.111, 0.0963), rel=1e-3)
     assert res.pf == pytest.approx(res.modes[0].pf, rel=1e-9)
+
+
+def test_form_alpha_is_a_unit_vector_off_the_surface() -> None:
+    """α = u*/|u*| (β's sign): β carries the off-surface correction g/|∇g| of a point accepted at
+    the noise level, so u*/β is no unit vector and series correlations α_i·α_j left [−1, 1]
+    (the feeder's FORM report showed ρ₁₁ = 1.175, ρ₁₂ = −1.036)."""
+    import numpy as np
+
+    from clearsim.reliability.form import FormResult
+
+    u = np.array([3.695, 0.4, -0.2])
+    r = FormResult(beta=3.404, pf=3.3e-4, design_point={}, design_point_u=u, importance={}, n_runs=1, wall_time=0.0)
+    assert np.linalg.norm(r.alpha) == pytest.approx(1.0, abs=1e-14)
+    assert np.allclose(r.alpha, u / np.linalg.norm(u))
+    r_neg = FormResult(beta=-1.0, pf=0.84, design_point={}, design_point_u=u, importance={}, n_runs=1, wall_time=0.0)
+    assert np.allclose(r_neg.alpha, -u / np.linalg.norm(u))
