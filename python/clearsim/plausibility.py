@@ -17,7 +17,7 @@ import sys
 import warnings
 from typing import Any, Dict, List, Optional, Sequence, Set, Tuple
 
-from . import _core
+from ._core import output_point_finding
 from .errors import PlausibilityWarning
 from .joints import MICROMETRE_FILM_RATIO
 
@@ -70,7 +70,7 @@ def output_point_findings(description: Dict[str, Any], body: str, point: Sequenc
     """What looks wrong in an output point (``point`` [m] on ``body`` of ``description``, named
     ``field``): in mm or in the global frame, by the core's rule against the mechanism's size
     (``rust/compile/plausibility.rs``, ``output_point``: as a load point is checked)."""
-    found = _core.output_point_finding(description, body, (float(point[0]), float(point[1])), field)
+    found = output_point_finding(description, body, (float(point[0]), float(point[1])), field)
     return [found] if found is not None else []
 
 
